@@ -1,0 +1,31 @@
+//! CSV of a sampled time series, SI units: `t,N,F,X,V,vx,omega,slip,phase`.
+
+use std::fmt::Write;
+
+use crate::model::Sample;
+
+/// The header line of [`series`].
+pub const HEADER: &str = "t,N,F,X,V,vx,omega,slip,phase";
+
+/// The samples as CSV with a header line.
+pub fn series(samples: &[Sample]) -> String {
+    let mut out = String::with_capacity(120 * (samples.len() + 1));
+    out.push_str(HEADER);
+    out.push('\n');
+    for s in samples {
+        let _ = writeln!(
+            out,
+            "{},{},{},{},{},{},{},{},{}",
+            s.t,
+            s.normal,
+            s.friction,
+            s.x,
+            s.v,
+            s.vx,
+            s.omega,
+            s.slip,
+            s.kind.name()
+        );
+    }
+    out
+}

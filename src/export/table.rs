@@ -1,0 +1,79 @@
+//! The readable summary of `snapback simulate`.
+
+use std::fmt::Write;
+
+use crate::model::params::PARAMS;
+use crate::model::units::{Dimension, show};
+use crate::model::{Bounce, PhaseKind};
+
+/// Parameters, outcome, phases in ms and the energy budget, as aligned text.
+pub fn summary(b: &Bounce) -> String {
+    let mut out = String::new();
+    let o = &b.outcome;
+    let e = &b.energy;
+    let _ = writeln!(out, "Parameters");
+    for spec in PARAMS {
+        let name = format!("{} {}", spec.label, spec.symbol);
+        let _ = writeln!(out, "  {name:<24}{}", spec.show(b.params.get(spec.id)));
+    }
+    let _ = writeln!(out, "\nOutcome");
+    let rpm = o.omega2 * 30.0 / std::f64::consts::PI;
+    let _ = writeln!(
+        out,
+        "  {:<24}{:.1} rad/s ({rpm:.0} rpm)",
+        "rebound spin ω2", o.omega2
+    );
+    let _ = writeln!(out, "  {:<24}{:.3} m/s", "v_x2", o.vx2);
+    let _ = writeln!(out, "  {:<24}{:.3} m/s", "v_y2", o.vy2);
+    let _ = writeln!(out, "  {:<24}{:.3} m/s", "rebound speed v2", o.speed2);
+    let _ = writeln!(out, "  {:<24}{:.2} deg", "rebound angle θ2", o.theta2_deg);
+    let ex =
+        o.ex.map_or("undefined (no incoming slip)".to_string(), |ex| {
+            format!("{ex:.4}")
+        });
+    let _ = writeln!(out, "  {:<24}{ex}", "e_x");
+    let _ = writeln!(out, "  {:<24}{:.2}", "e_y", o.ey);
+    if let Some(ratio) = o.roll_ratio {
+        let _ = writeln!(out, "  {:<24}{ratio:.4}", "r ω2 / v_x2");
+    }
+    let _ = writeln!(out, "\nPhases ({})", b.phase_summary());
+    for p in &b.phases {
+        let slip = match (p.kind, p.slip_sign) {
+            (PhaseKind::Grip, _) => "contact point moves with the cart".to_string(),
+            (_, s) if s > 0 => "slipping forward, F = +μN".to_string(),
+            _ => "slipping backward, F = -μN".to_string(),
+        };
+        let _ = writeln!(
+            out,
+            "  {:<6}{:>7.4} - {:>6.4} ms  {slip}",
+            p.kind.name(),
+            p.start * 1e3,
+            p.end * 1e3
+        );
+    }
+    let _ = writeln!(
+        out,
+        "  cart at release: X = {}, V = {:.3} m/s",
+        show(b.final_state.x, Dimension::Length, "mm", 3),
+        b.final_state.v
+    );
+    let _ = writeln!(out, "\nEnergy");
+    let share = |j: f64| 100.0 * j / e.initial;
+    let rows = [
+        ("incoming ball", e.initial),
+        ("outgoing ball", e.final_ball),
+        ("cart + spring", e.final_cart),
+        ("lost to friction", e.friction_loss),
+        ("lost normally (e_y)", e.normal_loss),
+    ];
+    for (name, joules) in rows {
+        let _ = writeln!(
+            out,
+            "  {name:<24}{:>10.2} mJ {:>6.2} %",
+            joules * 1e3,
+            share(joules)
+        );
+    }
+    let _ = writeln!(out, "  {:<24}{:>10.1e} (relative)", "residual", e.residual);
+    out
+}

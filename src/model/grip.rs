@@ -1,0 +1,44 @@
+//! The grip phase, Eqs. (4)-(6): the contact point moves with the cart, held by static friction.
+
+use super::oscillator::free;
+use super::setup::{Setup, State};
+
+/// A grip phase from `start`.
+#[derive(Clone, Copy, Debug)]
+pub struct Grip {
+    pub start: State,
+}
+
+impl Grip {
+    /// The static friction on the ball, Eq. (5): F_s = k m_eff X / (M + m_eff), positive backward.
+    #[inline]
+    pub fn friction(setup: &Setup, x: f64) -> f64 {
+        setup.grip_gain * x
+    }
+
+    /// The state at `t`. The cart is a free oscillator of mass M + m alpha/(1+alpha), Eq. (6). Since
+    /// F_s = -m_eff dV/dt, the impulse on the ball is -m_eff (V - V0), which gives v_x and omega.
+    #[inline]
+    pub fn at(&self, setup: &Setup, t: f64) -> State {
+        let s0 = &self.start;
+        let (x, v) = free(s0.x, s0.v, setup.omega_grip, t - s0.t);
+        let impulse = -setup.m_eff * (v - s0.v);
+        State {
+            t,
+            vx: s0.vx - impulse / setup.m,
+            omega: s0.omega + impulse * setup.r / setup.inertia,
+            x,
+            v,
+        }
+    }
+
+    /// How far the grip is from breaking: |F_s| - mu N (it breaks when this rises above zero), and its rate.
+    #[inline]
+    pub fn margin(setup: &Setup, s: &State) -> (f64, f64) {
+        let sign = if s.x < 0.0 { -1.0 } else { 1.0 };
+        let value = sign * setup.grip_gain * s.x - setup.mu * setup.normal(s.t);
+        let rate =
+            sign * setup.grip_gain * s.v - setup.mu * setup.n0 * setup.w * (setup.w * s.t).cos();
+        (value, rate)
+    }
+}

@@ -1,0 +1,16 @@
+//! The simulation core: the ball-on-cart model of Cross (2010), solved exactly phase by phase.
+//! No terminal, no files, no printing: everything else calls [`solve`] and reads the [`Bounce`].
+
+pub mod bounce;
+pub mod events;
+pub mod grip;
+pub mod oscillator;
+pub mod params;
+pub mod quadrature;
+pub mod setup;
+pub mod slide;
+pub mod units;
+
+pub use bounce::{Bounce, Energy, Outcome, Phase, PhaseKind, Sample, SolveError, solve};
+pub use params::{PARAMS, ParamError, ParamId, ParamSpec, Params};
+pub use setup::State;

@@ -1,0 +1,104 @@
+//! Closed-form pieces of the harmonic oscillator `X'' + Ω² X = f(t)`, written so that they stay exact
+//! for a free cart (Ω = 0) and at resonance with the normal force (Ω = π/T), where the textbook formulas
+//! divide by zero.
+
+/// sin(x)/x, with its Taylor series near 0.
+#[inline]
+pub fn sinc(x: f64) -> f64 {
+    if x.abs() < 1e-4 {
+        1.0 - x * x / 6.0
+    } else {
+        x.sin() / x
+    }
+}
+
+/// The free oscillator's state after `tau`: `X = X0 cos Ωτ + V0 sin(Ωτ)/Ω`, `V = X'`.
+#[inline]
+pub fn free(x0: f64, v0: f64, omega: f64, tau: f64) -> (f64, f64) {
+    let (s, c) = (omega * tau).sin_cos();
+    let x = x0 * c + v0 * tau * sinc(omega * tau);
+    let v = -x0 * omega * s + v0 * c;
+    (x, v)
+}
+
+/// Response to the forcing `sin(w t)` switched on at `t0`, zero state at `t0`:
+/// `G(t) = ∫_{t0}^{t} sin(Ω(t-u))/Ω · sin(w u) du` and its time derivative, at `t = t0 + tau`.
+///
+/// `sin_wt0` and `cos_wt0` are sin(w t0) and cos(w t0). Derived from the particular solution
+/// `sin(w t)/(Ω² - w²)` with the two differences of sines and cosines rewritten as products with
+/// sinc((w-Ω)τ/2) and sinc(Ωτ), which have no singularity at Ω = w or Ω = 0.
+#[inline]
+pub fn forced(omega: f64, w: f64, sin_wt0: f64, cos_wt0: f64, tau: f64) -> (f64, f64) {
+    let sum = w + omega;
+    let half = 0.5 * sum * tau;
+    let (sin_half, cos_half) = half.sin_cos();
+    let beat = sinc(0.5 * (w - omega) * tau);
+    let sin_omega_tau = (omega * tau).sin();
+    let g =
+        tau / sum * (sin_wt0 * sin_half * beat + cos_wt0 * (sinc(omega * tau) - cos_half * beat));
+    let dg = (w * cos_wt0 * tau * sin_half * beat
+        + sin_wt0 * (w * tau * cos_half * beat + sin_omega_tau))
+        / sum;
+    (g, dg)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// G by the textbook formula, valid away from Ω = 0 and Ω = w.
+    fn textbook(omega: f64, w: f64, t0: f64, t: f64) -> (f64, f64) {
+        let a = 1.0 / (omega * omega - w * w);
+        let tau = t - t0;
+        let g = a
+            * ((w * t).sin()
+                - (w * t0).sin() * (omega * tau).cos()
+                - w * (w * t0).cos() * (omega * tau).sin() / omega);
+        let dg = a
+            * (w * (w * t).cos() + omega * (w * t0).sin() * (omega * tau).sin()
+                - w * (w * t0).cos() * (omega * tau).cos());
+        (g, dg)
+    }
+
+    #[test]
+    fn matches_textbook_away_from_singularities() {
+        let w = std::f64::consts::PI / 5e-3;
+        for &omega in &[50.0, 300.0, 1224.7, 5000.0, 60000.0] {
+            for &(t0, t) in &[(0.0, 2e-3), (1.3e-3, 4.4e-3), (4.0e-3, 5e-3)] {
+                let (g, dg) = forced(omega, w, (w * t0).sin(), (w * t0).cos(), t - t0);
+                let (ge, dge) = textbook(omega, w, t0, t);
+                let scale = 1.0 / (omega * omega - w * w).abs();
+                assert!((g - ge).abs() < 1e-10 * scale, "G Ω={omega} {g} {ge}");
+                assert!(
+                    (dg - dge).abs() < 1e-10 * scale * w,
+                    "G' Ω={omega} {dg} {dge}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn free_cart_limit() {
+        // Ω = 0: G = ∫ (t-u) sin(w u) du from 0 = t/w - sin(w t)/w²; G' = (1 - cos w t)/w.
+        let w = 628.3;
+        let t = 3e-3;
+        let (g, dg) = forced(0.0, w, 0.0, 1.0, t);
+        assert!((g - (t / w - (w * t).sin() / (w * w))).abs() < 1e-15);
+        assert!((dg - (1.0 - (w * t).cos()) / w).abs() < 1e-15);
+    }
+
+    #[test]
+    fn resonance_limit() {
+        // Ω = w: G = (sin w t - w t cos w t)/(2 w²) from t0 = 0.
+        let w = 628.3;
+        let t = 4e-3;
+        let (g, dg) = forced(w, w, 0.0, 1.0, t);
+        let exact = ((w * t).sin() - w * t * (w * t).cos()) / (2.0 * w * w);
+        assert!((g - exact).abs() < 1e-15, "{g} {exact}");
+        let exact_dg = t * (w * t).sin() / 2.0;
+        assert!((dg - exact_dg).abs() < 1e-15, "{dg} {exact_dg}");
+        // Continuous through resonance.
+        let (g_near, _) = forced(w * (1.0 + 1e-9), w, 0.0, 1.0, t);
+        assert!((g_near - g).abs() < 1e-12);
+    }
+}

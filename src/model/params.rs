@@ -1,0 +1,602 @@
+//! The inputs of a bounce, and the one table that says each parameter's name, unit, range, step and help.
+//! The command line, the scenario files, the explorer's parameter panel and its help overlay all read it.
+
+use std::fmt;
+
+use serde::{Deserialize, Serialize};
+
+use super::units::{self, Dimension};
+
+/// Inputs of one bounce. SI units, except the incidence angle, in degrees measured from the surface.
+/// The defaults are the paper's Fig. 3(c) case.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Params {
+    /// Incidence angle theta1 from the surface, degrees (90 is normal incidence).
+    pub angle_deg: f64,
+    /// Incident speed v1, m/s.
+    pub speed: f64,
+    /// Incident spin omega1, rad/s; positive is the sense sliding friction drives (topspin), negative is backspin.
+    pub spin: f64,
+    /// Coefficient of sliding friction mu between ball and cart.
+    pub mu: f64,
+    /// Impact duration T, s.
+    pub duration: f64,
+    /// Normal coefficient of restitution e_y.
+    pub ey: f64,
+    /// Ball mass m, kg.
+    pub mass: f64,
+    /// Ball radius r, m.
+    pub radius: f64,
+    /// I = alpha m r^2.
+    pub alpha: f64,
+    /// Cart mass M, kg.
+    pub cart_mass: f64,
+    /// Spring stiffness k, N/m.
+    pub stiffness: f64,
+}
+
+impl Default for Params {
+    fn default() -> Self {
+        let mut params = Params {
+            angle_deg: 0.0,
+            speed: 0.0,
+            spin: 0.0,
+            mu: 0.0,
+            duration: 0.0,
+            ey: 0.0,
+            mass: 0.0,
+            radius: 0.0,
+            alpha: 0.0,
+            cart_mass: 0.0,
+            stiffness: 0.0,
+        };
+        for spec in PARAMS {
+            params.set(spec.id, spec.default);
+        }
+        params
+    }
+}
+
+/// Names a parameter.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum ParamId {
+    Angle,
+    Speed,
+    Spin,
+    Mu,
+    Duration,
+    Ey,
+    Mass,
+    Radius,
+    Alpha,
+    CartMass,
+    Stiffness,
+}
+
+/// One end of an allowed range.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Bound {
+    Open(f64),
+    Closed(f64),
+    Unbounded,
+}
+
+/// The values a parameter may take, in its base unit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Range {
+    pub low: Bound,
+    pub high: Bound,
+}
+
+impl Range {
+    pub fn contains(&self, value: f64) -> bool {
+        let above = match self.low {
+            Bound::Open(b) => value > b,
+            Bound::Closed(b) => value >= b,
+            Bound::Unbounded => true,
+        };
+        let below = match self.high {
+            Bound::Open(b) => value < b,
+            Bound::Closed(b) => value <= b,
+            Bound::Unbounded => true,
+        };
+        value.is_finite() && above && below
+    }
+
+    /// The nearest allowed value (an open bound is approached by a relative 1e-9).
+    pub fn clamp(&self, value: f64) -> f64 {
+        let nudge = |b: f64, up: bool| {
+            let d = b.abs().max(1e-12) * 1e-9;
+            if up { b + d } else { b - d }
+        };
+        let mut v = value;
+        match self.low {
+            Bound::Open(b) if v <= b => v = nudge(b, true),
+            Bound::Closed(b) if v < b => v = b,
+            _ => {}
+        }
+        match self.high {
+            Bound::Open(b) if v >= b => v = nudge(b, false),
+            Bound::Closed(b) if v > b => v = b,
+            _ => {}
+        }
+        v
+    }
+}
+
+impl fmt::Display for Range {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let low = match self.low {
+            Bound::Open(b) => format!("({}", units::brief(b, 6)),
+            Bound::Closed(b) => format!("[{}", units::brief(b, 6)),
+            Bound::Unbounded => "(-inf".to_string(),
+        };
+        let high = match self.high {
+            Bound::Open(b) => format!("{})", units::brief(b, 6)),
+            Bound::Closed(b) => format!("{}]", units::brief(b, 6)),
+            Bound::Unbounded => "inf)".to_string(),
+        };
+        write!(f, "{low}, {high}")
+    }
+}
+
+/// How a key press changes a parameter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Step {
+    /// Add this many base units.
+    Add(f64),
+    /// Multiply by this factor. From zero, a step up goes to [`Step::FIRST_FROM_ZERO`].
+    Times(f64),
+}
+
+impl Step {
+    /// Where a multiplicative step up from zero lands (only stiffness can be zero: 100 N/m).
+    pub const FIRST_FROM_ZERO: f64 = 100.0;
+
+    /// `value` moved one step up (`up`) or down, kept inside `range`.
+    pub fn apply(self, value: f64, up: bool, range: &Range) -> f64 {
+        let moved = match self {
+            Step::Add(d) => {
+                let v = if up { value + d } else { value - d };
+                // Snap to the step grid so repeated steps give round numbers.
+                let snapped = (v / d).round() * d;
+                if (snapped - v).abs() < d * 1e-6 {
+                    snapped
+                } else {
+                    v
+                }
+            }
+            Step::Times(_) if value == 0.0 => {
+                if up {
+                    Self::FIRST_FROM_ZERO
+                } else {
+                    0.0
+                }
+            }
+            Step::Times(f) => {
+                if up {
+                    value * f
+                } else {
+                    value / f
+                }
+            }
+        };
+        range.clamp(moved)
+    }
+}
+
+/// Everything the program knows about one parameter.
+#[derive(Clone, Copy, Debug)]
+pub struct ParamSpec {
+    pub id: ParamId,
+    /// Command-line flag without dashes, e.g. `cart-mass`.
+    pub flag: &'static str,
+    /// Key in scenario files, e.g. `cart_mass`.
+    pub key: &'static str,
+    /// Symbol used in the paper, e.g. `M`.
+    pub symbol: &'static str,
+    /// Short name for people.
+    pub label: &'static str,
+    pub dimension: Dimension,
+    /// The unit people think in, for display.
+    pub display_unit: &'static str,
+    /// Decimals shown in `display_unit`.
+    pub decimals: usize,
+    pub range: Range,
+    pub fine: Step,
+    pub coarse: Step,
+    pub default: f64,
+    pub help: &'static str,
+}
+
+impl ParamSpec {
+    /// `--flag`.
+    pub fn long_flag(&self) -> String {
+        format!("--{}", self.flag)
+    }
+
+    /// The allowed range in the base unit, e.g. `(0, 90] deg`.
+    pub fn range_text(&self) -> String {
+        let unit = self.dimension.base_symbol();
+        if unit.is_empty() {
+            self.range.to_string()
+        } else {
+            format!("{} {unit}", self.range)
+        }
+    }
+
+    /// A value in the display unit, e.g. `10.0 g`.
+    pub fn show(&self, base_value: f64) -> units::Shown {
+        units::show(base_value, self.dimension, self.display_unit, self.decimals)
+    }
+
+    /// Parses user text (with an optional unit suffix) and checks the range.
+    pub fn parse(&self, text: &str) -> Result<f64, ParamError> {
+        let value =
+            units::parse(text, self.dimension).map_err(|source| ParamError::Unparsable {
+                flag: self.flag,
+                given: text.trim().to_string(),
+                source: Box::new(source),
+            })?;
+        self.check(value, text.trim())?;
+        Ok(value)
+    }
+
+    /// Checks a base-unit value against the range; `given` is what the user typed, for the message.
+    pub fn check(&self, value: f64, given: &str) -> Result<(), ParamError> {
+        if self.range.contains(value) {
+            Ok(())
+        } else {
+            Err(ParamError::OutOfRange {
+                flag: self.flag,
+                range: self.range_text(),
+                given: given.to_string(),
+            })
+        }
+    }
+}
+
+/// A parameter value that cannot be used. The message names the flag, the allowed range and the value given.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ParamError {
+    #[error("--{flag} must be in {range}; got {given}")]
+    OutOfRange {
+        flag: &'static str,
+        range: String,
+        given: String,
+    },
+    #[error("--{flag}: {source}; got {given}")]
+    Unparsable {
+        flag: &'static str,
+        given: String,
+        source: Box<units::UnitError>,
+    },
+}
+
+const POSITIVE: Range = Range {
+    low: Bound::Open(0.0),
+    high: Bound::Unbounded,
+};
+const NON_NEGATIVE: Range = Range {
+    low: Bound::Closed(0.0),
+    high: Bound::Unbounded,
+};
+
+/// Every parameter, in the order the explorer lists them.
+pub const PARAMS: &[ParamSpec] = &[
+    ParamSpec {
+        id: ParamId::Angle,
+        flag: "angle",
+        key: "angle",
+        symbol: "θ1",
+        label: "incidence angle",
+        dimension: Dimension::Angle,
+        display_unit: "deg",
+        decimals: 1,
+        range: Range {
+            low: Bound::Open(0.0),
+            high: Bound::Closed(90.0),
+        },
+        fine: Step::Add(1.0),
+        coarse: Step::Add(10.0),
+        default: 60.0,
+        help: "incidence angle theta1, measured from the surface (90 = normal incidence)",
+    },
+    ParamSpec {
+        id: ParamId::Speed,
+        flag: "speed",
+        key: "speed",
+        symbol: "v1",
+        label: "incident speed",
+        dimension: Dimension::Speed,
+        display_unit: "m/s",
+        decimals: 1,
+        range: POSITIVE,
+        fine: Step::Add(0.5),
+        coarse: Step::Add(5.0),
+        default: 10.0,
+        help: "incident speed v1 of the ball's centre",
+    },
+    ParamSpec {
+        id: ParamId::Spin,
+        flag: "spin",
+        key: "spin",
+        symbol: "ω1",
+        label: "incident spin",
+        dimension: Dimension::AngularVelocity,
+        display_unit: "rad/s",
+        decimals: 0,
+        range: Range {
+            low: Bound::Unbounded,
+            high: Bound::Unbounded,
+        },
+        fine: Step::Add(10.0),
+        coarse: Step::Add(100.0),
+        default: -100.0,
+        help: "incident spin omega1; positive = topspin (the sense sliding friction drives), negative = backspin",
+    },
+    ParamSpec {
+        id: ParamId::Mu,
+        flag: "mu",
+        key: "mu",
+        symbol: "μ",
+        label: "sliding friction",
+        dimension: Dimension::Dimensionless,
+        display_unit: "",
+        decimals: 2,
+        range: NON_NEGATIVE,
+        fine: Step::Add(0.01),
+        coarse: Step::Add(0.1),
+        default: 0.4,
+        help: "coefficient of sliding friction mu between ball and surface",
+    },
+    ParamSpec {
+        id: ParamId::Duration,
+        flag: "duration",
+        key: "duration",
+        symbol: "T",
+        label: "impact duration",
+        dimension: Dimension::Time,
+        display_unit: "ms",
+        decimals: 2,
+        range: POSITIVE,
+        fine: Step::Add(0.1e-3),
+        coarse: Step::Add(1e-3),
+        default: 5e-3,
+        help: "impact duration T; the normal force is N0 sin(pi t / T)",
+    },
+    ParamSpec {
+        id: ParamId::Ey,
+        flag: "ey",
+        key: "ey",
+        symbol: "e_y",
+        label: "normal restitution",
+        dimension: Dimension::Dimensionless,
+        display_unit: "",
+        decimals: 2,
+        range: Range {
+            low: Bound::Closed(0.0),
+            high: Bound::Closed(1.0),
+        },
+        fine: Step::Add(0.01),
+        coarse: Step::Add(0.1),
+        default: 1.0,
+        help: "normal coefficient of restitution e_y = v_y2 / v_y1",
+    },
+    ParamSpec {
+        id: ParamId::Mass,
+        flag: "mass",
+        key: "mass",
+        symbol: "m",
+        label: "ball mass",
+        dimension: Dimension::Mass,
+        display_unit: "g",
+        decimals: 1,
+        range: POSITIVE,
+        fine: Step::Times(1.02),
+        coarse: Step::Times(1.25),
+        default: 0.057,
+        help: "ball mass m",
+    },
+    ParamSpec {
+        id: ParamId::Radius,
+        flag: "radius",
+        key: "radius",
+        symbol: "r",
+        label: "ball radius",
+        dimension: Dimension::Length,
+        display_unit: "mm",
+        decimals: 1,
+        range: POSITIVE,
+        fine: Step::Add(0.5e-3),
+        coarse: Step::Add(5e-3),
+        default: 0.033,
+        help: "ball radius r",
+    },
+    ParamSpec {
+        id: ParamId::Alpha,
+        flag: "alpha",
+        key: "alpha",
+        symbol: "α",
+        label: "inertia factor",
+        dimension: Dimension::Dimensionless,
+        display_unit: "",
+        decimals: 3,
+        range: POSITIVE,
+        fine: Step::Add(0.005),
+        coarse: Step::Add(0.05),
+        default: 0.55,
+        help: "moment of inertia factor: I = alpha m r^2 (0.4 solid sphere, 2/3 thin shell, 0.55 tennis ball)",
+    },
+    ParamSpec {
+        id: ParamId::CartMass,
+        flag: "cart-mass",
+        key: "cart_mass",
+        symbol: "M",
+        label: "cart mass",
+        dimension: Dimension::Mass,
+        display_unit: "g",
+        decimals: 2,
+        range: POSITIVE,
+        fine: Step::Times(1.1),
+        coarse: Step::Times(2.0),
+        default: 0.010,
+        help: "mass M of the surface that moves sideways (the cart; the moving part of the strings)",
+    },
+    ParamSpec {
+        id: ParamId::Stiffness,
+        flag: "stiffness",
+        key: "stiffness",
+        symbol: "k",
+        label: "spring stiffness",
+        dimension: Dimension::Stiffness,
+        display_unit: "kN/m",
+        decimals: 2,
+        range: NON_NEGATIVE,
+        fine: Step::Times(1.05),
+        coarse: Step::Times(1.5),
+        default: 15000.0,
+        help: "stiffness k of the spring that pulls the cart back (0 = a free cart)",
+    },
+];
+
+/// The spec of one parameter.
+pub fn spec(id: ParamId) -> &'static ParamSpec {
+    PARAMS
+        .iter()
+        .find(|s| s.id == id)
+        .expect("every ParamId has a row in PARAMS")
+}
+
+/// The spec whose flag (`cart-mass`) or key (`cart_mass`) is `name`.
+pub fn spec_named(name: &str) -> Option<&'static ParamSpec> {
+    PARAMS.iter().find(|s| s.flag == name || s.key == name)
+}
+
+impl Params {
+    pub fn get(&self, id: ParamId) -> f64 {
+        match id {
+            ParamId::Angle => self.angle_deg,
+            ParamId::Speed => self.speed,
+            ParamId::Spin => self.spin,
+            ParamId::Mu => self.mu,
+            ParamId::Duration => self.duration,
+            ParamId::Ey => self.ey,
+            ParamId::Mass => self.mass,
+            ParamId::Radius => self.radius,
+            ParamId::Alpha => self.alpha,
+            ParamId::CartMass => self.cart_mass,
+            ParamId::Stiffness => self.stiffness,
+        }
+    }
+
+    /// Sets a value without checking it; see [`Params::with`] for the checked version.
+    pub fn set(&mut self, id: ParamId, value: f64) {
+        let slot = match id {
+            ParamId::Angle => &mut self.angle_deg,
+            ParamId::Speed => &mut self.speed,
+            ParamId::Spin => &mut self.spin,
+            ParamId::Mu => &mut self.mu,
+            ParamId::Duration => &mut self.duration,
+            ParamId::Ey => &mut self.ey,
+            ParamId::Mass => &mut self.mass,
+            ParamId::Radius => &mut self.radius,
+            ParamId::Alpha => &mut self.alpha,
+            ParamId::CartMass => &mut self.cart_mass,
+            ParamId::Stiffness => &mut self.stiffness,
+        };
+        *slot = value;
+    }
+
+    /// A copy with one value changed, if the value is in range.
+    pub fn with(mut self, id: ParamId, value: f64) -> Result<Self, ParamError> {
+        let spec = spec(id);
+        spec.check(
+            value,
+            &format!(
+                "{} {}",
+                units::brief(value, 6),
+                spec.dimension.base_symbol()
+            ),
+        )?;
+        self.set(id, value);
+        Ok(self)
+    }
+
+    /// Checks every value against its range.
+    pub fn validate(&self) -> Result<(), ParamError> {
+        PARAMS.iter().try_for_each(|spec| {
+            let value = self.get(spec.id);
+            spec.check(
+                value,
+                &format!(
+                    "{} {}",
+                    units::brief(value, 6),
+                    spec.dimension.base_symbol()
+                ),
+            )
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn defaults_are_fig3c() {
+        let p = Params::default();
+        assert_eq!(p.mass, 0.057);
+        assert_eq!(p.radius, 0.033);
+        assert_eq!(p.alpha, 0.55);
+        assert_eq!(p.speed, 10.0);
+        assert_eq!(p.angle_deg, 60.0);
+        assert_eq!(p.spin, -100.0);
+        assert_eq!(p.mu, 0.4);
+        assert_eq!(p.duration, 0.005);
+        assert_eq!(p.ey, 1.0);
+        assert_eq!(p.cart_mass, 0.010);
+        assert_eq!(p.stiffness, 15000.0);
+        assert!(p.validate().is_ok());
+    }
+
+    #[test]
+    fn every_id_has_one_row() {
+        for spec in PARAMS {
+            assert_eq!(PARAMS.iter().filter(|s| s.id == spec.id).count(), 1);
+            assert_eq!(spec_named(spec.flag).map(|s| s.id), Some(spec.id));
+            assert_eq!(spec_named(spec.key).map(|s| s.id), Some(spec.id));
+        }
+    }
+
+    #[test]
+    fn range_errors_name_flag_range_and_value() {
+        let err = spec(ParamId::Angle).parse("95deg").unwrap_err();
+        assert_eq!(err.to_string(), "--angle must be in (0, 90] deg; got 95deg");
+        let err = spec(ParamId::CartMass).parse("-5g").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "--cart-mass must be in (0, inf) kg; got -5g"
+        );
+        let err = spec(ParamId::Ey).parse("1.5").unwrap_err();
+        assert_eq!(err.to_string(), "--ey must be in [0, 1]; got 1.5");
+        let err = spec(ParamId::Stiffness).parse("15 kg").unwrap_err();
+        assert!(
+            err.to_string()
+                .starts_with("--stiffness: unit 'kg' is a mass"),
+            "{err}"
+        );
+    }
+
+    #[test]
+    fn steps_stay_in_range_and_on_grid() {
+        let angle = spec(ParamId::Angle);
+        assert_eq!(angle.fine.apply(60.0, true, &angle.range), 61.0);
+        assert_eq!(angle.coarse.apply(85.0, true, &angle.range), 90.0);
+        let low = angle.fine.apply(0.5, false, &angle.range);
+        assert!(low > 0.0 && low < 1e-6);
+        let k = spec(ParamId::Stiffness);
+        assert_eq!(k.coarse.apply(0.0, false, &k.range), 0.0);
+        assert!((k.coarse.apply(15000.0, true, &k.range) - 22500.0).abs() < 1e-9);
+    }
+}

@@ -1,0 +1,117 @@
+//! The constants of one bounce, derived once from [`Params`], and the state that evolves.
+
+use std::f64::consts::PI;
+
+use super::params::Params;
+
+/// The tangential state of ball and cart at time `t` (SI).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct State {
+    pub t: f64,
+    /// Ball centre's velocity along the surface.
+    pub vx: f64,
+    /// Ball spin; positive is the sense sliding friction drives.
+    pub omega: f64,
+    /// Cart displacement from rest.
+    pub x: f64,
+    /// Cart velocity.
+    pub v: f64,
+}
+
+/// Constants of the model for one set of parameters.
+#[derive(Clone, Copy, Debug)]
+pub struct Setup {
+    pub m: f64,
+    pub r: f64,
+    /// I_cm = alpha m r^2.
+    pub inertia: f64,
+    /// The ball's effective mass at its contact point, 1/m_eff = 1/m + r^2/I, so m_eff = m alpha/(1+alpha).
+    pub m_eff: f64,
+    pub cart_mass: f64,
+    pub k: f64,
+    pub mu: f64,
+    pub duration: f64,
+    /// w = pi/T, the angular frequency of the normal force.
+    pub w: f64,
+    /// Peak normal force N0 = (1 + e_y) pi m v_y1 / (2T) (the paper's pi m v_y1 / T for e_y = 1).
+    pub n0: f64,
+    /// sqrt(k/M): the cart's frequency while the ball slides, Eq. (3).
+    pub omega_slide: f64,
+    /// sqrt(k/(M + m alpha/(1+alpha))): the cart's frequency while the ball grips, Eq. (6).
+    pub omega_grip: f64,
+    /// F_s / X during grip, Eq. (5): F_s = m k X / (M (1 + m/M + m r^2/I)) = k m_eff X / (M + m_eff).
+    pub grip_gain: f64,
+    pub vx1: f64,
+    pub vy1: f64,
+}
+
+impl Setup {
+    pub fn new(p: &Params) -> Self {
+        let inertia = p.alpha * p.mass * p.radius * p.radius;
+        let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+        let w = PI / p.duration;
+        // cos and sin through the complement, so 90 degrees gives exactly vx1 = 0.
+        let vx1 = p.speed * ((90.0 - p.angle_deg).to_radians()).sin();
+        let vy1 = p.speed * ((90.0 - p.angle_deg).to_radians()).cos();
+        Setup {
+            m: p.mass,
+            r: p.radius,
+            inertia,
+            m_eff,
+            cart_mass: p.cart_mass,
+            k: p.stiffness,
+            mu: p.mu,
+            duration: p.duration,
+            w,
+            n0: (1.0 + p.ey) * PI * p.mass * vy1 / (2.0 * p.duration),
+            omega_slide: (p.stiffness / p.cart_mass).sqrt(),
+            omega_grip: (p.stiffness / (p.cart_mass + m_eff)).sqrt(),
+            grip_gain: p.stiffness * m_eff / (p.cart_mass + m_eff),
+            vx1,
+            vy1,
+        }
+    }
+
+    /// N(t) = N0 sin(pi t / T) during contact.
+    #[inline]
+    pub fn normal(&self, t: f64) -> f64 {
+        if (0.0..=self.duration).contains(&t) {
+            self.n0 * (self.w * t).sin()
+        } else {
+            0.0
+        }
+    }
+
+    /// Slip speed of the ball's contact point relative to the cart: v_x - r omega - V.
+    #[inline]
+    pub fn slip(&self, s: &State) -> f64 {
+        s.vx - self.r * s.omega - s.v
+    }
+
+    /// The state at first contact: the cart at rest.
+    pub fn initial(&self, spin: f64) -> State {
+        State {
+            t: 0.0,
+            vx: self.vx1,
+            omega: spin,
+            x: 0.0,
+            v: 0.0,
+        }
+    }
+
+    /// Ball (translation + rotation) kinetic energy in the tangential direction.
+    pub fn ball_tangential_energy(&self, s: &State) -> f64 {
+        0.5 * self.m * s.vx * s.vx + 0.5 * self.inertia * s.omega * s.omega
+    }
+
+    /// Cart kinetic plus spring energy.
+    pub fn cart_energy(&self, s: &State) -> f64 {
+        0.5 * self.cart_mass * s.v * s.v + 0.5 * self.k * s.x * s.x
+    }
+
+    /// Step for event sampling: an eighth of the fastest period present, so that between two samples an
+    /// event function has at most one extremum.
+    pub fn event_step(&self, omega_cart: f64) -> f64 {
+        std::f64::consts::FRAC_PI_4 / omega_cart.max(self.w)
+    }
+}

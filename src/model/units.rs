@@ -1,0 +1,368 @@
+//! Quantities with units: parse `"10 g"`, `"15kN/m"`, `"-100rad/s"`, `"955rpm"`; format for people.
+//!
+//! Every quantity has a *base unit* that the core works in: SI for all of them except angles, which the
+//! parameters hold in degrees (the unit the paper and its readers use).
+
+use std::fmt;
+
+/// What a number measures. Decides which unit suffixes a value may carry.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Dimension {
+    Mass,
+    Length,
+    Speed,
+    Time,
+    Stiffness,
+    Angle,
+    AngularVelocity,
+    Force,
+    Dimensionless,
+}
+
+/// One unit: its symbols (the first is the canonical one) and the factor that takes it to the base unit.
+#[derive(Clone, Copy, Debug)]
+pub struct Unit {
+    pub symbols: &'static [&'static str],
+    pub to_base: f64,
+}
+
+impl Unit {
+    pub fn symbol(&self) -> &'static str {
+        self.symbols[0]
+    }
+}
+
+const fn unit(symbols: &'static [&'static str], to_base: f64) -> Unit {
+    Unit { symbols, to_base }
+}
+
+const MASS: &[Unit] = &[unit(&["kg"], 1.0), unit(&["g"], 1e-3), unit(&["mg"], 1e-6)];
+const LENGTH: &[Unit] = &[unit(&["m"], 1.0), unit(&["cm"], 1e-2), unit(&["mm"], 1e-3)];
+const SPEED: &[Unit] = &[
+    unit(&["m/s"], 1.0),
+    unit(&["km/h"], 1.0 / 3.6),
+    unit(&["mph"], 0.447_04),
+];
+const TIME: &[Unit] = &[
+    unit(&["s"], 1.0),
+    unit(&["ms"], 1e-3),
+    unit(&["us", "µs"], 1e-6),
+];
+const STIFFNESS: &[Unit] = &[
+    unit(&["N/m"], 1.0),
+    unit(&["kN/m", "N/mm"], 1e3),
+    unit(&["MN/m"], 1e6),
+];
+const ANGLE: &[Unit] = &[
+    unit(&["deg", "°"], 1.0),
+    unit(&["rad"], 180.0 / std::f64::consts::PI),
+];
+const ANGULAR_VELOCITY: &[Unit] = &[
+    unit(&["rad/s"], 1.0),
+    unit(&["rpm"], std::f64::consts::PI / 30.0),
+    unit(&["rps", "rev/s"], 2.0 * std::f64::consts::PI),
+];
+const FORCE: &[Unit] = &[unit(&["N"], 1.0), unit(&["kN"], 1e3)];
+
+const ALL: [Dimension; 9] = [
+    Dimension::Mass,
+    Dimension::Length,
+    Dimension::Speed,
+    Dimension::Time,
+    Dimension::Stiffness,
+    Dimension::Angle,
+    Dimension::AngularVelocity,
+    Dimension::Force,
+    Dimension::Dimensionless,
+];
+
+impl Dimension {
+    /// The units a value of this dimension may carry, base unit first.
+    pub fn units(self) -> &'static [Unit] {
+        match self {
+            Dimension::Mass => MASS,
+            Dimension::Length => LENGTH,
+            Dimension::Speed => SPEED,
+            Dimension::Time => TIME,
+            Dimension::Stiffness => STIFFNESS,
+            Dimension::Angle => ANGLE,
+            Dimension::AngularVelocity => ANGULAR_VELOCITY,
+            Dimension::Force => FORCE,
+            Dimension::Dimensionless => &[],
+        }
+    }
+
+    /// The unit the core works in; `""` for a pure number.
+    pub fn base_symbol(self) -> &'static str {
+        self.units().first().map_or("", Unit::symbol)
+    }
+
+    /// A noun for messages: "a mass", "an angle".
+    pub fn noun(self) -> &'static str {
+        match self {
+            Dimension::Mass => "a mass",
+            Dimension::Length => "a length",
+            Dimension::Speed => "a speed",
+            Dimension::Time => "a time",
+            Dimension::Stiffness => "a stiffness",
+            Dimension::Angle => "an angle",
+            Dimension::AngularVelocity => "an angular velocity",
+            Dimension::Force => "a force",
+            Dimension::Dimensionless => "a pure number",
+        }
+    }
+
+    /// The unit with this symbol, if the dimension has it.
+    pub fn find(self, symbol: &str) -> Option<&'static Unit> {
+        self.units().iter().find(|u| u.symbols.contains(&symbol))
+    }
+
+    fn accepted(self) -> String {
+        let symbols: Vec<&str> = self
+            .units()
+            .iter()
+            .flat_map(|u| u.symbols.iter().copied())
+            .collect();
+        if symbols.is_empty() {
+            "no unit".to_string()
+        } else {
+            symbols.join(", ")
+        }
+    }
+}
+
+/// Why a text is not a quantity of the wanted dimension.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum UnitError {
+    #[error("no value given")]
+    Empty,
+    #[error("'{0}' is not a number")]
+    NotANumber(String),
+    #[error("'{0}' is not a finite number")]
+    NotFinite(String),
+    #[error("unknown unit '{unit}' (accepted: {accepted})")]
+    UnknownUnit { unit: String, accepted: String },
+    #[error("unit '{unit}' is {found}, but this value is {wanted} (accepted: {accepted})")]
+    WrongDimension {
+        unit: String,
+        found: &'static str,
+        wanted: &'static str,
+        accepted: String,
+    },
+}
+
+/// Splits `"-1.5e4 kN/m"` into `("-1.5e4", "kN/m")`.
+fn split_number(text: &str) -> (&str, &str) {
+    let bytes = text.as_bytes();
+    let mut end = 0;
+    if matches!(bytes.first(), Some(b'+' | b'-')) {
+        end = 1;
+    }
+    while end < bytes.len() && (bytes[end].is_ascii_digit() || bytes[end] == b'.') {
+        end += 1;
+    }
+    // An exponent only counts when digits follow it, so "1e4" is a number but "1em" would not be.
+    if end < bytes.len() && matches!(bytes[end], b'e' | b'E') {
+        let mut exp = end + 1;
+        if exp < bytes.len() && matches!(bytes[exp], b'+' | b'-') {
+            exp += 1;
+        }
+        if exp < bytes.len() && bytes[exp].is_ascii_digit() {
+            while exp < bytes.len() && bytes[exp].is_ascii_digit() {
+                exp += 1;
+            }
+            end = exp;
+        }
+    }
+    (&text[..end], text[end..].trim())
+}
+
+/// Parses a value with an optional unit suffix into the dimension's base unit.
+/// A bare number is taken to be in the base unit.
+pub fn parse(text: &str, dimension: Dimension) -> Result<f64, UnitError> {
+    let text = text.trim();
+    if text.is_empty() {
+        return Err(UnitError::Empty);
+    }
+    let (number, suffix) = split_number(text);
+    let value: f64 = match number.parse() {
+        Ok(v) => v,
+        // "inf", "NaN" and friends are numbers to Rust but never a valid parameter.
+        Err(_) if text.parse::<f64>().is_ok() => {
+            return Err(UnitError::NotFinite(text.to_string()));
+        }
+        Err(_) => return Err(UnitError::NotANumber(text.to_string())),
+    };
+    if !value.is_finite() {
+        return Err(UnitError::NotFinite(text.to_string()));
+    }
+    if suffix.is_empty() {
+        return Ok(value);
+    }
+    if let Some(unit) = dimension.find(suffix) {
+        return Ok(value * unit.to_base);
+    }
+    let accepted = dimension.accepted();
+    match ALL.iter().find(|d| d.find(suffix).is_some()) {
+        Some(other) => Err(UnitError::WrongDimension {
+            unit: suffix.to_string(),
+            found: other.noun(),
+            wanted: dimension.noun(),
+            accepted,
+        }),
+        None => Err(UnitError::UnknownUnit {
+            unit: suffix.to_string(),
+            accepted,
+        }),
+    }
+}
+
+/// A value in a chosen unit, for people: `Display` prints it with the given decimals and the unit symbol.
+#[derive(Clone, Copy, Debug)]
+pub struct Shown {
+    pub value: f64,
+    pub symbol: &'static str,
+    pub decimals: usize,
+}
+
+impl fmt::Display for Shown {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let value = if self.value == 0.0 { 0.0 } else { self.value }; // no "-0"
+        if self.symbol.is_empty() {
+            write!(f, "{value:.*}", self.decimals)
+        } else {
+            write!(f, "{value:.*} {}", self.decimals, self.symbol)
+        }
+    }
+}
+
+/// Converts a base-unit value into `symbol` of `dimension`.
+///
+/// # Panics
+/// When `symbol` is not a unit of `dimension`: a programming error, never user input.
+pub fn in_unit(base_value: f64, dimension: Dimension, symbol: &'static str) -> f64 {
+    if symbol.is_empty() {
+        return base_value;
+    }
+    let unit = dimension
+        .find(symbol)
+        .unwrap_or_else(|| panic!("{symbol} is not a unit of {}", dimension.noun()));
+    base_value / unit.to_base
+}
+
+/// A base-unit value shown in `symbol` with `decimals` places.
+pub fn show(base_value: f64, dimension: Dimension, symbol: &'static str, decimals: usize) -> Shown {
+    Shown {
+        value: in_unit(base_value, dimension, symbol),
+        symbol,
+        decimals,
+    }
+}
+
+/// A number formatted briefly for people: up to `significant` digits, no trailing zeros, no exponent for
+/// ordinary magnitudes (`15000`, `0.057`, `-100`).
+pub fn brief(value: f64, significant: usize) -> String {
+    if value == 0.0 || !value.is_finite() {
+        return if value.is_finite() {
+            "0".into()
+        } else {
+            format!("{value}")
+        };
+    }
+    let magnitude = value.abs().log10().floor() as i32;
+    if !(-4..=9).contains(&magnitude) {
+        return format!("{value:.*e}", significant.saturating_sub(1));
+    }
+    let decimals = (significant as i32 - 1 - magnitude).max(0) as usize;
+    let text = format!("{value:.decimals$}");
+    if text.contains('.') {
+        text.trim_end_matches('0').trim_end_matches('.').to_string()
+    } else {
+        text
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_suffixes_into_base_units() {
+        assert_eq!(parse("10g", Dimension::Mass), Ok(0.01));
+        assert_eq!(parse("0.01kg", Dimension::Mass), Ok(0.01));
+        assert_eq!(parse("5ms", Dimension::Time), Ok(0.005));
+        assert_eq!(parse("33mm", Dimension::Length), Ok(0.033));
+        assert_eq!(parse("15kN/m", Dimension::Stiffness), Ok(15000.0));
+        assert_eq!(parse("60deg", Dimension::Angle), Ok(60.0));
+        assert_eq!(parse("-100rad/s", Dimension::AngularVelocity), Ok(-100.0));
+        assert_eq!(parse(" 1.5e4 N/m ", Dimension::Stiffness), Ok(15000.0));
+        let rpm = parse("955rpm", Dimension::AngularVelocity).unwrap();
+        assert!((rpm - 100.007366).abs() < 1e-5, "{rpm}");
+        let rad = parse("1rad", Dimension::Angle).unwrap();
+        assert!((rad - 57.29577951308232).abs() < 1e-12);
+    }
+
+    #[test]
+    fn bare_numbers_are_base_units() {
+        assert_eq!(parse("0.4", Dimension::Dimensionless), Ok(0.4));
+        assert_eq!(parse("-3", Dimension::Speed), Ok(-3.0));
+        assert_eq!(parse("1e-5", Dimension::Mass), Ok(1e-5));
+    }
+
+    #[test]
+    fn rejects_bad_text_with_reasons() {
+        assert_eq!(parse("", Dimension::Mass), Err(UnitError::Empty));
+        assert!(matches!(
+            parse("abc", Dimension::Mass),
+            Err(UnitError::NotANumber(_))
+        ));
+        assert!(matches!(
+            parse("inf", Dimension::Mass),
+            Err(UnitError::NotFinite(_))
+        ));
+        assert!(matches!(
+            parse("NaN", Dimension::Mass),
+            Err(UnitError::NotFinite(_))
+        ));
+        assert!(matches!(
+            parse("1e999", Dimension::Mass),
+            Err(UnitError::NotFinite(_))
+        ));
+        assert!(matches!(
+            parse("10 furlongs", Dimension::Length),
+            Err(UnitError::UnknownUnit { .. })
+        ));
+        let err = parse("10g", Dimension::Angle).unwrap_err();
+        assert!(
+            matches!(
+                err,
+                UnitError::WrongDimension {
+                    found: "a mass",
+                    ..
+                }
+            ),
+            "{err}"
+        );
+        assert!(matches!(
+            parse("2 g", Dimension::Dimensionless),
+            Err(UnitError::WrongDimension { .. })
+        ));
+    }
+
+    #[test]
+    fn shows_in_people_units() {
+        assert_eq!(show(0.01, Dimension::Mass, "g", 1).to_string(), "10.0 g");
+        assert_eq!(
+            show(15000.0, Dimension::Stiffness, "kN/m", 1).to_string(),
+            "15.0 kN/m"
+        );
+        assert_eq!(
+            show(-0.0, Dimension::Length, "mm", 2).to_string(),
+            "0.00 mm"
+        );
+        assert_eq!(brief(15000.0, 4), "15000");
+        assert_eq!(brief(0.057, 4), "0.057");
+        assert_eq!(brief(-100.0, 4), "-100");
+        assert_eq!(brief(1e-5, 3), "1.00e-5");
+    }
+}
