@@ -169,6 +169,9 @@ pub const MAX_RADIANS: f64 = 1e5;
 pub const MAX_TRANSITIONS: usize = 10_000;
 /// An arriving slip below this fraction of |v_x1| + r |omega1| counts as rolling.
 const ROLLING: f64 = 1e-12;
+/// Event functions are differences of terms this many times their size apart from rounding; a rise
+/// smaller than that is noise (it matters near t = T, where N and with it F and F_s vanish).
+const ROUNDING: f64 = 1e-12;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
 /// located by root finding on the exact expressions.
@@ -182,9 +185,9 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
     let end = setup.duration;
     let start = setup.initial(params.spin);
     let slip0 = setup.slip(&start);
-    let scale = setup.vx1.abs() + setup.r * params.spin.abs();
+    let incoming = setup.vx1.abs() + setup.r * params.spin.abs();
     // A ball that arrives rolling grips at once (N(0) = 0 and F_s = 0, so the grip holds on the boundary).
-    let (mut motion, mut from_boundary) = if slip0.abs() <= ROLLING * scale {
+    let (mut motion, mut from_boundary) = if slip0.abs() <= ROLLING * incoming {
         (Motion::Grip(Grip { start }), true)
     } else {
         (
@@ -201,30 +204,36 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
         let t0 = phase_start.t;
         let event = match &motion {
             Motion::Slide(slide) => {
+                // A slide that starts where the slip is zero starts with a slip of zero plus rounding;
+                // measured from that start value, rounding can never fake a crossing at the start.
+                let offset = if from_boundary {
+                    setup.slip(&slide.start)
+                } else {
+                    0.0
+                };
                 let f = |t: f64| {
                     let s = slide.at(&setup, t);
-                    (
-                        -slide.dir * setup.slip(&s),
-                        -slide.dir * slide.slip_rate(&setup, &s),
-                    )
+                    let slip = setup.slip(&s) - offset;
+                    (-slide.dir * slip, -slide.dir * slide.slip_rate(&setup, &s))
                 };
-                first_rise(
-                    f,
-                    t0,
-                    end,
-                    setup.event_step(setup.omega_slide),
-                    from_boundary,
-                )
+                let s0 = &slide.start;
+                let noise =
+                    ROUNDING * (incoming + s0.vx.abs() + setup.r * s0.omega.abs() + s0.v.abs());
+                let step = setup.event_step(setup.omega_slide);
+                let curvature = slide.slip_curvature(&setup);
+                first_rise(f, t0, end, step, curvature, noise, from_boundary)
             }
             Motion::Grip(grip) => {
-                let f = |t: f64| Grip::margin(&setup, &grip.at(&setup, t));
-                first_rise(
-                    f,
-                    t0,
-                    end,
-                    setup.event_step(setup.omega_grip),
-                    from_boundary,
-                )
+                let noise =
+                    ROUNDING * (setup.mu * setup.n0 + (setup.grip_gain * grip.start.x).abs());
+                let step = setup.event_step(setup.omega_grip);
+                let curvature = grip.margin_curvature(&setup);
+                let breaks = |sign: f64, until: f64| {
+                    let f = |t: f64| Grip::margin(&setup, &grip.at(&setup, t), sign);
+                    first_rise(f, t0, until, step, curvature, noise, from_boundary)
+                };
+                let forward = breaks(1.0, end);
+                breaks(-1.0, forward.unwrap_or(end)).or(forward)
             }
         }
         // A transition within rounding of the end changes nothing.

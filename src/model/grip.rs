@@ -32,13 +32,21 @@ impl Grip {
         }
     }
 
-    /// How far the grip is from breaking: |F_s| - mu N (it breaks when this rises above zero), and its rate.
+    /// How far the grip is from breaking with F_s in the direction `sign` (+1 or -1): sign F_s - mu N,
+    /// and its rate. The grip breaks when this rises above zero.
     #[inline]
-    pub fn margin(setup: &Setup, s: &State) -> (f64, f64) {
-        let sign = if s.x < 0.0 { -1.0 } else { 1.0 };
+    pub fn margin(setup: &Setup, s: &State, sign: f64) -> (f64, f64) {
         let value = sign * setup.grip_gain * s.x - setup.mu * setup.normal(s.t);
         let rate =
             sign * setup.grip_gain * s.v - setup.mu * setup.n0 * setup.w * (setup.w * s.t).cos();
         (value, rate)
+    }
+
+    /// A bound on the second derivative of either margin over the phase: F_s is k m_eff/(M + m_eff)
+    /// times a free oscillation of known amplitude, and mu N a sine of amplitude mu N0.
+    pub fn margin_curvature(&self, setup: &Setup) -> f64 {
+        let (x0, v0, omega) = (self.start.x, self.start.v, setup.omega_grip);
+        let x_accel = omega * (omega * omega * x0 * x0 + v0 * v0).sqrt();
+        setup.grip_gain * x_accel + setup.mu * setup.n0 * setup.w * setup.w
     }
 }

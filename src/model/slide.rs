@@ -52,6 +52,34 @@ impl Slide {
         }
     }
 
+    /// A bound on |d²(slip)/dt²| from the start of the phase to the end of contact.
+    ///
+    /// slip'' = -F'/m_eff - V''. The ball's part is at most mu N0 w / m_eff. The cart's V'' = (F' - kV)/M
+    /// is bounded two ways, and the smaller is taken: from the amplitudes of the closed form (a free
+    /// oscillation plus the particular response A sin(w t), A = F0 / (M (k/M - w²))), tight except near
+    /// resonance; and from |V| <= sqrt(2 E0 / M) + mu N0 (T - t0) / M (friction can feed the cart no
+    /// faster), valid everywhere.
+    pub fn slip_curvature(&self, setup: &Setup) -> f64 {
+        let s0 = &self.start;
+        let (w, omega, big_m) = (setup.w, setup.omega_slide, setup.cart_mass);
+        let force = setup.mu * setup.n0;
+        let ball = force * w / setup.m_eff;
+        let v_max =
+            (2.0 * setup.cart_energy(s0) / big_m).sqrt() + force * (setup.duration - s0.t) / big_m;
+        let crude = (force * w + setup.k * v_max) / big_m;
+        let detuning = omega * omega - w * w;
+        let amplitudes = if detuning == 0.0 {
+            f64::INFINITY
+        } else {
+            let a = self.dir * force / (big_m * detuning);
+            let x_free = s0.x - a * self.sin_wt0;
+            let v_free = s0.v - a * w * self.cos_wt0;
+            omega * omega * ((omega * x_free).powi(2) + v_free * v_free).sqrt()
+                + a.abs() * w * w * w
+        };
+        ball + crude.min(amplitudes)
+    }
+
     /// d(slip)/dt = -F/m_eff - (F - k X)/M.
     #[inline]
     pub fn slip_rate(&self, setup: &Setup, s: &State) -> f64 {

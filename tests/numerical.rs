@@ -1,0 +1,144 @@
+//! The exact solver against an independent numerical integration (RK4 with bisected events) over random
+//! parameters, including bounces that grip and slide again several times.
+
+mod common;
+
+use common::integrator::integrate;
+use snapback::model::{Params, PhaseKind, solve};
+
+/// A small deterministic generator, so the cases are the same on every run.
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        (lo.ln() + (hi.ln() - lo.ln()) * self.unit()).exp()
+    }
+}
+
+fn random_params(rng: &mut Rng) -> Params {
+    Params {
+        angle_deg: rng.uniform(3.0, 90.0),
+        speed: rng.uniform(2.0, 40.0),
+        spin: rng.uniform(-300.0, 300.0),
+        mu: rng.uniform(0.05, 0.8),
+        duration: rng.uniform(2e-3, 8e-3),
+        ey: rng.uniform(0.3, 1.0),
+        mass: rng.uniform(0.04, 0.2),
+        radius: rng.uniform(0.02, 0.05),
+        alpha: rng.uniform(0.4, 0.67),
+        // Light carts and stiff springs give the multi-grip bounces; heavy ones the rigid limit.
+        cart_mass: if rng.unit() < 0.5 {
+            rng.log_uniform(1e-5, 2e-3)
+        } else {
+            rng.log_uniform(2e-3, 10.0)
+        },
+        stiffness: if rng.unit() < 0.1 {
+            0.0
+        } else {
+            rng.log_uniform(1e3, 1e5)
+        },
+    }
+}
+
+/// Step of the reference integration: small against both the contact time and the cart's period.
+fn step_for(p: &Params) -> f64 {
+    let fastest = (std::f64::consts::PI / p.duration).max((p.stiffness / p.cart_mass).sqrt());
+    (p.duration / 20_000.0).min(0.004 / fastest)
+}
+
+#[test]
+fn exact_solver_agrees_with_numerical_integration() {
+    let mut rng = Rng(0x5eed_cafe_f00d_1234);
+    let mut multi_grip = 0;
+    let cases = 200;
+    for case in 0..cases {
+        let p = random_params(&mut rng);
+        let exact = solve(&p).expect("valid parameters solve");
+        let reference = integrate(&p, step_for(&p));
+        // Relative to the value, or to the incoming scale when the value itself is near zero.
+        let tol_v = 1e-7 * exact.outcome.vx2.abs().max(p.speed);
+        let tol_w = 1e-7 * exact.outcome.omega2.abs().max(p.speed / p.radius);
+        assert!(
+            (exact.outcome.vx2 - reference.vx2).abs() <= tol_v,
+            "case {case} vx2: exact {} numerical {} ({p:?}, phases {})",
+            exact.outcome.vx2,
+            reference.vx2,
+            exact.phase_summary()
+        );
+        assert!(
+            (exact.outcome.omega2 - reference.omega2).abs() <= tol_w,
+            "case {case} omega2: exact {} numerical {} ({p:?}, phases {})",
+            exact.outcome.omega2,
+            reference.omega2,
+            exact.phase_summary()
+        );
+        assert_eq!(
+            exact.phases.len(),
+            reference.phases,
+            "case {case}: {}",
+            exact.phase_summary()
+        );
+        let grips = exact
+            .phases
+            .iter()
+            .filter(|ph| ph.kind == PhaseKind::Grip)
+            .count();
+        if grips >= 2 {
+            multi_grip += 1;
+        }
+    }
+    assert!(
+        multi_grip >= 15,
+        "only {multi_grip} of {cases} cases gripped twice or more"
+    );
+}
+
+#[test]
+fn agrees_on_the_papers_cases() {
+    let base = Params::default();
+    let cases = [
+        base,
+        Params {
+            stiffness: 4e4,
+            ..base
+        },
+        Params {
+            stiffness: 4e4,
+            cart_mass: 10.0,
+            ..base
+        },
+        Params {
+            cart_mass: 1e-3,
+            ..base
+        },
+        Params {
+            cart_mass: 1e-4,
+            stiffness: 1500.0,
+            ..base
+        },
+    ];
+    for p in cases {
+        let exact = solve(&p).unwrap();
+        let reference = integrate(&p, step_for(&p));
+        assert!(
+            (exact.outcome.omega2 - reference.omega2).abs() < 1e-7 * exact.outcome.omega2.abs()
+        );
+        assert!(
+            (exact.final_state.x - reference.x2).abs() < 1e-7 * 1e-3,
+            "{p:?}"
+        );
+        assert!(
+            (exact.final_state.v - reference.v2).abs() < 1e-7 * p.speed,
+            "{p:?}"
+        );
+    }
+}

@@ -1,0 +1,113 @@
+//! Property tests over random valid parameters: the solver never panics, its results are finite, energy
+//! balances, friction never exceeds mu N, the slip is zero while the ball grips, and the state is
+//! continuous across every transition.
+
+use proptest::prelude::*;
+use snapback::model::{Params, PhaseKind, solve};
+
+fn log_range(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo.ln()..=hi.ln()).prop_map(f64::exp)
+}
+
+fn params() -> impl Strategy<Value = Params> {
+    let ball = (0.005f64..0.5, 0.005f64..0.12, 0.2f64..1.0);
+    let throw = (
+        prop_oneof![0.5f64..=90.0, Just(90.0)],
+        0.5f64..50.0,
+        -500.0f64..500.0,
+    );
+    let contact = (0.0f64..1.2, 0.5e-3f64..20e-3, 0.0f64..=1.0);
+    let cart = (
+        log_range(1e-5, 1e6),
+        prop_oneof![Just(0.0), log_range(1.0, 1e6)],
+    );
+    (ball, throw, contact, cart).prop_map(
+        |(
+            (mass, radius, alpha),
+            (angle_deg, speed, spin),
+            (mu, duration, ey),
+            (cart_mass, stiffness),
+        )| Params {
+            angle_deg,
+            speed,
+            spin,
+            mu,
+            duration,
+            ey,
+            mass,
+            radius,
+            alpha,
+            cart_mass,
+            stiffness,
+        },
+    )
+}
+
+/// 400 cases by default; `PROPTEST_CASES=100000` searches deeper.
+fn config() -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(400);
+    ProptestConfig::with_cases(cases)
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn every_valid_bounce_is_physical(p in params()) {
+        let b = solve(&p).expect("valid parameters solve");
+        let o = &b.outcome;
+        for value in [o.omega2, o.vx2, o.vy2, o.speed2, o.theta2_deg, b.final_state.x, b.final_state.v] {
+            prop_assert!(value.is_finite());
+        }
+        prop_assert!(o.ex.is_none_or(f64::is_finite));
+        let e = &b.energy;
+        for value in [e.initial, e.final_ball, e.final_cart, e.friction_loss, e.normal_loss] {
+            prop_assert!(value.is_finite() && value >= -1e-12 * e.initial);
+        }
+        prop_assert!(e.residual.abs() < 1e-10, "residual {}", e.residual);
+
+        // The phases tile [0, T].
+        prop_assert_eq!(b.phases[0].start, 0.0);
+        prop_assert_eq!(b.phases.last().unwrap().end, p.duration);
+        for pair in b.phases.windows(2) {
+            prop_assert_eq!(pair[0].end, pair[1].start);
+        }
+
+        let n_peak = b.setup.n0;
+        let speed_scale = p.speed + p.radius * p.spin.abs();
+        let series = b.series(300);
+        for s in &series {
+            // |F| <= mu N, up to rounding.
+            prop_assert!(
+                s.friction.abs() <= p.mu * s.normal + 1e-9 * p.mu * n_peak + 1e-12,
+                "|F| = {} > mu N = {} at t = {}", s.friction.abs(), p.mu * s.normal, s.t
+            );
+            if s.kind == PhaseKind::Grip {
+                prop_assert!(s.slip.abs() <= 1e-9 * speed_scale, "slip {} in grip at {}", s.slip, s.t);
+            }
+        }
+        // Both sides of each transition: the state is continuous (only F may jump).
+        for pair in series.windows(2) {
+            if pair[0].t == pair[1].t {
+                let (a, c) = (&pair[0], &pair[1]);
+                prop_assert!((a.x - c.x).abs() <= 1e-12 * (a.x.abs() + 1e-9));
+                prop_assert!((a.v - c.v).abs() <= 1e-12 * (a.v.abs() + speed_scale));
+                prop_assert!((a.vx - c.vx).abs() <= 1e-12 * speed_scale);
+                prop_assert!((a.omega - c.omega).abs() <= 1e-12 * speed_scale / p.radius);
+                prop_assert!(a.phase + 1 == c.phase);
+            }
+        }
+    }
+
+    #[test]
+    fn a_rolling_ball_stays_rolling(p in params()) {
+        // Arriving with zero slip, the ball grips at once; the cart never moves and nothing changes.
+        let vx1 = p.speed * (90.0 - p.angle_deg).to_radians().sin();
+        let p = Params { spin: vx1 / p.radius, ..p };
+        let b = solve(&p).unwrap();
+        prop_assert_eq!(b.phase_summary(), "grip");
+        prop_assert!(b.outcome.ex.is_none());
+        prop_assert!((b.outcome.omega2 - p.spin).abs() <= 1e-12 * p.spin.abs().max(1.0));
+        prop_assert_eq!(b.final_state.x, 0.0);
+    }
+}
