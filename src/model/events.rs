@@ -88,7 +88,7 @@ impl<F: Event> Search<'_, F> {
         }
         let width = b.t - a.t;
         if width <= FINEST * b.t.abs().max(f64::MIN_POSITIVE) {
-            return rises.then(|| b.t);
+            return rises.then_some(b.t);
         }
         // Rising throughout: f' >= f'(a) - curvature (b - a) > 0, so the crossing is unique.
         if rises && a.rate - 2.0 * self.half_curvature * width > 0.0 {
