@@ -45,7 +45,10 @@ fn params() -> impl Strategy<Value = Params> {
 
 /// 400 cases by default; `PROPTEST_CASES=100000` searches deeper.
 fn config() -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES").ok().and_then(|v| v.parse().ok()).unwrap_or(400);
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(400);
     ProptestConfig::with_cases(cases)
 }
 
@@ -60,7 +63,7 @@ proptest! {
             prop_assert!(value.is_finite());
         }
         prop_assert!(o.ex.is_none_or(f64::is_finite));
-        let e = &b.energy;
+        let e = &b.energy();
         for value in [e.initial, e.final_ball, e.final_cart, e.friction_loss, e.normal_loss] {
             prop_assert!(value.is_finite() && value >= -1e-12 * e.initial);
         }

@@ -40,7 +40,7 @@ struct BounceJson<'a> {
     phase_summary: String,
     phases: Vec<PhaseJson>,
     cart: CartJson,
-    energy: &'a Energy,
+    energy: Energy,
 }
 
 fn document(b: &Bounce) -> BounceJson<'_> {
@@ -72,7 +72,7 @@ fn document(b: &Bounce) -> BounceJson<'_> {
             x: b.final_state.x,
             v: b.final_state.v,
         },
-        energy: &b.energy,
+        energy: b.energy(),
     }
 }
 

@@ -10,7 +10,7 @@ use crate::model::{Bounce, PhaseKind};
 pub fn summary(b: &Bounce) -> String {
     let mut out = String::new();
     let o = &b.outcome;
-    let e = &b.energy;
+    let e = &b.energy();
     let _ = writeln!(out, "Parameters");
     for spec in PARAMS {
         let name = format!("{} {}", spec.label, spec.symbol);

@@ -119,27 +119,29 @@ impl<F: Event> Search<'_, F> {
 }
 
 /// The crossing of zero in `[a, b]`, where `f(a) <= 0 < f(b)` (up to noise), by Newton iteration kept
-/// inside a shrinking bracket.
+/// inside a shrinking bracket, to a few units in the last place of `t`.
 fn refine(f: &impl Event, mut a: f64, mut b: f64) -> f64 {
+    let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
     let mut t = 0.5 * (a + b);
-    for _ in 0..200 {
+    for _ in 0..100 {
         let (value, rate) = f(t);
         if value > 0.0 {
             b = t;
         } else {
             a = t;
         }
+        if b - a <= resolution(b) {
+            break;
+        }
         let newton = t - value / rate;
-        let next = if rate != 0.0 && newton > a && newton < b {
+        if rate != 0.0 && (newton - t).abs() <= resolution(t) {
+            return newton.clamp(a, b);
+        }
+        t = if rate != 0.0 && newton > a && newton < b {
             newton
         } else {
             0.5 * (a + b)
         };
-        if (next - t).abs() <= f64::EPSILON * t.abs().max(1e-12) || b - a <= f64::EPSILON * b.abs()
-        {
-            return next;
-        }
-        t = next;
     }
     t
 }

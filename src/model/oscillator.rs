@@ -12,13 +12,24 @@ pub fn sinc(x: f64) -> f64 {
     }
 }
 
-/// The free oscillator's state after `tau`: `X = X0 cos Ωτ + V0 sin(Ωτ)/Ω`, `V = X'`.
+/// The free oscillator's state after `tau`: `X = X0 cos Ωτ + V0 sin(Ωτ)/Ω`, `V = X'` (for Ω = 0,
+/// `X = X0 + V0 τ`).
 #[inline]
 pub fn free(x0: f64, v0: f64, omega: f64, tau: f64) -> (f64, f64) {
     let (s, c) = (omega * tau).sin_cos();
-    let x = x0 * c + v0 * tau * sinc(omega * tau);
+    let x = x0 * c + v0 * sin_over(s, omega, tau);
     let v = -x0 * omega * s + v0 * c;
     (x, v)
+}
+
+/// sin(Ωτ)/Ω from `sin_omega_tau` = sin(Ωτ), with its limit τ at Ω = 0.
+#[inline]
+pub fn sin_over(sin_omega_tau: f64, omega: f64, tau: f64) -> f64 {
+    if omega > 0.0 {
+        sin_omega_tau / omega
+    } else {
+        tau
+    }
 }
 
 /// Response to the forcing `sin(w t)` switched on at `t0`, zero state at `t0`:

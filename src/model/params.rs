@@ -242,6 +242,18 @@ impl ParamSpec {
         Ok(value)
     }
 
+    /// Checks a base-unit value against the range; the message shows it in the base unit.
+    pub fn check_value(&self, value: f64) -> Result<(), ParamError> {
+        if self.range.contains(value) {
+            return Ok(());
+        }
+        let unit = self.dimension.base_symbol();
+        self.check(
+            value,
+            format!("{} {unit}", units::brief(value, 6)).trim_end(),
+        )
+    }
+
     /// Checks a base-unit value against the range; `given` is what the user typed, for the message.
     pub fn check(&self, value: f64, given: &str) -> Result<(), ParamError> {
         if self.range.contains(value) {
@@ -510,32 +522,16 @@ impl Params {
 
     /// A copy with one value changed, if the value is in range.
     pub fn with(mut self, id: ParamId, value: f64) -> Result<Self, ParamError> {
-        let spec = spec(id);
-        spec.check(
-            value,
-            &format!(
-                "{} {}",
-                units::brief(value, 6),
-                spec.dimension.base_symbol()
-            ),
-        )?;
+        spec(id).check_value(value)?;
         self.set(id, value);
         Ok(self)
     }
 
     /// Checks every value against its range.
     pub fn validate(&self) -> Result<(), ParamError> {
-        PARAMS.iter().try_for_each(|spec| {
-            let value = self.get(spec.id);
-            spec.check(
-                value,
-                &format!(
-                    "{} {}",
-                    units::brief(value, 6),
-                    spec.dimension.base_symbol()
-                ),
-            )
-        })
+        PARAMS
+            .iter()
+            .try_for_each(|spec| spec.check_value(self.get(spec.id)))
     }
 }
 
