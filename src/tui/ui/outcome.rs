@@ -14,24 +14,37 @@ use crate::tui::ui::theme::Theme;
 /// Phases listed before the rest are summarised as a count.
 const LISTED_PHASES: usize = 6;
 
-/// A time in ms for the timeline: `0`, `1.32`.
-pub fn ms(t: f64) -> String {
+/// A time in ms for the timeline with `decimals` places: `0`, `1.32`.
+fn ms(t: f64, decimals: usize) -> String {
     if t == 0.0 {
         "0".into()
     } else {
-        format!("{:.2}", t * 1e3)
+        format!("{:.*}", decimals, t * 1e3)
     }
+}
+
+/// Two decimals, or up to four when fewer would show a phase as starting where it ends.
+fn timeline_decimals(bounce: &Bounce) -> usize {
+    (2..=4)
+        .find(|&d| bounce.phases.iter().all(|p| ms(p.start, d) != ms(p.end, d)))
+        .unwrap_or(4)
 }
 
 /// The phases as `slide 0-1.32, grip 1.32-4.39, ...`, each in its phase's colour.
 pub fn timeline(bounce: &Bounce, theme: &Theme) -> Vec<Span<'static>> {
+    let decimals = timeline_decimals(bounce);
     let mut spans = Vec::new();
     for (i, p) in bounce.phases.iter().take(LISTED_PHASES).enumerate() {
         if i > 0 {
             spans.push(Span::raw(", "));
         }
         spans.push(Span::styled(
-            format!("{} {}-{}", p.kind.name(), ms(p.start), ms(p.end)),
+            format!(
+                "{} {}-{}",
+                p.kind.name(),
+                ms(p.start, decimals),
+                ms(p.end, decimals)
+            ),
             Style::new().fg(theme.phase(p.kind)),
         ));
     }

@@ -30,10 +30,14 @@ pub fn prompt_label(app: &App) -> String {
     format!("{} {} [{unit}]: ", spec.label, spec.symbol)
 }
 
-/// Rows the status line needs: two when a message would not fit in one.
+/// Rows the status line needs: a long message wraps onto up to three.
 pub fn height(app: &App, width: u16) -> u16 {
     match (&app.mode, &app.message) {
-        (Mode::Normal | Mode::Help, Some(m)) if m.text.chars().count() > usize::from(width) => 2,
+        (Mode::Normal | Mode::Help, Some(m)) => {
+            // Wrapping breaks at spaces, so allow a little more than the bare length.
+            let chars = m.text.chars().count() + m.text.chars().count() / 8;
+            chars.div_ceil(usize::from(width.max(1))).clamp(1, 3) as u16
+        }
         _ => 1,
     }
 }
