@@ -20,12 +20,17 @@ pub struct Scale {
 
 impl Scale {
     /// Bounds widened to round values around `[low, high]`, as tight as a grid of [`Scale::GRID`] ticks
-    /// allows, with at most `max_ticks` of the grid's ticks labelled, always both ends.
+    /// allows, with at most `max_ticks` of the grid's ticks labelled: both ends, and zero when it can be.
     pub fn rounded(low: f64, high: f64, max_ticks: usize) -> Scale {
         let mut scale = Self::build(low, high, Self::GRID.max(max_ticks), true);
         let last = scale.ticks.len() - 1;
-        let every = (scale.ticks.len().div_ceil(max_ticks.max(2))..=last.max(1))
-            .find(|every| last % every == 0)
+        let zero = scale.ticks.iter().position(|t| t.abs() < 1e-12);
+        let candidates = scale.ticks.len().div_ceil(max_ticks.max(2))..=last.max(1);
+        // Both ends labelled, and zero too if some spacing allows it.
+        let every = candidates
+            .clone()
+            .find(|e| last % e == 0 && zero.is_some_and(|z| z % e == 0))
+            .or_else(|| candidates.clone().find(|e| last % e == 0))
             .unwrap_or(1);
         scale.ticks = scale.ticks.iter().step_by(every).copied().collect();
         scale
@@ -375,6 +380,8 @@ mod tests {
         // Few rows: tight bounds still, fewer labels, both ends labelled.
         let s = Scale::rounded(-140.0, 140.0, 3);
         assert_eq!(s.bounds, [-150.0, 150.0]);
+        assert_eq!(s.labels(), ["-150", "0", "150"]);
+        let s = Scale::rounded(-140.0, 140.0, 4);
         assert_eq!(s.labels(), ["-150", "0", "150"]);
         let s = Scale::rounded(-100.0, 160.8, 3);
         assert_eq!(s.bounds, [-100.0, 200.0]);
