@@ -70,7 +70,9 @@ impl Drop for Tmux {
 }
 
 fn read(path: &Path) -> Option<String> {
-    std::fs::read_to_string(path).ok().filter(|s| s.ends_with('\n'))
+    std::fs::read_to_string(path)
+        .ok()
+        .filter(|s| s.ends_with('\n'))
 }
 
 #[test]
@@ -82,7 +84,17 @@ fn the_binary_opens_takes_keys_and_quits_cleanly() {
         status_file.to_str().expect("a UTF-8 temp path")
     );
     let started = tmux.run(&[
-        "new-session", "-d", "-s", "explorer", "-x", "120", "-y", "40", "sh", "-c", &command,
+        "new-session",
+        "-d",
+        "-s",
+        "explorer",
+        "-x",
+        "120",
+        "-y",
+        "40",
+        "sh",
+        "-c",
+        &command,
     ]);
     assert!(started.status.success(), "{started:?}");
 

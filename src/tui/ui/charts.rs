@@ -106,6 +106,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             segments,
             label_width,
             title_style: theme.title(),
+            marker: theme.marker,
         },
         band_row,
     );

@@ -109,11 +109,30 @@ impl Scale {
             .unwrap_or(0) as u16
     }
 
-    /// The cell offset of `value` on an axis `cells` long (0 at the low bound).
-    pub fn offset(&self, value: f64, cells: u16) -> u16 {
+    /// The cell of `value` on an axis `cells` long with `per_cell` dots in each (0 at the low end), found
+    /// as the canvas finds it, so labels sit where the curves are drawn.
+    pub fn cell(&self, value: f64, cells: u16, per_cell: u16, upward: bool) -> u16 {
         let [low, high] = self.bounds;
         let fraction = ((value - low) / (high - low)).clamp(0.0, 1.0);
-        (fraction * f64::from(cells.saturating_sub(1))).round() as u16
+        let dots = f64::from(cells * per_cell - 1);
+        if upward {
+            // The canvas counts rows down from the top.
+            let from_top = ((1.0 - fraction) * dots).round() as u16 / per_cell;
+            cells - 1 - from_top
+        } else {
+            (fraction * dots).round() as u16 / per_cell
+        }
+    }
+}
+
+/// Dots per cell (across, up) that `marker` draws with.
+pub fn resolution(marker: Marker) -> (u16, u16) {
+    match marker {
+        Marker::Braille | Marker::Octant => (2, 4),
+        Marker::Sextant => (2, 3),
+        Marker::Quadrant => (2, 2),
+        Marker::HalfBlock => (1, 2),
+        _ => (1, 1),
     }
 }
 
@@ -241,12 +260,13 @@ impl Plot<'_> {
     fn axes(&self, inner: Rect, data: Rect, buf: &mut Buffer) {
         let axis_x = data.x - 1;
         let axis_y = data.bottom();
+        let (across, up) = resolution(self.marker);
         let style = self.axis_style;
         for row in data.top()..axis_y {
             buf.set_string(axis_x, row, "│", style);
         }
         for (tick, label) in self.y.ticks.iter().zip(self.y.labels()) {
-            let row = axis_y - 1 - self.y.offset(*tick, data.height);
+            let row = axis_y - 1 - self.y.cell(*tick, data.height, up, true);
             buf.set_string(axis_x, row, "┤", style);
             let width = label.chars().count() as u16;
             buf.set_string(axis_x.saturating_sub(width + 1), row, &label, style);
@@ -257,7 +277,7 @@ impl Plot<'_> {
         let labels_row = axis_y + 1;
         let mut free_from = data.x;
         for (tick, label) in self.x.ticks.iter().zip(self.x.labels()) {
-            let col = data.x + self.x.offset(*tick, data.width);
+            let col = data.x + self.x.cell(*tick, data.width, across, false);
             buf.set_string(col, axis_y, "┬", style);
             let width = label.chars().count() as u16;
             let start = col
@@ -293,6 +313,8 @@ pub struct Band<'a> {
     pub segments: Vec<Segment>,
     pub label_width: u16,
     pub title_style: Style,
+    /// The marker of the plots below, whose columns the band follows.
+    pub marker: Marker,
 }
 
 impl Widget for Band<'_> {
@@ -301,6 +323,7 @@ impl Widget for Band<'_> {
         if width < 4 || area.height == 0 {
             return;
         }
+        let (across, _) = resolution(self.marker);
         let title_width = self.title.chars().count() as u16;
         if title_width <= self.label_width {
             buf.set_string(
@@ -311,8 +334,8 @@ impl Widget for Band<'_> {
             );
         }
         for (i, seg) in self.segments.iter().enumerate() {
-            let start = first + self.x.offset(seg.from, width);
-            let end = first + self.x.offset(seg.to, width);
+            let start = first + self.x.cell(seg.from, width, across, false);
+            let end = first + self.x.cell(seg.to, width, across, false);
             let style = Style::new().fg(seg.color);
             let fill = "━".repeat(usize::from(end.saturating_sub(start) + 1));
             buf.set_string(start, area.y, fill, style);
