@@ -1,8 +1,10 @@
 //! snapback: a ball bouncing obliquely off a surface with tangential compliance (Rod Cross, "Impact of a
 //! ball on a surface with tangential compliance", Am. J. Phys. 78, 2010).
 //!
-//! [`model`] is the simulation core; everything else (the command line, the exports) calls its API.
+//! [`model`] is the simulation core; everything else (the command line, the exports, the [`tui`] explorer)
+//! calls its API.
 
 pub mod cli;
 pub mod export;
 pub mod model;
+pub mod tui;

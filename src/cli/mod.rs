@@ -2,6 +2,7 @@
 
 mod params_args;
 mod simulate;
+mod tui;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -22,6 +23,8 @@ pub struct Cli {
 pub enum Commands {
     /// Solve one bounce and print the outcome, the phases and the energy budget.
     Simulate(simulate::SimulateArgs),
+    /// Open the full-screen explorer (also what `snapback` alone does).
+    Tui(tui::TuiArgs),
 }
 
 /// A failure to report: the message for stderr and the exit status.
@@ -45,7 +48,8 @@ impl Failure {
 pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
         Some(Commands::Simulate(args)) => simulate::run(&args),
-        None => simulate::run(&simulate::SimulateArgs::default()),
+        Some(Commands::Tui(args)) => tui::run(&args),
+        None => tui::run(&tui::TuiArgs::default()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

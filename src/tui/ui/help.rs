@@ -1,0 +1,81 @@
+//! The help overlay: every key from the key table, the prompt's keys, and what the selected parameter is,
+//! its range and the units it accepts.
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Rect};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
+
+use crate::tui::app::App;
+use crate::tui::keys::{self, Binding};
+use crate::tui::ui::theme::Theme;
+
+fn rows<'a>(bindings: &[Binding], theme: &Theme, key_width: usize) -> Vec<Line<'a>> {
+    bindings
+        .iter()
+        .map(|b| {
+            Line::from(vec![
+                Span::styled(
+                    format!(" {:<key_width$} ", keys::keys_label(b)),
+                    theme.key(),
+                ),
+                Span::raw(b.help),
+            ])
+        })
+        .collect()
+}
+
+pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+    let theme = &app.theme;
+    let key_width = keys::EXPLORER
+        .iter()
+        .chain(keys::PROMPT)
+        .map(|b| keys::keys_label(b).chars().count())
+        .max()
+        .unwrap_or(0);
+    let spec = app.selected_spec();
+    let units: Vec<&str> = spec
+        .dimension
+        .units()
+        .iter()
+        .flat_map(|u| u.symbols.iter().copied())
+        .collect();
+    let units = if units.is_empty() {
+        "a plain number".to_string()
+    } else {
+        format!(
+            "a bare number is in {}; also {}",
+            units[0],
+            units[1..].join(", ")
+        )
+    };
+    let mut lines = vec![Line::styled("Keys", theme.title())];
+    lines.extend(rows(keys::EXPLORER, theme, key_width));
+    lines.push(Line::styled("While typing a value", theme.title()));
+    lines.extend(rows(keys::PROMPT, theme, key_width));
+    lines.push(Line::styled(
+        format!("{} {} (--{})", spec.label, spec.symbol, spec.flag),
+        theme.title(),
+    ));
+    lines.push(Line::raw(format!(" {}", spec.help)));
+    lines.push(Line::raw(format!(
+        " range {}; {units}; default {}",
+        spec.range_text(),
+        spec.show(spec.default)
+    )));
+
+    let width = area.width.saturating_sub(2).min(100);
+    // Keys come first: on a short screen only the parameter's notes are cut.
+    let height = (lines.len() as u16 + 2).min(area.height);
+    let popup = area.centered(Constraint::Length(width), Constraint::Length(height));
+    let block = Block::bordered()
+        .title(Span::styled(" help ", theme.title()))
+        .title_bottom(Line::from(" ? or Esc closes ").right_aligned());
+    frame.render_widget(Clear, popup);
+    frame.render_widget(
+        Paragraph::new(lines)
+            .block(block)
+            .wrap(Wrap { trim: false }),
+        popup,
+    );
+}

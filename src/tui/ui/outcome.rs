@@ -1,0 +1,136 @@
+//! The outcome panel: the rebound (omega2 with rpm, v_x2, theta2, e_x), the share of the incoming energy
+//! lost to friction, the phase timeline in ms and, when there is room, a few more numbers.
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::style::Style;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph, Wrap};
+
+use crate::model::Bounce;
+use crate::tui::app::App;
+use crate::tui::ui::theme::Theme;
+
+/// Phases listed before the rest are summarised as a count.
+const LISTED_PHASES: usize = 6;
+
+/// A time in ms for the timeline with `decimals` places: `0`, `1.32`.
+fn ms(t: f64, decimals: usize) -> String {
+    if t == 0.0 {
+        "0".into()
+    } else {
+        format!("{:.*}", decimals, t * 1e3)
+    }
+}
+
+/// Two decimals, or up to four when fewer would show a phase as starting where it ends.
+fn timeline_decimals(bounce: &Bounce) -> usize {
+    (2..=4)
+        .find(|&d| bounce.phases.iter().all(|p| ms(p.start, d) != ms(p.end, d)))
+        .unwrap_or(4)
+}
+
+/// The phases as `slide 0-1.32, grip 1.32-4.39, ...`, each in its phase's colour.
+pub fn timeline(bounce: &Bounce, theme: &Theme) -> Vec<Span<'static>> {
+    let decimals = timeline_decimals(bounce);
+    let mut spans = Vec::new();
+    for (i, p) in bounce.phases.iter().take(LISTED_PHASES).enumerate() {
+        if i > 0 {
+            spans.push(Span::raw(", "));
+        }
+        spans.push(Span::styled(
+            format!(
+                "{} {}-{}",
+                p.kind.name(),
+                ms(p.start, decimals),
+                ms(p.end, decimals)
+            ),
+            Style::new().fg(theme.phase(p.kind)),
+        ));
+    }
+    let more = bounce.phases.len().saturating_sub(LISTED_PHASES);
+    if more > 0 {
+        spans.push(Span::raw(format!(", … {more} more")));
+    }
+    spans
+}
+
+pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+    let theme = &app.theme;
+    let b = &app.bounce;
+    let o = &b.outcome;
+    let e = &b.energy;
+    let block = Block::bordered().title(Span::styled(" outcome ", theme.title()));
+    let inner = block.inner(area);
+    let wide = inner.width >= 40;
+    let label = |short: &'static str, long: &'static str| {
+        let text = if wide { long } else { short };
+        Span::styled(
+            format!("{text:<w$}", w = if wide { 18 } else { 9 }),
+            theme.dim(),
+        )
+    };
+    let rpm = o.omega2 * 30.0 / std::f64::consts::PI;
+    let ex =
+        o.ex.map_or("none (no slip in)".to_string(), |ex| format!("{ex:.3}"));
+    let friction_share = 100.0 * e.friction_loss / e.initial;
+    let mut lines = vec![
+        Line::from(vec![
+            label("ω2", "rebound spin ω2"),
+            Span::styled(format!("{:.1} rad/s", o.omega2), theme.emphasis()),
+            Span::raw(format!(" ({rpm:.0} rpm)")),
+        ]),
+        Line::from(vec![
+            label("v_x2", "rebound v_x2"),
+            Span::raw(format!("{:.3} m/s", o.vx2)),
+        ]),
+        Line::from(vec![
+            label("θ2", "rebound angle θ2"),
+            Span::raw(format!("{:.1} deg", o.theta2_deg)),
+        ]),
+        Line::from(vec![label("e_x", "tangential e_x"), Span::raw(ex)]),
+        Line::from(vec![
+            label("friction", "lost to friction"),
+            Span::raw(format!("{friction_share:.1} % of energy in")),
+        ]),
+        Line::from(vec![
+            label("phases", "phases (ms)"),
+            Span::styled(
+                if wide {
+                    b.phase_summary()
+                } else {
+                    "(ms)".into()
+                },
+                theme.dim(),
+            ),
+        ]),
+        Line::from(timeline(b, theme)),
+    ];
+    if wide {
+        let share = |j: f64| format!("{:.1} %", 100.0 * j / e.initial);
+        lines.push(Line::from(vec![
+            label("", "rebound speed v2"),
+            Span::raw(format!("{:.3} m/s", o.speed2)),
+        ]));
+        if let Some(ratio) = o.roll_ratio {
+            lines.push(Line::from(vec![
+                label("", "r ω2 / v_x2"),
+                Span::raw(format!("{ratio:.3} (1 = rolling)")),
+            ]));
+        }
+        lines.push(Line::from(vec![
+            label("", "left in the cart"),
+            Span::raw(share(e.final_cart)),
+        ]));
+        lines.push(Line::from(vec![
+            label("", "lost to e_y < 1"),
+            Span::raw(share(e.normal_loss)),
+        ]));
+    }
+    frame.render_widget(
+        Paragraph::new(lines)
+            .block(block)
+            .wrap(Wrap { trim: false }),
+        area,
+    );
+}

@@ -1,0 +1,44 @@
+//! The parameter panel: every parameter of the table in `model::params::PARAMS`, its value in the unit
+//! people think in, the selected one highlighted, a dot beside any value that differs from the default.
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph};
+
+use crate::model::PARAMS;
+use crate::tui::app::App;
+
+pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+    let theme = &app.theme;
+    let block = Block::bordered().title(Span::styled(" parameters ", theme.title()));
+    let inner = block.inner(area);
+    let width = usize::from(inner.width);
+    let lines: Vec<Line> = PARAMS
+        .iter()
+        .enumerate()
+        .map(|(i, spec)| {
+            let value = app.params.get(spec.id);
+            let shown = spec.show(value).to_string();
+            let changed = if value == spec.default { ' ' } else { '•' };
+            let pointer = if i == app.selected { '▸' } else { ' ' };
+            // pointer, symbol in 4, label, value and the changed mark on the right.
+            let head = format!("{pointer}{:<4}", spec.symbol);
+            let room = width.saturating_sub(head.chars().count() + shown.chars().count() + 2);
+            let label: String = if room >= 8 {
+                spec.label.chars().take(room).collect()
+            } else {
+                String::new()
+            };
+            let gap = room.saturating_sub(label.chars().count()) + 1;
+            let text = format!("{head}{label}{:gap$}{shown}{changed}", "");
+            let line = Line::from(text);
+            if i == app.selected {
+                line.style(theme.selected())
+            } else {
+                line
+            }
+        })
+        .collect();
+    frame.render_widget(Paragraph::new(lines).block(block), area);
+}

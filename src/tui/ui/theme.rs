@@ -1,0 +1,105 @@
+//! Colours and plot markers. Only the 16 basic named colours are used, so any colour terminal shows them;
+//! with colour off (NO_COLOR) every colour is the terminal's own and the charts tell phases apart by
+//! labels and markers instead.
+
+use ratatui::style::{Color, Modifier, Style};
+use ratatui::symbols::Marker;
+
+use crate::model::PhaseKind;
+
+/// How the explorer looks.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Theme {
+    /// False under NO_COLOR.
+    pub color: bool,
+    /// The marker the charts draw with (braille, dot or block).
+    pub marker: Marker,
+}
+
+impl Default for Theme {
+    fn default() -> Self {
+        Theme {
+            color: true,
+            marker: Marker::Braille,
+        }
+    }
+}
+
+impl Theme {
+    /// Colour unless colour is off.
+    fn pick(&self, color: Color) -> Color {
+        if self.color { color } else { Color::Reset }
+    }
+
+    /// The colour of a phase's curves and labels.
+    pub fn phase(&self, kind: PhaseKind) -> Color {
+        self.pick(match kind {
+            PhaseKind::Slide => Color::Yellow,
+            PhaseKind::Grip => Color::Cyan,
+        })
+    }
+
+    /// The grip limit +/- mu N.
+    pub fn limit(&self) -> Color {
+        self.pick(Color::Red)
+    }
+
+    /// Transitions, zero lines and other guides.
+    pub fn guide(&self) -> Color {
+        self.pick(Color::DarkGray)
+    }
+
+    /// The current incidence angle in the sweep view.
+    pub fn current(&self) -> Color {
+        self.pick(Color::Green)
+    }
+
+    /// Panel titles.
+    pub fn title(&self) -> Style {
+        Style::new()
+            .fg(self.pick(Color::Cyan))
+            .add_modifier(Modifier::BOLD)
+    }
+
+    /// The highlighted parameter row.
+    pub fn selected(&self) -> Style {
+        if self.color {
+            Style::new()
+                .fg(Color::Black)
+                .bg(Color::Cyan)
+                .add_modifier(Modifier::BOLD)
+        } else {
+            Style::new().add_modifier(Modifier::REVERSED | Modifier::BOLD)
+        }
+    }
+
+    /// Secondary text: units, axis labels, hints.
+    pub fn dim(&self) -> Style {
+        if self.color {
+            Style::new().fg(Color::Gray)
+        } else {
+            Style::new()
+        }
+    }
+
+    /// Key names in hints and help.
+    pub fn key(&self) -> Style {
+        Style::new()
+            .fg(self.pick(Color::Yellow))
+            .add_modifier(Modifier::BOLD)
+    }
+
+    /// Numbers that matter most (the rebound spin).
+    pub fn emphasis(&self) -> Style {
+        Style::new()
+            .fg(self.pick(Color::Green))
+            .add_modifier(Modifier::BOLD)
+    }
+
+    /// Error messages.
+    pub fn error(&self) -> Style {
+        Style::new()
+            .fg(self.pick(Color::Red))
+            .add_modifier(Modifier::BOLD)
+    }
+}

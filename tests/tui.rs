@@ -1,0 +1,397 @@
+//! The explorer on ratatui's TestBackend, driven by scripted key events through the real event loop.
+
+use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
+use ratatui::Terminal;
+use ratatui::backend::TestBackend;
+use ratatui::style::Color;
+use ratatui::symbols::Marker;
+use snapback::model::params::{PARAMS, spec};
+use snapback::model::{ParamId, Params, solve};
+use snapback::tui::keys::{self, keys_label};
+use snapback::tui::ui::theme::Theme;
+use snapback::tui::{App, Mode, Scripted, View, run};
+
+fn key(code: KeyCode) -> Event {
+    Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
+}
+
+fn shift(code: KeyCode) -> Event {
+    Event::Key(KeyEvent::new(code, KeyModifiers::SHIFT))
+}
+
+fn ctrl(c: char) -> Event {
+    Event::Key(KeyEvent::new(KeyCode::Char(c), KeyModifiers::CONTROL))
+}
+
+/// Typing `text` character by character.
+fn typed(text: &str) -> Vec<Event> {
+    text.chars().map(|c| key(KeyCode::Char(c))).collect()
+}
+
+/// The explorer after `events` on a `width` x `height` screen: the app and the screen as text.
+fn explore_with(
+    theme: Theme,
+    width: u16,
+    height: u16,
+    events: Vec<Event>,
+) -> (App, Terminal<TestBackend>) {
+    let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
+    let mut app = App::new(Params::default(), theme).unwrap();
+    run(&mut terminal, &mut app, &mut Scripted::from(events)).unwrap();
+    (app, terminal)
+}
+
+fn explore(width: u16, height: u16, events: Vec<Event>) -> (App, String) {
+    let (app, terminal) = explore_with(Theme::default(), width, height, events);
+    (app, text(&terminal))
+}
+
+fn text(terminal: &Terminal<TestBackend>) -> String {
+    let buffer = terminal.backend().buffer();
+    let area = buffer.area;
+    (area.top()..area.bottom())
+        .map(|y| {
+            (area.left()..area.right())
+                .map(|x| buffer[(x, y)].symbol())
+                .collect::<String>()
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+/// The screen line that contains `needle`.
+fn line_with<'a>(screen: &'a str, needle: &str) -> &'a str {
+    screen
+        .lines()
+        .find(|l| l.contains(needle))
+        .unwrap_or_else(|| panic!("no line with {needle:?} in\n{screen}"))
+}
+
+const SIZES: [(u16, u16); 2] = [(80, 24), (160, 48)];
+
+#[test]
+fn opens_on_fig3c_with_the_angle_selected() {
+    let omega2 = format!(
+        "{:.1} rad/s",
+        solve(&Params::default()).unwrap().outcome.omega2
+    );
+    for (w, h) in SIZES {
+        let (app, screen) = explore(w, h, vec![]);
+        assert_eq!(app.selected_spec().id, ParamId::Angle);
+        assert!(
+            line_with(&screen, "incidence angle").contains("▸θ1"),
+            "{screen}"
+        );
+        assert!(line_with(&screen, "ω2 ").contains(&omega2), "{screen}");
+        assert!(screen.contains("slide 0-1.32, grip 1.32-4.39"), "{screen}");
+        for title in [
+            "friction force F (N)",
+            "cart displacement X (mm)",
+            "ball spin ω (rad/s)",
+            "t (ms)",
+        ] {
+            assert!(
+                screen.contains(title),
+                "{title} missing at {w}x{h}:\n{screen}"
+            );
+        }
+        for spec in PARAMS {
+            let shown = spec.show(spec.default).to_string();
+            assert!(
+                screen.contains(&shown),
+                "{shown} missing at {w}x{h}:\n{screen}"
+            );
+        }
+    }
+}
+
+#[test]
+fn right_on_the_angle_shows_omega2_for_61_degrees() {
+    let at61 = Params::default().with(ParamId::Angle, 61.0).unwrap();
+    let outcome = solve(&at61).unwrap().outcome;
+    let omega2 = format!("{:.1} rad/s", outcome.omega2);
+    let vx2 = format!("{:.3} m/s", outcome.vx2);
+    for (w, h) in SIZES {
+        for right in [key(KeyCode::Right), key(KeyCode::Char('l'))] {
+            let (app, screen) = explore(w, h, vec![right]);
+            assert_eq!(app.params, at61);
+            assert!(
+                line_with(&screen, "incidence angle").contains("61.0 deg"),
+                "{screen}"
+            );
+            assert!(line_with(&screen, "ω2 ").contains(&omega2), "{screen}");
+            assert!(line_with(&screen, "v_x2").contains(&vx2), "{screen}");
+        }
+    }
+}
+
+#[test]
+fn coarse_steps_selection_and_resets() {
+    let (app, screen) = explore(160, 48, vec![shift(KeyCode::Left), key(KeyCode::Char('H'))]);
+    assert_eq!(app.params.angle_deg, 40.0);
+    assert!(screen.contains("40.0 deg"));
+
+    // Down to the cart mass (index 9), halve it, then reset it and everything.
+    let mut events = vec![key(KeyCode::Char('j')); 9];
+    events.push(shift(KeyCode::Left));
+    let (app, screen) = explore(160, 48, events.clone());
+    assert_eq!(app.selected_spec().id, ParamId::CartMass);
+    assert_eq!(app.params.cart_mass, 0.005);
+    let expected = solve(&app.params).unwrap().outcome.omega2;
+    assert!(
+        line_with(&screen, "cart mass").contains("5.00 g•"),
+        "{screen}"
+    );
+    assert!(screen.contains(&format!("{expected:.1} rad/s")));
+
+    events.push(key(KeyCode::Char('r')));
+    let (app, _) = explore(160, 48, events.clone());
+    assert_eq!(app.params, Params::default());
+
+    events.extend([
+        key(KeyCode::Up),
+        key(KeyCode::Right),
+        key(KeyCode::Char('R')),
+    ]);
+    let (app, _) = explore(160, 48, events);
+    assert_eq!(app.params, Params::default());
+    assert_eq!(app.selected_spec().id, ParamId::Alpha);
+}
+
+#[test]
+fn a_typed_value_takes_units_like_the_command_line() {
+    let mut events = vec![key(KeyCode::Char('k'))]; // wraps round to the stiffness
+    events.push(key(KeyCode::Enter));
+    events.extend(typed("2.2kN/m"));
+    events.push(key(KeyCode::Enter));
+    let (app, screen) = explore(80, 24, events);
+    assert_eq!(app.params.stiffness, 2200.0);
+    assert!(
+        line_with(&screen, "spring stiffness").contains("2.20 kN/m"),
+        "{screen}"
+    );
+    let omega2 = solve(&app.params).unwrap().outcome.omega2;
+    assert!(screen.contains(&format!("{omega2:.1} rad/s")), "{screen}");
+}
+
+#[test]
+fn the_prompt_names_the_unit_of_a_bare_number() {
+    let mut events = vec![key(KeyCode::Char('j')); 9];
+    events.extend([key(KeyCode::Char('e'))]);
+    events.extend(typed("12"));
+    let (app, screen) = explore(80, 24, events);
+    assert_eq!(app.mode, Mode::Editing("12".into()));
+    let last = screen.lines().last().unwrap();
+    assert!(
+        last.starts_with("cart mass M [kg; or e.g. 10g]: 12"),
+        "{last}"
+    );
+}
+
+#[test]
+fn a_rejected_edit_shows_why_and_keeps_the_value() {
+    for (w, h) in SIZES {
+        let mut events = vec![key(KeyCode::Enter)];
+        events.extend(typed("95"));
+        events.push(key(KeyCode::Enter));
+        let (app, screen) = explore(w, h, events);
+        assert_eq!(app.params, Params::default());
+        assert_eq!(app.mode, Mode::Normal);
+        let status = screen.lines().last().unwrap();
+        assert!(
+            status.starts_with("--angle must be in (0, 90] deg; got 95 (value unchanged)"),
+            "{status}"
+        );
+        assert!(line_with(&screen, "incidence angle").contains("60.0 deg"));
+    }
+    // Not a number, and a unit of the wrong kind.
+    for (text, reason) in [
+        ("abc", "'abc' is not a number"),
+        ("3kg", "unit 'kg' is a mass"),
+    ] {
+        let mut events = vec![key(KeyCode::Enter)];
+        events.extend(typed(text));
+        events.push(key(KeyCode::Enter));
+        let (app, screen) = explore(160, 48, events);
+        assert_eq!(app.params, Params::default());
+        assert!(
+            line_with(&screen, reason).starts_with("--angle: "),
+            "{screen}"
+        );
+    }
+}
+
+#[test]
+fn a_value_the_solver_refuses_is_not_applied() {
+    // A 1 mg cart on a 1 MN/m spring oscillates too fast to resolve.
+    let mut events = vec![key(KeyCode::Char('k'))];
+    events.push(key(KeyCode::Enter));
+    events.extend(typed("1e9"));
+    events.push(key(KeyCode::Enter));
+    events.push(key(KeyCode::Up));
+    events.push(key(KeyCode::Enter));
+    events.extend(typed("1mg"));
+    events.push(key(KeyCode::Enter));
+    let (app, terminal) = explore_with(Theme::default(), 80, 24, events);
+    assert_eq!(app.params.stiffness, 1e9);
+    assert_eq!(app.params.cart_mass, spec(ParamId::CartMass).default);
+    let screen = text(&terminal);
+    assert!(screen.contains("oscillates too fast"), "{screen}");
+    assert!(screen.contains("unchanged)"), "{screen}");
+    let message = app.message.expect("a message").text;
+    assert!(message.ends_with("(value unchanged)"), "{message}");
+}
+
+#[test]
+fn escape_cancels_the_prompt() {
+    let mut events = vec![key(KeyCode::Enter)];
+    events.extend(typed("10"));
+    events.push(key(KeyCode::Backspace));
+    events.push(key(KeyCode::Esc));
+    let (app, _) = explore(80, 24, events);
+    assert_eq!(app.mode, Mode::Normal);
+    assert!(!app.quit);
+    assert_eq!(app.params, Params::default());
+}
+
+#[test]
+fn the_help_overlay_lists_every_key() {
+    for (w, h) in SIZES {
+        let (app, screen) = explore(w, h, vec![key(KeyCode::Char('?'))]);
+        assert_eq!(app.mode, Mode::Help);
+        for binding in keys::EXPLORER.iter().chain(keys::PROMPT) {
+            let row = format!("{:<14} {}", keys_label(binding), binding.help);
+            assert!(
+                screen.contains(&row),
+                "{row:?} missing at {w}x{h}:\n{screen}"
+            );
+        }
+    }
+    // Esc closes the overlay without quitting; a second Esc quits.
+    let (app, _) = explore(80, 24, vec![key(KeyCode::Char('?')), key(KeyCode::Esc)]);
+    assert_eq!(app.mode, Mode::Normal);
+    assert!(!app.quit);
+    let (app, _) = explore(
+        80,
+        24,
+        vec![
+            key(KeyCode::Char('?')),
+            key(KeyCode::Esc),
+            key(KeyCode::Esc),
+        ],
+    );
+    assert!(app.quit);
+}
+
+#[test]
+fn q_esc_and_ctrl_c_quit() {
+    for quit in [key(KeyCode::Char('q')), key(KeyCode::Esc), ctrl('c')] {
+        // Keys after the quit are never read.
+        let (app, _) = explore(80, 24, vec![quit, key(KeyCode::Right)]);
+        assert!(app.quit);
+        assert_eq!(app.params, Params::default());
+    }
+}
+
+#[test]
+fn a_small_terminal_gets_a_notice_and_q_still_quits() {
+    let (app, screen) = explore(79, 24, vec![key(KeyCode::Right)]);
+    assert!(
+        screen.contains("terminal too small: need 80 x 24"),
+        "{screen}"
+    );
+    assert_eq!(app.params.angle_deg, 61.0);
+    let (app, screen) = explore(60, 10, vec![key(KeyCode::Char('q'))]);
+    assert!(app.quit);
+    assert!(
+        screen.contains("terminal too small: need 80 x 24"),
+        "{screen}"
+    );
+}
+
+#[test]
+fn tab_shows_the_sweep_with_the_current_angle() {
+    for (w, h) in SIZES {
+        let (app, screen) = explore(w, h, vec![key(KeyCode::Tab), key(KeyCode::Right)]);
+        assert_eq!(app.view, View::Sweep);
+        let omega2 = solve(&app.params).unwrap().outcome.omega2;
+        assert!(screen.contains("θ1 (deg)"), "{screen}");
+        assert!(
+            screen.contains(&format!("θ1 61.0°: ω2 {omega2:.1}")),
+            "{screen}"
+        );
+        assert!(screen.contains("slides"), "{screen}");
+    }
+    let (app, _) = explore(80, 24, vec![key(KeyCode::Tab), key(KeyCode::Tab)]);
+    assert_eq!(app.view, View::Contact);
+}
+
+/// Every colour on screen, foreground and background.
+fn colors(terminal: &Terminal<TestBackend>) -> Vec<Color> {
+    terminal
+        .backend()
+        .buffer()
+        .content()
+        .iter()
+        .flat_map(|c| [c.fg, c.bg])
+        .collect()
+}
+
+#[test]
+fn no_color_draws_without_colours() {
+    let theme = Theme {
+        color: false,
+        marker: Marker::Braille,
+    };
+    for events in [
+        vec![],
+        vec![key(KeyCode::Tab)],
+        vec![key(KeyCode::Char('?'))],
+    ] {
+        let (_, terminal) = explore_with(theme, 160, 48, events);
+        assert!(colors(&terminal).iter().all(|c| *c == Color::Reset));
+        // Phases still read from the labels.
+        assert!(text(&terminal).contains("slide"));
+    }
+}
+
+#[test]
+fn colours_are_the_sixteen_basic_ones() {
+    for events in [vec![], vec![key(KeyCode::Tab)]] {
+        let (_, terminal) = explore_with(Theme::default(), 160, 48, events);
+        for color in colors(&terminal) {
+            assert!(
+                !matches!(color, Color::Rgb(..) | Color::Indexed(_)),
+                "{color:?} is not one of the 16 basic colours"
+            );
+        }
+    }
+}
+
+#[test]
+fn dot_and_block_markers_draw_without_braille() {
+    for marker in [Marker::Dot, Marker::Block] {
+        let theme = Theme {
+            color: true,
+            marker,
+        };
+        let (_, terminal) = explore_with(theme, 160, 48, vec![]);
+        let screen = text(&terminal);
+        assert!(
+            !screen
+                .chars()
+                .any(|c| ('\u{2801}'..='\u{28ff}').contains(&c)),
+            "{screen}"
+        );
+    }
+}
+
+#[test]
+fn snapshots_of_the_default_screens() {
+    for (w, h) in SIZES {
+        let (_, contact) = explore(w, h, vec![]);
+        insta::assert_snapshot!(format!("contact_{w}x{h}"), contact);
+        let (_, sweep) = explore(w, h, vec![key(KeyCode::Tab)]);
+        insta::assert_snapshot!(format!("sweep_{w}x{h}"), sweep);
+    }
+}
