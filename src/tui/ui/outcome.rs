@@ -59,7 +59,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let theme = &app.theme;
     let b = &app.bounce;
     let o = &b.outcome;
-    let e = &b.energy;
+    let e = b.energy();
     let block = Block::bordered().title(Span::styled(" outcome ", theme.title()));
     let inner = block.inner(area);
     let wide = inner.width >= 40;
