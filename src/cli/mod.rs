@@ -1,6 +1,7 @@
 //! The command line: clap definitions and the headless commands. `main` only parses and dispatches.
 
 mod params_args;
+mod presets;
 mod simulate;
 mod tui;
 
@@ -9,7 +10,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-pub use params_args::ParamArgs;
+pub use params_args::{InputError, ParamArgs};
 
 /// Explore a ball bouncing obliquely off a surface that can move sideways (Cross, Am. J. Phys. 78, 2010).
 #[derive(Debug, Parser)]
@@ -25,6 +26,8 @@ pub enum Commands {
     Simulate(simulate::SimulateArgs),
     /// Open the full-screen explorer (also what `snapback` alone does).
     Tui(tui::TuiArgs),
+    /// List the presets (use one with --preset NAME on any command).
+    Presets(presets::PresetsArgs),
 }
 
 /// A failure to report: the message for stderr and the exit status.
@@ -49,6 +52,7 @@ pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
         Some(Commands::Simulate(args)) => simulate::run(&args),
         Some(Commands::Tui(args)) => tui::run(&args),
+        Some(Commands::Presets(args)) => presets::run(&args),
         None => tui::run(&tui::TuiArgs::default()),
     };
     match result {

@@ -1,20 +1,42 @@
 //! The parameter flags (`--angle`, `--cart-mass`, ...), generated from the parameter table so that
 //! every command takes the same flags with the same help.
 
+use std::path::PathBuf;
+
 use clap::{Arg, ArgMatches, Args, Command, FromArgMatches};
 
 use crate::model::params::{PARAMS, ParamError, ParamId, Params, spec};
 use crate::model::units;
+use crate::scenario::{self, Scenario, ScenarioError};
 
-/// The parameter values given on the command line, as typed (units are parsed by [`ParamArgs::apply`]).
+/// The starting point given on the command line: a preset, a scenario file, and parameter values as
+/// typed (units are parsed by [`ParamArgs::apply`]).
 #[derive(Clone, Debug, Default)]
 pub struct ParamArgs {
+    pub preset: Option<String>,
+    pub scenario: Option<PathBuf>,
     pub given: Vec<(ParamId, String)>,
 }
 
+/// A bad starting point: a parameter value or a scenario.
+#[derive(Debug, thiserror::Error)]
+pub enum InputError {
+    #[error(transparent)]
+    Param(#[from] ParamError),
+    #[error(transparent)]
+    Scenario(#[from] ScenarioError),
+}
+
 impl ParamArgs {
-    /// `base` with every given value parsed and checked; the first bad one is the error.
-    pub fn apply(&self, mut base: Params) -> Result<Params, ParamError> {
+    /// `base`, then the preset, then the scenario file, then each flag given (flags override the
+    /// scenario), every value parsed and checked; the first bad one is the error.
+    pub fn apply(&self, mut base: Params) -> Result<Params, InputError> {
+        if let Some(name) = &self.preset {
+            base = scenario::preset(name)?.apply(base);
+        }
+        if let Some(path) = &self.scenario {
+            base = Scenario::load(path)?.apply(base);
+        }
         for (id, text) in &self.given {
             base.set(*id, spec(*id).parse(text)?);
         }
@@ -49,6 +71,22 @@ fn help_for(spec: &crate::model::params::ParamSpec) -> String {
 
 impl Args for ParamArgs {
     fn augment_args(mut cmd: Command) -> Command {
+        cmd = cmd
+            .arg(
+                Arg::new("preset")
+                    .long("preset")
+                    .value_name("NAME")
+                    .help_heading("Scenario")
+                    .help("start from a preset (list them with `snapback presets`)"),
+            )
+            .arg(
+                Arg::new("scenario")
+                    .long("scenario")
+                    .value_name("FILE")
+                    .value_parser(clap::value_parser!(PathBuf))
+                    .help_heading("Scenario")
+                    .help("start from a scenario file (TOML); parameter flags override its values"),
+            );
         for spec in PARAMS {
             cmd = cmd.arg(
                 Arg::new(spec.key)
@@ -75,6 +113,12 @@ impl FromArgMatches for ParamArgs {
     }
 
     fn update_from_arg_matches(&mut self, matches: &ArgMatches) -> Result<(), clap::Error> {
+        if let Some(name) = matches.get_one::<String>("preset") {
+            self.preset = Some(name.clone());
+        }
+        if let Some(path) = matches.get_one::<PathBuf>("scenario") {
+            self.scenario = Some(path.clone());
+        }
         for spec in PARAMS {
             if let Some(text) = matches.get_one::<String>(spec.key) {
                 self.given.retain(|(id, _)| *id != spec.id);

@@ -1,0 +1,310 @@
+//! Scenarios: a set of parameter values with a description, kept as TOML. The presets ship inside the
+//! binary (from `assets/presets/`); scenario files are the same format on disk.
+//!
+//! ```toml
+//! description = "One line on what this is"
+//! source = "Where the values come from, or the reasoning"
+//!
+//! [params]
+//! cart_mass = "10 g"      # a value with a unit, as on the command line
+//! stiffness = 15000       # or a bare number, in the base unit (kg, m, s, N/m, deg, rad/s)
+//! ```
+//! Parameters left out keep the value they had (the defaults, for a fresh start).
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::Deserialize;
+use toml::Spanned;
+
+use crate::model::Params;
+use crate::model::params::{PARAMS, ParamError, spec_named};
+use crate::model::units;
+
+/// A named set of parameter values.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scenario {
+    pub name: String,
+    pub description: String,
+    pub source: String,
+    /// The values the scenario sets, by parameter key, in base units.
+    pub values: BTreeMap<&'static str, f64>,
+}
+
+/// A preset compiled into the binary.
+pub struct Preset {
+    pub name: &'static str,
+    text: &'static str,
+}
+
+macro_rules! presets {
+    ($($name:literal),* $(,)?) => {
+        &[$(Preset { name: $name, text: include_str!(concat!("../assets/presets/", $name, ".toml")) }),*]
+    };
+}
+
+/// Every preset, in the order `snapback presets` lists them.
+pub const PRESETS: &[Preset] = presets![
+    "fig3c-soft-spring",
+    "fig3b-light-cart",
+    "fig3a-heavy-cart",
+    "light-1g",
+    "light-0.1g",
+    "polyester-strings",
+    "nylon-strings",
+    "billiard-cushion",
+    "golf-compliant-face",
+    "superball-rigid-floor",
+];
+
+impl Preset {
+    /// The preset's scenario.
+    ///
+    /// # Panics
+    /// When a shipped preset does not parse: a build error caught by the tests, never user input.
+    pub fn scenario(&self) -> Scenario {
+        Scenario::parse(self.text, self.name)
+            .unwrap_or_else(|e| panic!("shipped preset {} is broken: {e}", self.name))
+    }
+}
+
+/// The preset called `name`.
+pub fn preset(name: &str) -> Result<Scenario, ScenarioError> {
+    PRESETS
+        .iter()
+        .find(|p| p.name == name)
+        .map(Preset::scenario)
+        .ok_or_else(|| ScenarioError::UnknownPreset {
+            name: name.to_string(),
+            known: PRESETS
+                .iter()
+                .map(|p| p.name)
+                .collect::<Vec<_>>()
+                .join(", "),
+        })
+}
+
+/// Why a scenario cannot be used. Errors in a file name the file, the line and the key.
+#[derive(Debug, thiserror::Error)]
+pub enum ScenarioError {
+    #[error("unknown preset '{name}' (known: {known})")]
+    UnknownPreset { name: String, known: String },
+    #[error("{path}: {source}")]
+    Io {
+        path: String,
+        #[source]
+        source: std::io::Error,
+    },
+    #[error("{origin}:{line}: {message}")]
+    Invalid {
+        origin: String,
+        line: usize,
+        /// The offending key, when there is one.
+        key: Option<String>,
+        message: String,
+    },
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawScenario {
+    #[serde(default)]
+    description: String,
+    #[serde(default)]
+    source: String,
+    #[serde(default)]
+    params: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
+}
+
+/// 1-based line of byte `offset` in `text`.
+fn line_of(text: &str, offset: usize) -> usize {
+    1 + text[..offset.min(text.len())]
+        .bytes()
+        .filter(|&b| b == b'\n')
+        .count()
+}
+
+impl Scenario {
+    /// Parses scenario TOML; `origin` (a path or preset name) names it in errors.
+    pub fn parse(text: &str, origin: &str) -> Result<Self, ScenarioError> {
+        let invalid = |offset: usize, key: Option<&str>, message: String| ScenarioError::Invalid {
+            origin: origin.to_string(),
+            line: line_of(text, offset),
+            key: key.map(str::to_string),
+            message,
+        };
+        let raw: RawScenario = toml::from_str(text).map_err(|e| {
+            let offset = e.span().map_or(0, |s| s.start);
+            invalid(offset, None, e.message().trim_end().to_string())
+        })?;
+        let mut values = BTreeMap::new();
+        for (key, value) in &raw.params {
+            let name = key.get_ref().as_str();
+            let spec = spec_named(name).filter(|s| s.key == name).ok_or_else(|| {
+                let known: Vec<&str> = PARAMS.iter().map(|s| s.key).collect();
+                invalid(
+                    key.span().start,
+                    Some(name),
+                    format!("unknown parameter '{name}' (known: {})", known.join(", ")),
+                )
+            })?;
+            let text_value = match value.get_ref() {
+                toml::Value::String(s) => s.clone(),
+                toml::Value::Integer(i) => i.to_string(),
+                toml::Value::Float(f) => f.to_string(),
+                other => {
+                    return Err(invalid(
+                        value.span().start,
+                        Some(name),
+                        format!(
+                            "{name} must be a number or a string with a unit, not {}",
+                            other.type_str()
+                        ),
+                    ));
+                }
+            };
+            let parsed = spec.parse(&text_value).map_err(|e| {
+                let reason = match e {
+                    ParamError::OutOfRange { range, given, .. } => {
+                        format!("{name} must be in {range}; got {given}")
+                    }
+                    ParamError::Unparsable { source, given, .. } => {
+                        format!("{name}: {source}; got {given}")
+                    }
+                };
+                invalid(value.span().start, Some(name), reason)
+            })?;
+            values.insert(spec.key, parsed);
+        }
+        Ok(Scenario {
+            name: Path::new(origin)
+                .file_stem()
+                .map_or(origin.to_string(), |s| s.to_string_lossy().into_owned()),
+            description: raw.description,
+            source: raw.source,
+            values,
+        })
+    }
+
+    /// Reads a scenario file.
+    pub fn load(path: &Path) -> Result<Self, ScenarioError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+            path: path.display().to_string(),
+            source,
+        })?;
+        Self::parse(&text, &path.display().to_string())
+    }
+
+    /// A scenario that sets every parameter to its value in `params`.
+    pub fn from_params(name: &str, description: &str, params: &Params) -> Self {
+        Scenario {
+            name: name.to_string(),
+            description: description.to_string(),
+            source: String::new(),
+            values: PARAMS.iter().map(|s| (s.key, params.get(s.id))).collect(),
+        }
+    }
+
+    /// `base` with the scenario's values set.
+    pub fn apply(&self, mut base: Params) -> Params {
+        for (key, value) in &self.values {
+            if let Some(spec) = spec_named(key) {
+                base.set(spec.id, *value);
+            }
+        }
+        base
+    }
+
+    /// The scenario as TOML. Values are written in base units with every digit they need, so loading
+    /// the text back gives identical parameters; the people unit follows as a comment.
+    pub fn to_toml(&self) -> String {
+        let quote = |s: &str| toml::Value::String(s.to_string()).to_string();
+        let mut out = String::from("# snapback scenario\n");
+        let _ = writeln!(out, "description = {}", quote(&self.description));
+        if !self.source.is_empty() {
+            let _ = writeln!(out, "source = {}", quote(&self.source));
+        }
+        out.push_str("\n[params]\n");
+        for spec in PARAMS {
+            if let Some(value) = self.values.get(spec.key) {
+                let unit = spec.dimension.base_symbol();
+                let text = if unit.is_empty() {
+                    format!("{value}")
+                } else {
+                    format!("{value} {unit}")
+                };
+                let _ = writeln!(
+                    out,
+                    "{:<10}= {:<26}# {}",
+                    spec.key,
+                    quote(&text),
+                    spec.show(*value)
+                );
+            }
+        }
+        out
+    }
+
+    /// Writes the scenario to `path` atomically: a temporary file beside it, then a rename, so an
+    /// existing file is never left truncated.
+    pub fn save(&self, path: &Path) -> Result<(), ScenarioError> {
+        write_atomically(path, self.to_toml().as_bytes()).map_err(|source| ScenarioError::Io {
+            path: path.display().to_string(),
+            source,
+        })
+    }
+}
+
+/// Writes `bytes` to a temporary file next to `path` and renames it into place.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let file_name = path
+        .file_name()
+        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"))?;
+    let mut temporary = PathBuf::from(path);
+    temporary.set_file_name(format!(
+        ".{}.{}.tmp",
+        file_name.to_string_lossy(),
+        std::process::id()
+    ));
+    let result = std::fs::write(&temporary, bytes).and_then(|()| std::fs::rename(&temporary, path));
+    if result.is_err() {
+        let _ = std::fs::remove_file(&temporary);
+    }
+    result
+}
+
+/// A short text for a value of parameter `key` in its people unit, e.g. `10.00 g`.
+pub fn show_value(key: &str, value: f64) -> String {
+    spec_named(key).map_or_else(|| units::brief(value, 6), |s| s.show(value).to_string())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_preset_parses_and_is_valid() {
+        for p in PRESETS {
+            let scenario = p.scenario();
+            assert!(
+                !scenario.description.is_empty(),
+                "{} has no description",
+                p.name
+            );
+            assert!(!scenario.source.is_empty(), "{} has no source", p.name);
+            assert!(
+                scenario.apply(Params::default()).validate().is_ok(),
+                "{}",
+                p.name
+            );
+        }
+    }
+
+    #[test]
+    fn line_numbers_count_from_one() {
+        assert_eq!(line_of("a\nb\nc", 0), 1);
+        assert_eq!(line_of("a\nb\nc", 2), 2);
+        assert_eq!(line_of("a\nb\nc", 4), 3);
+    }
+}
