@@ -213,10 +213,10 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(&setup, t);
                     let slip = setup.slip(&s) - offset;
-                    (
+                    [(
                         -slide.dir * slip,
                         -slide.dir * Slide::slip_rate(&setup, &s, friction),
-                    )
+                    )]
                 };
                 let s0 = &slide.start;
                 let noise =
@@ -226,16 +226,12 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
                 first_rise(f, t0, end, step, curvature, noise, from_boundary)
             }
             Motion::Grip(grip) => {
+                let f = |t: f64| Grip::margins(&setup, &grip.at(&setup, t));
                 let noise =
                     ROUNDING * (setup.mu * setup.n0 + (setup.grip_gain * grip.start.x).abs());
                 let step = setup.event_step(setup.omega_grip);
                 let curvature = grip.margin_curvature(&setup);
-                let breaks = |sign: f64, until: f64| {
-                    let f = |t: f64| Grip::margin(&setup, &grip.at(&setup, t), sign);
-                    first_rise(f, t0, until, step, curvature, noise, from_boundary)
-                };
-                let forward = breaks(1.0, end);
-                breaks(-1.0, forward.unwrap_or(end)).or(forward)
+                first_rise(f, t0, end, step, curvature, noise, from_boundary)
             }
         }
         // A transition within rounding of the end changes nothing.

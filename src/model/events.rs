@@ -10,22 +10,23 @@
 /// The smallest interval the search splits, relative to the time: below it, a rise is taken as found.
 const FINEST: f64 = 1e-14;
 
-/// An event function: the value and time derivative at `t`.
-pub trait Event: Fn(f64) -> (f64, f64) {}
-impl<F: Fn(f64) -> (f64, f64)> Event for F {}
+/// The event: `K` branches, each a value and its time derivative at `t`. The phase ends when any
+/// branch rises (a grip, for example, breaks when F_s reaches +mu N or -mu N).
+pub trait Event<const K: usize>: Fn(f64) -> [(f64, f64); K] {}
+impl<const K: usize, F: Fn(f64) -> [(f64, f64); K]> Event<K> for F {}
 
-/// The first time in `(t0, t1]` at which `f` rises above `noise`, or `None`.
+/// The first time in `(t0, t1]` at which a branch of `f` rises above `noise`, or `None`.
 ///
-/// `f` is at most `noise` at `t0`. `step` is the coarse sampling interval (a fraction of the fastest
-/// period in `f`, so that most intervals are proved empty at once). `noise` is the rounding error of
-/// the terms of `f`: a function that hovers at zero, as near the end of contact where the normal force
-/// vanishes, is not a rise.
+/// Every branch is at most `noise` at `t0`, and `curvature` bounds the second derivative of each.
+/// `step` is the coarse sampling interval (a fraction of the fastest period in `f`, so that most
+/// intervals are proved empty at once). `noise` is the rounding error of the terms of `f`: a function
+/// that hovers at zero, as near the end of contact where the normal force vanishes, is not a rise.
 ///
 /// A phase that starts on its own boundary (`from_boundary`: a slide that begins where a grip broke or
 /// the friction reversed, a grip that begins at first contact) starts at zero, leaving it downward; the
 /// bound cannot see the direction it leaves in, so the first eighth of a step is only checked at its end.
-pub fn first_rise(
-    f: impl Event,
+pub fn first_rise<const K: usize>(
+    f: impl Event<K>,
     t0: f64,
     t1: f64,
     step: f64,
@@ -44,14 +45,14 @@ pub fn first_rise(
     let mut a = Point::at(&f, t0);
     if from_boundary {
         let b = Point::at(&f, (t0 + step / 8.0).min(t1));
-        if b.value > noise {
-            return Some(refine(&f, a.t, b.t));
+        if let Some(branch) = search.risen(&b) {
+            return Some(refine(|t| f(t)[branch], a.t, b.t));
         }
         a = b;
     }
     while a.t < t1 {
         let b = Point::at(&f, (a.t + step).min(t1));
-        if let Some(t) = search.first_in(a, b) {
+        if let Some(t) = search.first_in(&a, &b) {
             return Some(t);
         }
         a = b;
@@ -60,16 +61,14 @@ pub fn first_rise(
 }
 
 #[derive(Clone, Copy)]
-struct Point {
+struct Point<const K: usize> {
     t: f64,
-    value: f64,
-    rate: f64,
+    branches: [(f64, f64); K],
 }
 
-impl Point {
-    fn at(f: &impl Event, t: f64) -> Self {
-        let (value, rate) = f(t);
-        Point { t, value, rate }
+impl<const K: usize> Point<K> {
+    fn at(f: &impl Event<K>, t: f64) -> Self {
+        Point { t, branches: f(t) }
     }
 }
 
@@ -79,34 +78,49 @@ struct Search<'a, F> {
     noise: f64,
 }
 
-impl<F: Event> Search<'_, F> {
-    /// The first rise in `[a, b]`, given that `f(a) <= noise` and nothing rose before `a`.
-    fn first_in(&self, a: Point, b: Point) -> Option<f64> {
-        let rises = b.value > self.noise;
-        if !rises && self.proved_below(a, b) {
+impl<F> Search<'_, F> {
+    /// The first branch above the noise at `p`.
+    fn risen<const K: usize>(&self, p: &Point<K>) -> Option<usize> {
+        p.branches.iter().position(|&(value, _)| value > self.noise)
+    }
+
+    /// The first rise in `[a, b]`, given that every branch is at most `noise` at `a` and nothing rose
+    /// before `a`.
+    fn first_in<const K: usize>(&self, a: &Point<K>, b: &Point<K>) -> Option<f64>
+    where
+        F: Event<K>,
+    {
+        let risen = self.risen(b);
+        let below = |i: usize| b.branches[i].0 <= self.noise && self.proved_below(a, b, i);
+        if risen.is_none() && (0..K).all(below) {
             return None;
         }
         let width = b.t - a.t;
         if width <= FINEST * b.t.abs().max(f64::MIN_POSITIVE) {
-            return rises.then_some(b.t);
+            return risen.map(|_| b.t);
         }
-        // Rising throughout: f' >= f'(a) - curvature (b - a) > 0, so the crossing is unique.
-        if rises && a.rate - 2.0 * self.half_curvature * width > 0.0 {
-            return Some(refine(self.f, a.t, b.t));
+        // One branch rising throughout (f' >= f'(a) - curvature (b - a) > 0, so its crossing is
+        // unique) while the others are proved below: that crossing is the first rise.
+        if let Some(i) = risen {
+            let rising = a.branches[i].1 - 2.0 * self.half_curvature * width > 0.0;
+            if rising && (0..K).all(|j| j == i || below(j)) {
+                return Some(refine(|t| (self.f)(t)[i], a.t, b.t));
+            }
         }
         let mid = Point::at(self.f, a.t + 0.5 * width);
-        self.first_in(a, mid).or_else(|| self.first_in(mid, b))
+        self.first_in(a, &mid).or_else(|| self.first_in(&mid, b))
     }
 
-    /// True when the two parabolas through `a` and `b` prove `f <= noise` on `[a, b]`.
+    /// True when the two parabolas through `a` and `b` prove branch `i` at most `noise` on `[a, b]`.
     ///
     /// Both bounds are convex, so the lower of them peaks at an end or where they cross; their
     /// difference is linear in `t`, so they cross at most once.
-    fn proved_below(&self, a: Point, b: Point) -> bool {
+    fn proved_below<const K: usize>(&self, a: &Point<K>, b: &Point<K>, i: usize) -> bool {
+        let ((fa, ra), (fb, rb)) = (a.branches[i], b.branches[i]);
         let k = self.half_curvature;
         let width = b.t - a.t;
-        let offset = a.value - b.value + b.rate * width - k * width * width;
-        let slope = a.rate - b.rate + 2.0 * k * width;
+        let offset = fa - fb + rb * width - k * width * width;
+        let slope = ra - rb + 2.0 * k * width;
         if slope == 0.0 {
             return true;
         }
@@ -114,13 +128,13 @@ impl<F: Event> Search<'_, F> {
         if s <= 0.0 || s >= width {
             return true;
         }
-        a.value + a.rate * s + k * s * s <= self.noise
+        fa + ra * s + k * s * s <= self.noise
     }
 }
 
 /// The crossing of zero in `[a, b]`, where `f(a) <= 0 < f(b)` (up to noise), by Newton iteration kept
 /// inside a shrinking bracket, to a few units in the last place of `t`.
-fn refine(f: &impl Event, mut a: f64, mut b: f64) -> f64 {
+fn refine(f: impl Fn(f64) -> (f64, f64), mut a: f64, mut b: f64) -> f64 {
     let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
     let mut t = 0.5 * (a + b);
     for _ in 0..100 {
@@ -152,7 +166,7 @@ mod tests {
 
     #[test]
     fn finds_a_plain_crossing() {
-        let t = first_rise(|t| (t - 0.3, 1.0), 0.0, 1.0, 0.1, 0.0, 0.0, false).unwrap();
+        let t = first_rise(|t| [(t - 0.3, 1.0)], 0.0, 1.0, 0.1, 0.0, 0.0, false).unwrap();
         assert!((t - 0.3).abs() < 1e-15);
     }
 
@@ -160,7 +174,7 @@ mod tests {
     fn finds_a_bump_between_two_negative_samples() {
         // A narrow bump above zero between samples at 0.4 and 0.5.
         let f = |t: f64| (1e-4 - (t - 0.45) * (t - 0.45), -2.0 * (t - 0.45));
-        let t = first_rise(f, 0.0, 1.0, 0.1, 2.0, 0.0, false).unwrap();
+        let t = first_rise(|t| [f(t)], 0.0, 1.0, 0.1, 2.0, 0.0, false).unwrap();
         assert!((t - 0.44).abs() < 1e-12, "{t}");
     }
 
@@ -171,7 +185,7 @@ mod tests {
             let (p, q, r) = (t - 0.30, t - 0.31, t - 0.9);
             (p * q * r, q * r + p * r + p * q)
         };
-        let t = first_rise(f, 0.0, 1.0, 1.0, 6.0, 0.0, false).unwrap();
+        let t = first_rise(|t| [f(t)], 0.0, 1.0, 1.0, 6.0, 0.0, false).unwrap();
         assert!((t - 0.30).abs() < 1e-12, "{t}");
     }
 
@@ -179,24 +193,45 @@ mod tests {
     fn ignores_a_start_on_the_boundary() {
         // Starts at zero and falls: no event at t0, and the later crossing is found.
         let f = |t: f64| ((t - 0.5) * (t - 0.5) - 0.25 + 1e-17, 2.0 * (t - 0.5));
-        let t = first_rise(f, 0.0, 2.0, 0.1, 2.0, 0.0, true).unwrap();
+        let t = first_rise(|t| [f(t)], 0.0, 2.0, 0.1, 2.0, 0.0, true).unwrap();
         assert!((t - 1.0).abs() < 1e-12, "{t}");
+    }
+
+    #[test]
+    fn the_earlier_of_two_branches_wins() {
+        let t = first_rise(
+            |t| [(t - 0.7, 1.0), (t - 0.4, 1.0)],
+            0.0,
+            1.0,
+            0.25,
+            0.0,
+            0.0,
+            false,
+        )
+        .unwrap();
+        assert!((t - 0.4).abs() < 1e-15, "{t}");
     }
 
     #[test]
     fn noise_is_not_a_rise() {
         let hover = |t: f64| (1e-17 * (t * 1e3).sin(), 1e-14 * (t * 1e3).cos());
-        assert_eq!(first_rise(hover, 0.0, 1.0, 0.1, 1e-11, 1e-15, true), None);
+        assert_eq!(
+            first_rise(|t| [hover(t)], 0.0, 1.0, 0.1, 1e-11, 1e-15, true),
+            None
+        );
     }
 
     #[test]
     fn none_when_it_stays_below() {
         assert_eq!(
-            first_rise(|t| (-1.0 - t, -1.0), 0.0, 1.0, 0.1, 0.0, 0.0, false),
+            first_rise(|t| [(-1.0 - t, -1.0)], 0.0, 1.0, 0.1, 0.0, 0.0, false),
             None
         );
         // Comes within 1e-6 of zero at t = pi/20 and turns back.
         let grazes = |t: f64| ((t * 10.0).sin() - 1.0 - 1e-6, 10.0 * (t * 10.0).cos());
-        assert_eq!(first_rise(grazes, 0.0, 1.0, 0.5, 100.0, 0.0, false), None);
+        assert_eq!(
+            first_rise(|t| [grazes(t)], 0.0, 1.0, 0.5, 100.0, 0.0, false),
+            None
+        );
     }
 }

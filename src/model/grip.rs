@@ -32,14 +32,18 @@ impl Grip {
         }
     }
 
-    /// How far the grip is from breaking with F_s in the direction `sign` (+1 or -1): sign F_s - mu N,
-    /// and its rate. The grip breaks when this rises above zero.
+    /// How far the grip is from breaking forward and backward: sign F_s - mu N for sign = +1 and -1,
+    /// each with its rate. The grip breaks when either rises above zero.
     #[inline]
-    pub fn margin(setup: &Setup, s: &State, sign: f64) -> (f64, f64) {
-        let value = sign * setup.grip_gain * s.x - setup.mu * setup.normal(s.t);
-        let rate =
-            sign * setup.grip_gain * s.v - setup.mu * setup.n0 * setup.w * (setup.w * s.t).cos();
-        (value, rate)
+    pub fn margins(setup: &Setup, s: &State) -> [(f64, f64); 2] {
+        let (sin_wt, cos_wt) = (setup.w * s.t).sin_cos();
+        let limit = setup.mu * setup.n0 * sin_wt.max(0.0);
+        let limit_rate = setup.mu * setup.n0 * setup.w * cos_wt;
+        let (force, force_rate) = (setup.grip_gain * s.x, setup.grip_gain * s.v);
+        [
+            (force - limit, force_rate - limit_rate),
+            (-force - limit, -force_rate - limit_rate),
+        ]
     }
 
     /// A bound on the second derivative of either margin over the phase: F_s is k m_eff/(M + m_eff)
