@@ -46,6 +46,7 @@ fn random_params(rng: &mut Rng) -> Params {
         } else {
             rng.log_uniform(1e3, 1e5)
         },
+        cart_friction: 0.0,
     }
 }
 
@@ -141,4 +142,52 @@ fn agrees_on_the_papers_cases() {
             "{p:?}"
         );
     }
+}
+
+#[test]
+fn string_friction_agrees_with_numerical_integration() {
+    // The cart sticks and slips too: a Coulomb friction F_c up to about the largest sliding friction.
+    let mut rng = Rng(0xfeed_5eed_0ddb_a110);
+    let mut stuck_somewhere = 0;
+    let cases = 120;
+    for case in 0..cases {
+        let mut p = random_params(&mut rng);
+        let peak_friction = p.mu
+            * (1.0 + p.ey)
+            * std::f64::consts::PI
+            * p.mass
+            * p.speed
+            * p.angle_deg.to_radians().sin()
+            / (2.0 * p.duration);
+        p.cart_friction = rng.uniform(0.0, 1.2) * peak_friction;
+        let exact = solve(&p).expect("valid parameters solve");
+        let reference = integrate(&p, step_for(&p));
+        let tol_v = 1e-7 * exact.outcome.vx2.abs().max(p.speed);
+        let tol_w = 1e-7 * exact.outcome.omega2.abs().max(p.speed / p.radius);
+        assert!(
+            (exact.outcome.vx2 - reference.vx2).abs() <= tol_v
+                && (exact.outcome.omega2 - reference.omega2).abs() <= tol_w,
+            "case {case}: exact ({}, {}) numerical ({}, {}) for {p:?}",
+            exact.outcome.vx2,
+            exact.outcome.omega2,
+            reference.vx2,
+            reference.omega2
+        );
+        assert!(
+            (exact.final_state.x - reference.x2).abs()
+                <= 1e-7 * exact.final_state.x.abs().max(1e-6),
+            "case {case}"
+        );
+        if exact
+            .phases
+            .iter()
+            .any(|ph| ph.cart == snapback::model::Cart::Stuck)
+        {
+            stuck_somewhere += 1;
+        }
+    }
+    assert!(
+        stuck_somewhere >= 30,
+        "only {stuck_somewhere} of {cases} cases stuck the cart"
+    );
 }

@@ -3,7 +3,7 @@
 //! continuous across every transition.
 
 use proptest::prelude::*;
-use snapback::model::{Params, PhaseKind, solve};
+use snapback::model::{Cart, Params, PhaseKind, solve};
 
 fn log_range(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (lo.ln()..=hi.ln()).prop_map(f64::exp)
@@ -17,17 +17,20 @@ fn params() -> impl Strategy<Value = Params> {
         -500.0f64..500.0,
     );
     let contact = (0.0f64..1.2, 0.5e-3f64..20e-3, 0.0f64..=1.0);
+    // String friction: none in half the cases, else up to about twice the largest sliding friction.
+    let string = prop_oneof![Just(0.0), 0.0f64..2.0];
     let cart = (
         log_range(1e-5, 1e6),
         prop_oneof![Just(0.0), log_range(1.0, 1e6)],
+        string,
     );
-    (ball, throw, contact, cart).prop_map(
-        |(
-            (mass, radius, alpha),
-            (angle_deg, speed, spin),
-            (mu, duration, ey),
-            (cart_mass, stiffness),
-        )| Params {
+    (ball, throw, contact, cart).prop_map(|(ball, throw, contact, cart)| {
+        let ((mass, radius, alpha), (angle_deg, speed, spin)) = (ball, throw);
+        let ((mu, duration, ey), (cart_mass, stiffness, string)) = (contact, cart);
+        let peak_friction =
+            mu * (1.0 + ey) * std::f64::consts::PI * mass * speed * angle_deg.to_radians().sin()
+                / (2.0 * duration);
+        Params {
             angle_deg,
             speed,
             spin,
@@ -39,8 +42,9 @@ fn params() -> impl Strategy<Value = Params> {
             alpha,
             cart_mass,
             stiffness,
-        },
-    )
+            cart_friction: string * peak_friction,
+        }
+    })
 }
 
 /// 400 cases by default; `PROPTEST_CASES=100000` searches deeper.
@@ -89,6 +93,20 @@ proptest! {
                 prop_assert!(s.slip.abs() <= 1e-9 * speed_scale, "slip {} in grip at {}", s.slip, s.t);
             }
         }
+        // A stuck cart does not move; a moving one never turns within a phase (its stopping ends it).
+        for (index, phase) in b.phases.iter().enumerate() {
+            let first = b.sample_in(index, phase.start);
+            for i in 1..=8 {
+                let s = b.sample_in(index, phase.start + phase.duration() * f64::from(i) / 8.0);
+                match phase.cart {
+                    Cart::Stuck => prop_assert!(s.v == 0.0 && s.x == first.x),
+                    Cart::Moving(dir) if p.cart_friction > 0.0 => {
+                        prop_assert!(f64::from(dir) * s.v >= -1e-9 * speed_scale, "cart turned inside a phase");
+                    }
+                    Cart::Moving(_) => {}
+                }
+            }
+        }
         // Both sides of each transition: the state is continuous (only F may jump).
         for pair in series.windows(2) {
             if pair[0].t == pair[1].t {
@@ -104,32 +122,54 @@ proptest! {
 
     #[test]
     fn transitions_are_located_to_a_picosecond(p in params()) {
-        // At a slide's end the slip is zero; at a grip's end |F_s| = mu N. The time error of a
-        // transition is the event function's value there over its rate.
+        // Each phase ends on one of its events: a slide when the slip is zero, a grip when |F_s| = mu N,
+        // a moving cart when it stops, a stuck cart when the push on it reaches F_c. The time error of
+        // the event is its function's value there over its rate; where the rate vanishes (a grazing
+        // transition) the value may instead sit at the rounding floor of its terms.
         let b = solve(&p).unwrap();
         let speed_scale = p.speed + p.radius * p.spin.abs();
-        for (index, before) in b.phases.iter().enumerate().take(b.phases.len() - 1) {
-            let t = before.end;
-            let left = b.sample_in(index, t);
-            // Where the rate itself vanishes (a grazing transition) time is not the right measure, so
-            // the value may also sit at the rounding floor of its terms.
-            let (error, rate, floor) = match before.kind {
-                PhaseKind::Slide => {
-                    // d(slip)/dt from the equations of motion, Eqs. (1)-(3).
-                    let f = before.slip_sign as f64 * p.mu * left.normal;
-                    let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
-                    let rate = -f / m_eff - (f - p.stiffness * left.x) / p.cart_mass;
-                    (left.slip.abs(), rate.abs(), 1e-11 * (speed_scale + left.v.abs()))
-                }
-                PhaseKind::Grip => {
-                    let gain = b.setup.grip_gain;
-                    let n0w = b.setup.n0 * b.setup.w;
-                    let margin = (gain * left.x).abs() - p.mu * left.normal;
-                    let rate = gain * left.v * left.x.signum() - p.mu * n0w * (b.setup.w * t).cos();
-                    (margin.abs(), rate.abs(), 1e-11 * p.mu * b.setup.n0)
-                }
+        let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+        let (n0, w) = (b.setup.n0, b.setup.w);
+        for (index, phase) in b.phases.iter().enumerate().take(b.phases.len() - 1) {
+            let t = phase.end;
+            let s = b.sample_in(index, t);
+            let string = match phase.cart {
+                Cart::Moving(dir) => f64::from(dir) * p.cart_friction,
+                Cart::Stuck => 0.0,
             };
-            prop_assert!(error <= 1e-12 * rate + floor, "{:?} ending at {t}: value {error} rate {rate}", before.kind);
+            let cart_accel = match (phase.kind, phase.cart) {
+                (_, Cart::Stuck) => 0.0,
+                (PhaseKind::Slide, _) => (s.friction - p.stiffness * s.x - string) / p.cart_mass,
+                (PhaseKind::Grip, _) => -(p.stiffness * s.x + string) / (p.cart_mass + m_eff),
+            };
+            let friction_rate = match phase.kind {
+                PhaseKind::Slide => f64::from(phase.slip_sign) * p.mu * n0 * w * (w * t).cos(),
+                PhaseKind::Grip => b.setup.grip_gain * s.v,
+            };
+            let force_floor = 1e-11 * (p.mu * n0 + p.stiffness * s.x.abs() + p.cart_friction);
+            let speed_floor = 1e-11 * (speed_scale + s.v.abs());
+            // (value, rate, floor) of each event that can end this phase.
+            let mut events = vec![];
+            match phase.kind {
+                PhaseKind::Slide => events.push((s.slip, -s.friction / m_eff - cart_accel, speed_floor)),
+                PhaseKind::Grip => {
+                    let limit_rate = p.mu * n0 * w * (w * t).cos();
+                    let sign = s.friction.signum();
+                    events.push((s.friction.abs() - p.mu * s.normal, sign * friction_rate - limit_rate, force_floor));
+                }
+            }
+            match phase.cart {
+                Cart::Moving(_) if p.cart_friction > 0.0 => events.push((s.v, cart_accel, speed_floor)),
+                Cart::Moving(_) => {}
+                Cart::Stuck => {
+                    let push = s.friction - p.stiffness * s.x;
+                    events.push((push.abs() - p.cart_friction, push.signum() * friction_rate, force_floor));
+                }
+            }
+            let located = events
+                .iter()
+                .any(|&(value, rate, floor)| value.abs() <= 1e-12 * rate.abs() + floor);
+            prop_assert!(located, "{:?}/{:?} ending at {t}: events {events:?}", phase.kind, phase.cart);
         }
     }
 

@@ -14,6 +14,8 @@ struct PhaseJson {
     end: f64,
     /// +1 or -1 while sliding (the sign of the slip and of F), 0 while gripping.
     slip: i8,
+    /// "moving", or "stuck" while string friction holds the cart.
+    cart: &'static str,
 }
 
 #[derive(Serialize)]
@@ -66,6 +68,7 @@ fn document(b: &Bounce) -> BounceJson<'_> {
                 start: p.start,
                 end: p.end,
                 slip: p.slip_sign,
+                cart: p.cart.name(),
             })
             .collect(),
         cart: CartJson {

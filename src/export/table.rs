@@ -4,7 +4,7 @@ use std::fmt::Write;
 
 use crate::model::params::PARAMS;
 use crate::model::units::{Dimension, show};
-use crate::model::{Bounce, PhaseKind};
+use crate::model::{Bounce, Cart, PhaseKind};
 
 /// Parameters, outcome, phases in ms and the energy budget, as aligned text.
 pub fn summary(b: &Bounce) -> String {
@@ -38,10 +38,13 @@ pub fn summary(b: &Bounce) -> String {
     }
     let _ = writeln!(out, "\nPhases ({})", b.phase_summary());
     for p in &b.phases {
-        let slip = match (p.kind, p.slip_sign) {
-            (PhaseKind::Grip, _) => "contact point moves with the cart".to_string(),
-            (_, s) if s > 0 => "slipping forward, F = +μN".to_string(),
-            _ => "slipping backward, F = -μN".to_string(),
+        let slip = match (p.kind, p.slip_sign, p.cart) {
+            (PhaseKind::Grip, _, Cart::Stuck) => "rolling on the stuck cart",
+            (PhaseKind::Grip, _, _) => "contact point moves with the cart",
+            (_, s, Cart::Stuck) if s > 0 => "slipping forward, F = +μN; cart stuck",
+            (_, _, Cart::Stuck) => "slipping backward, F = -μN; cart stuck",
+            (_, s, _) if s > 0 => "slipping forward, F = +μN",
+            _ => "slipping backward, F = -μN",
         };
         let _ = writeln!(
             out,
@@ -65,6 +68,7 @@ pub fn summary(b: &Bounce) -> String {
         ("cart + spring", e.final_cart),
         ("lost to friction", e.friction_loss),
         ("lost normally (e_y)", e.normal_loss),
+        ("lost at the cart (F_c)", e.cart_friction_loss),
     ];
     for (name, joules) in rows {
         let _ = writeln!(

@@ -2,12 +2,14 @@
 
 use serde::Serialize;
 
+use super::cart::Cart;
 use super::events::first_rise;
 use super::grip::Grip;
 use super::params::{ParamError, Params};
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
 use super::slide::Slide;
+use super::transition::{self, Ball, Cause};
 
 /// Whether the ball slides on the cart or grips it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize)]
@@ -38,6 +40,8 @@ pub struct Phase {
     pub kind: PhaseKind,
     /// The sign of the slip (and of the friction F) while sliding, +1 or -1; 0 while gripping.
     pub slip_sign: i8,
+    /// What the cart does (it can only stick with string friction).
+    pub cart: Cart,
     /// Start time, s.
     pub start: f64,
     /// End time, s.
@@ -58,7 +62,7 @@ impl Phase {
     pub fn friction(&self, setup: &Setup, state: &State) -> f64 {
         match &self.motion {
             Motion::Slide(slide) => slide.friction(setup, state.t),
-            Motion::Grip(_) => Grip::friction(setup, state.x),
+            Motion::Grip(grip) => grip.friction(setup, state.x),
         }
     }
 
@@ -109,7 +113,9 @@ pub struct Energy {
     pub friction_loss: f64,
     /// Lost in the normal direction, m v_y1^2 (1 - e_y^2)/2.
     pub normal_loss: f64,
-    /// (initial - final_ball - final_cart - friction_loss - normal_loss) / initial.
+    /// Work against the string friction on the cart: F_c times the distance the cart travelled.
+    pub cart_friction_loss: f64,
+    /// (initial - final_ball - final_cart - friction_loss - normal_loss - cart_friction_loss) / initial.
     pub residual: f64,
 }
 
@@ -135,6 +141,8 @@ pub struct Sample {
     /// Index of the phase in [`Bounce::phases`].
     pub phase: usize,
     pub kind: PhaseKind,
+    /// True while string friction holds the cart still.
+    pub cart_stuck: bool,
 }
 
 /// A solved bounce.
@@ -182,98 +190,186 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
         return Err(SolveError::TooFast { radians });
     }
     let end = setup.duration;
-    let start = setup.initial(params.spin);
-    let slip0 = setup.slip(&start);
+    let mut state = setup.initial(params.spin);
     let incoming = setup.vx1.abs() + setup.r * params.spin.abs();
+    let slip0 = setup.slip(&state);
     // A ball that arrives rolling grips at once (N(0) = 0 and F_s = 0, so the grip holds on the boundary).
-    let (mut motion, mut from_boundary) = if slip0.abs() <= ROLLING * incoming {
-        (Motion::Grip(Grip { start }), true)
+    let arriving = if slip0.abs() <= ROLLING * incoming {
+        Ball::Grip
     } else {
-        (
-            Motion::Slide(Slide::new(&setup, start, slip0.signum())),
-            false,
-        )
+        Ball::Slide(slip0.signum())
     };
+    let (mut ball, mut cart) =
+        transition::next(&setup, &state, arriving, Cart::Moving(1), Cause::Start);
+    let mut cause = Cause::Start;
     let mut phases = Vec::with_capacity(4);
     for _ in 0..MAX_TRANSITIONS {
-        let phase_start = match &motion {
-            Motion::Slide(s) => s.start,
-            Motion::Grip(g) => g.start,
+        let t0 = state.t;
+        let motion = match ball {
+            Ball::Slide(dir) => Motion::Slide(Slide::new(&setup, state, dir, cart)),
+            Ball::Grip => Motion::Grip(Grip { start: state, cart }),
         };
-        let t0 = phase_start.t;
-        let event = match &motion {
-            Motion::Slide(slide) => {
-                // A slide that starts where the slip is zero starts with a slip of zero plus rounding;
-                // measured from that start value, rounding can never fake a crossing at the start.
-                let offset = if from_boundary {
-                    setup.slip(&slide.start)
-                } else {
-                    0.0
-                };
+        // Event functions that start on their own zero (the slip after a grip broke or the friction
+        // reversed, the cart's velocity after it stopped) are measured from their start value, so
+        // rounding can never fake a crossing at the start.
+        let slip_offset = if matches!(cause, Cause::SlipZero | Cause::GripBreak(_)) {
+            setup.slip(&state)
+        } else {
+            0.0
+        };
+        let v_offset = if matches!(cause, Cause::Start | Cause::CartStop | Cause::Unstick(_)) {
+            state.v
+        } else {
+            0.0
+        };
+        let speeds = incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
+        let forces = setup.mu * setup.n0 + setup.k * state.x.abs() + setup.cart_friction;
+        let event = match (&motion, cart) {
+            (Motion::Slide(slide), Cart::Moving(cart_dir)) => {
+                let cart_dir = f64::from(cart_dir);
+                let string = setup.cart_friction > 0.0;
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(&setup, t);
-                    let slip = setup.slip(&s) - offset;
-                    [(
-                        -slide.dir * slip,
-                        -slide.dir * Slide::slip_rate(&setup, &s, friction),
-                    )]
+                    let slip = (
+                        -slide.dir * (setup.slip(&s) - slip_offset),
+                        -slide.dir * slide.slip_rate(&setup, &s, friction),
+                    );
+                    // Without string friction the cart's stopping changes nothing.
+                    let stop = if string {
+                        (
+                            -cart_dir * (s.v - v_offset),
+                            -cart_dir * slide.cart_acceleration(&setup, &s, friction),
+                        )
+                    } else {
+                        (-1.0, 0.0)
+                    };
+                    [slip, stop]
                 };
-                let s0 = &slide.start;
-                let noise =
-                    ROUNDING * (incoming + s0.vx.abs() + setup.r * s0.omega.abs() + s0.v.abs());
+                let (slip_curvature, cart_curvature) = slide.curvature(&setup);
+                // The stand-in for a cart that cannot stick is a constant: no curvature.
+                let cart_curvature = if string { cart_curvature } else { 0.0 };
+                let noise = [ROUNDING * speeds, ROUNDING * slide.cart_speed_scale(&setup)];
                 let step = setup.event_step(setup.omega_slide);
-                let curvature = slide.slip_curvature(&setup);
-                first_rise(f, t0, end, step, curvature, noise, from_boundary)
+                first_rise(f, t0, end, step, [slip_curvature, cart_curvature], noise).map(
+                    |(t, branch)| {
+                        (
+                            t,
+                            if branch == 0 {
+                                Cause::SlipZero
+                            } else {
+                                Cause::CartStop
+                            },
+                        )
+                    },
+                )
             }
-            Motion::Grip(grip) => {
-                let f = |t: f64| Grip::margins(&setup, &grip.at(&setup, t));
-                let noise =
-                    ROUNDING * (setup.mu * setup.n0 + (setup.grip_gain * grip.start.x).abs());
+            (Motion::Slide(slide), Cart::Stuck) => {
+                let f = |t: f64| {
+                    let (s, friction) = slide.evaluate(&setup, t);
+                    let slip = (
+                        -slide.dir * (setup.slip(&s) - slip_offset),
+                        -slide.dir * slide.slip_rate(&setup, &s, friction),
+                    );
+                    let push = friction - setup.k * s.x;
+                    let push_rate = slide.dir * setup.mu * setup.n0 * setup.w * (setup.w * t).cos();
+                    [
+                        slip,
+                        (push - setup.cart_friction, push_rate),
+                        (-push - setup.cart_friction, -push_rate),
+                    ]
+                };
+                let (slip_curvature, push_curvature) = slide.curvature(&setup);
+                let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
+                let step = setup.event_step(0.0);
+                first_rise(
+                    f,
+                    t0,
+                    end,
+                    step,
+                    [slip_curvature, push_curvature, push_curvature],
+                    noise,
+                )
+                .map(|(t, branch)| {
+                    let cause = match branch {
+                        0 => Cause::SlipZero,
+                        1 => Cause::Unstick(1),
+                        _ => Cause::Unstick(-1),
+                    };
+                    (t, cause)
+                })
+            }
+            (Motion::Grip(grip), Cart::Moving(cart_dir)) => {
+                let cart_dir = f64::from(cart_dir);
+                let string = setup.cart_friction > 0.0;
+                let f = |t: f64| {
+                    let s = grip.at(&setup, t);
+                    let [forward, backward] = grip.margins(&setup, &s);
+                    let stop = if string {
+                        (
+                            -cart_dir * (s.v - v_offset),
+                            -cart_dir * grip.cart_acceleration(&setup, &s),
+                        )
+                    } else {
+                        (-1.0, 0.0)
+                    };
+                    [forward, backward, stop]
+                };
+                let (margin_curvature, cart_curvature) = grip.curvature(&setup);
+                let cart_curvature = if string { cart_curvature } else { 0.0 };
+                let cart_noise = ROUNDING * grip.cart_speed_scale(&setup);
+                let noise = [ROUNDING * forces, ROUNDING * forces, cart_noise];
                 let step = setup.event_step(setup.omega_grip);
-                let curvature = grip.margin_curvature(&setup);
-                first_rise(f, t0, end, step, curvature, noise, from_boundary)
+                first_rise(
+                    f,
+                    t0,
+                    end,
+                    step,
+                    [margin_curvature, margin_curvature, cart_curvature],
+                    noise,
+                )
+                .map(|(t, branch)| {
+                    let cause = match branch {
+                        0 => Cause::GripBreak(1.0),
+                        1 => Cause::GripBreak(-1.0),
+                        _ => Cause::CartStop,
+                    };
+                    (t, cause)
+                })
             }
+            // Rolling on a still cart: nothing changes until the ball leaves.
+            (Motion::Grip(_), Cart::Stuck) => None,
         }
         // A transition within rounding of the end changes nothing.
-        .filter(|&t| t < end * (1.0 - 1e-13));
-        let t1 = event.unwrap_or(end);
-        let (kind, slip_sign) = match &motion {
-            Motion::Slide(s) => (PhaseKind::Slide, s.dir as i8),
-            Motion::Grip(_) => (PhaseKind::Grip, 0),
-        };
+        .filter(|&(t, _)| t < end * (1.0 - 1e-13));
+        let t1 = event.map_or(end, |(t, _)| t);
         let phase = Phase {
-            kind,
-            slip_sign,
+            kind: if ball == Ball::Grip {
+                PhaseKind::Grip
+            } else {
+                PhaseKind::Slide
+            },
+            slip_sign: if let Ball::Slide(dir) = ball {
+                dir as i8
+            } else {
+                0
+            },
+            cart,
             start: t0,
             end: t1,
             motion,
         };
-        let state = phase.state_at(&setup, t1);
+        state = phase.state_at(&setup, t1);
         if t1 > t0 {
             phases.push(phase);
         }
-        if event.is_none() {
+        let Some((_, next_cause)) = event else {
             return Ok(finish(params, setup, phases, state));
-        }
-        (motion, from_boundary) = match kind {
-            // The slip reached zero: grip if static friction (Eq. 5) can hold it, else the friction reverses.
-            PhaseKind::Slide => {
-                let static_friction = Grip::friction(&setup, state.x);
-                if static_friction.abs() <= setup.mu * setup.normal(t1) {
-                    (Motion::Grip(Grip { start: state }), false)
-                } else {
-                    (
-                        Motion::Slide(Slide::new(&setup, state, static_friction.signum())),
-                        true,
-                    )
-                }
-            }
-            // |F_s| reached mu N: slide again, friction continuing in the direction of F_s.
-            PhaseKind::Grip => {
-                let dir = if state.x < 0.0 { -1.0 } else { 1.0 };
-                (Motion::Slide(Slide::new(&setup, state, dir)), true)
-            }
         };
+        if next_cause == Cause::CartStop {
+            state.v = 0.0;
+        }
+        cause = next_cause;
+        (ball, cart) = transition::next(&setup, &state, ball, cart, cause);
     }
     Err(SolveError::TooManyPhases)
 }
@@ -312,6 +408,14 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
     let final_ball = setup.ball_tangential_energy(last) + 0.5 * setup.m * vy2 * vy2;
     let final_cart = setup.cart_energy(last);
     let normal_loss = 0.5 * setup.m * (setup.vy1 * setup.vy1 - vy2 * vy2);
+    // The cart never reverses within a phase (its stopping ends the phase), so the distance it
+    // travels in a phase is |X(end) - X(start)|.
+    let cart_friction_loss = setup.cart_friction
+        * phases
+            .iter()
+            .filter(|p| p.cart != Cart::Stuck)
+            .map(|p| (p.state_at(setup, p.end).x - p.initial().x).abs())
+            .sum::<f64>();
     let panel = 2.0 / setup.omega_slide.max(setup.w);
     let friction_loss = phases
         .iter()
@@ -330,7 +434,14 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
         final_cart,
         friction_loss,
         normal_loss,
-        residual: (initial - final_ball - final_cart - friction_loss - normal_loss) / initial,
+        cart_friction_loss,
+        residual: (initial
+            - final_ball
+            - final_cart
+            - friction_loss
+            - normal_loss
+            - cart_friction_loss)
+            / initial,
     }
 }
 
@@ -362,6 +473,7 @@ impl Bounce {
             slip: self.setup.slip(&s),
             phase: index,
             kind: phase.kind,
+            cart_stuck: phase.cart == Cart::Stuck,
         }
     }
 
@@ -405,12 +517,20 @@ impl Bounce {
     }
 
     /// The phase kinds joined, e.g. `slide-grip-slide`.
+    ///
+    /// The ball's phases: a change in the cart alone (sticking, starting, turning) does not split them.
     pub fn phase_summary(&self) -> String {
-        self.phases
-            .iter()
-            .map(|p| p.kind.name())
-            .collect::<Vec<_>>()
-            .join("-")
+        let mut names: Vec<&str> = Vec::with_capacity(self.phases.len());
+        for (i, p) in self.phases.iter().enumerate() {
+            let same_as_before = i > 0 && {
+                let before = &self.phases[i - 1];
+                before.kind == p.kind && before.slip_sign == p.slip_sign
+            };
+            if !same_as_before {
+                names.push(p.kind.name());
+            }
+        }
+        names.join("-")
     }
 
     /// True when the ball slides for the whole contact.

@@ -15,40 +15,45 @@ const FINEST: f64 = 1e-14;
 pub trait Event<const K: usize>: Fn(f64) -> [(f64, f64); K] {}
 impl<const K: usize, F: Fn(f64) -> [(f64, f64); K]> Event<K> for F {}
 
-/// The first time in `(t0, t1]` at which a branch of `f` rises above `noise`, or `None`.
+/// The first time in `(t0, t1]` at which a branch of `f` rises above `noise`, and which branch, or
+/// `None`.
 ///
-/// Every branch is at most `noise` at `t0`, and `curvature` bounds the second derivative of each.
+/// Every branch is at most its `noise` at `t0`, and `curvature` bounds its second derivative.
 /// `step` is the coarse sampling interval (a fraction of the fastest period in `f`, so that most
 /// intervals are proved empty at once). `noise` is the rounding error of the terms of `f`: a function
 /// that hovers at zero, as near the end of contact where the normal force vanishes, is not a rise.
 ///
-/// A phase that starts on its own boundary (`from_boundary`: a slide that begins where a grip broke or
-/// the friction reversed, a grip that begins at first contact) starts at zero, leaving it downward; the
-/// bound cannot see the direction it leaves in, so the first eighth of a step is only checked at its end.
+/// A branch that starts on its own zero (the slip of a slide that begins where a grip broke or the
+/// friction reversed, the margins of a grip at first contact) leaves it downward, but the bound cannot
+/// see the direction it leaves in: over the first eighth of a step such a branch is checked at the
+/// end only, while the others are proved as everywhere else.
 pub fn first_rise<const K: usize>(
     f: impl Event<K>,
     t0: f64,
     t1: f64,
     step: f64,
-    curvature: f64,
-    noise: f64,
-    from_boundary: bool,
-) -> Option<f64> {
+    curvature: [f64; K],
+    noise: [f64; K],
+) -> Option<(f64, usize)> {
     if t1 <= t0 {
         return None;
     }
-    let search = Search {
-        f: &f,
-        half_curvature: 0.5 * curvature,
-        noise,
-    };
     let mut a = Point::at(&f, t0);
-    if from_boundary {
+    let at_zero: [bool; K] = std::array::from_fn(|i| a.branches[i].0 >= -noise[i]);
+    let mut search = Search {
+        f: &f,
+        start: t0,
+        half_curvature: curvature.map(|c| 0.5 * c),
+        noise,
+        ends_only: at_zero,
+    };
+    if at_zero.contains(&true) {
         let b = Point::at(&f, (t0 + step / 8.0).min(t1));
-        if let Some(branch) = search.risen(&b) {
-            return Some(refine(|t| f(t)[branch], a.t, b.t));
+        if let Some(t) = search.first_in(&a, &b) {
+            return Some(t);
         }
         a = b;
+        search.ends_only = [false; K];
     }
     while a.t < t1 {
         let b = Point::at(&f, (a.t + step).min(t1));
@@ -72,52 +77,70 @@ impl<const K: usize> Point<K> {
     }
 }
 
-struct Search<'a, F> {
+struct Search<'a, F, const K: usize> {
     f: &'a F,
-    half_curvature: f64,
-    noise: f64,
+    /// Where the phase starts: no crossing lies before it.
+    start: f64,
+    half_curvature: [f64; K],
+    noise: [f64; K],
+    /// Branches checked at the ends of an interval only (those leaving their zero at the start).
+    ends_only: [bool; K],
 }
 
-impl<F> Search<'_, F> {
-    /// The first branch above the noise at `p`.
-    fn risen<const K: usize>(&self, p: &Point<K>) -> Option<usize> {
-        p.branches.iter().position(|&(value, _)| value > self.noise)
+impl<F: Event<K>, const K: usize> Search<'_, F, K> {
+    /// The first branch above its noise at `p`.
+    fn risen(&self, p: &Point<K>) -> Option<usize> {
+        (0..K).find(|&i| p.branches[i].0 > self.noise[i])
     }
 
     /// The first rise in `[a, b]`, given that every branch is at most `noise` at `a` and nothing rose
     /// before `a`.
-    fn first_in<const K: usize>(&self, a: &Point<K>, b: &Point<K>) -> Option<f64>
-    where
-        F: Event<K>,
-    {
+    fn first_in(&self, a: &Point<K>, b: &Point<K>) -> Option<(f64, usize)> {
         let risen = self.risen(b);
-        let below = |i: usize| b.branches[i].0 <= self.noise && self.proved_below(a, b, i);
+        let below = |i: usize| {
+            b.branches[i].0 <= self.noise[i] && (self.ends_only[i] || self.proved_below(a, b, i))
+        };
         if risen.is_none() && (0..K).all(below) {
             return None;
         }
         let width = b.t - a.t;
         if width <= FINEST * b.t.abs().max(f64::MIN_POSITIVE) {
-            return risen.map(|_| b.t);
+            return risen.map(|branch| (self.crossing(branch, a, b), branch));
         }
         // One branch rising throughout (f' >= f'(a) - curvature (b - a) > 0, so its crossing is
         // unique) while the others are proved below: that crossing is the first rise.
         if let Some(i) = risen {
-            let rising = a.branches[i].1 - 2.0 * self.half_curvature * width > 0.0;
+            let rising = a.branches[i].1 - 2.0 * self.half_curvature[i] * width > 0.0;
             if rising && (0..K).all(|j| j == i || below(j)) {
-                return Some(refine(|t| (self.f)(t)[i], a.t, b.t));
+                return Some((self.crossing(i, a, b), i));
             }
         }
         let mid = Point::at(self.f, a.t + 0.5 * width);
         self.first_in(a, &mid).or_else(|| self.first_in(&mid, b))
     }
 
+    /// Where branch `i`, above its noise at `b`, crosses zero. Within the noise it may already be a
+    /// little above zero at `a`; the crossing then lies before `a`, and is bracketed by stepping back.
+    fn crossing(&self, i: usize, a: &Point<K>, b: &Point<K>) -> f64 {
+        let branch = |t: f64| (self.f)(t)[i];
+        let (mut low, mut high, mut value) = (a.t, b.t, a.branches[i].0);
+        let mut step = b.t - a.t;
+        while value > 0.0 && low > self.start {
+            high = low;
+            low = (low - step).max(self.start);
+            value = branch(low).0;
+            step *= 2.0;
+        }
+        refine(branch, low, high)
+    }
+
     /// True when the two parabolas through `a` and `b` prove branch `i` at most `noise` on `[a, b]`.
     ///
     /// Both bounds are convex, so the lower of them peaks at an end or where they cross; their
     /// difference is linear in `t`, so they cross at most once.
-    fn proved_below<const K: usize>(&self, a: &Point<K>, b: &Point<K>, i: usize) -> bool {
+    fn proved_below(&self, a: &Point<K>, b: &Point<K>, i: usize) -> bool {
         let ((fa, ra), (fb, rb)) = (a.branches[i], b.branches[i]);
-        let k = self.half_curvature;
+        let k = self.half_curvature[i];
         let width = b.t - a.t;
         let offset = fa - fb + rb * width - k * width * width;
         let slope = ra - rb + 2.0 * k * width;
@@ -128,7 +151,7 @@ impl<F> Search<'_, F> {
         if s <= 0.0 || s >= width {
             return true;
         }
-        fa + ra * s + k * s * s <= self.noise
+        fa + ra * s + k * s * s <= self.noise[i]
     }
 }
 
@@ -166,7 +189,9 @@ mod tests {
 
     #[test]
     fn finds_a_plain_crossing() {
-        let t = first_rise(|t| [(t - 0.3, 1.0)], 0.0, 1.0, 0.1, 0.0, 0.0, false).unwrap();
+        let t = first_rise(|t| [(t - 0.3, 1.0)], 0.0, 1.0, 0.1, [0.0], [0.0])
+            .unwrap()
+            .0;
         assert!((t - 0.3).abs() < 1e-15);
     }
 
@@ -174,7 +199,9 @@ mod tests {
     fn finds_a_bump_between_two_negative_samples() {
         // A narrow bump above zero between samples at 0.4 and 0.5.
         let f = |t: f64| (1e-4 - (t - 0.45) * (t - 0.45), -2.0 * (t - 0.45));
-        let t = first_rise(|t| [f(t)], 0.0, 1.0, 0.1, 2.0, 0.0, false).unwrap();
+        let t = first_rise(|t| [f(t)], 0.0, 1.0, 0.1, [2.0], [0.0])
+            .unwrap()
+            .0;
         assert!((t - 0.44).abs() < 1e-12, "{t}");
     }
 
@@ -185,7 +212,9 @@ mod tests {
             let (p, q, r) = (t - 0.30, t - 0.31, t - 0.9);
             (p * q * r, q * r + p * r + p * q)
         };
-        let t = first_rise(|t| [f(t)], 0.0, 1.0, 1.0, 6.0, 0.0, false).unwrap();
+        let t = first_rise(|t| [f(t)], 0.0, 1.0, 1.0, [6.0], [0.0])
+            .unwrap()
+            .0;
         assert!((t - 0.30).abs() < 1e-12, "{t}");
     }
 
@@ -193,30 +222,25 @@ mod tests {
     fn ignores_a_start_on_the_boundary() {
         // Starts at zero and falls: no event at t0, and the later crossing is found.
         let f = |t: f64| ((t - 0.5) * (t - 0.5) - 0.25 + 1e-17, 2.0 * (t - 0.5));
-        let t = first_rise(|t| [f(t)], 0.0, 2.0, 0.1, 2.0, 0.0, true).unwrap();
+        let t = first_rise(|t| [f(t)], 0.0, 2.0, 0.1, [2.0], [0.0])
+            .unwrap()
+            .0;
         assert!((t - 1.0).abs() < 1e-12, "{t}");
     }
 
     #[test]
     fn the_earlier_of_two_branches_wins() {
-        let t = first_rise(
-            |t| [(t - 0.7, 1.0), (t - 0.4, 1.0)],
-            0.0,
-            1.0,
-            0.25,
-            0.0,
-            0.0,
-            false,
-        )
-        .unwrap();
+        let two = |t: f64| [(t - 0.7, 1.0), (t - 0.4, 1.0)];
+        let (t, branch) = first_rise(two, 0.0, 1.0, 0.25, [0.0; 2], [0.0; 2]).unwrap();
         assert!((t - 0.4).abs() < 1e-15, "{t}");
+        assert_eq!(branch, 1);
     }
 
     #[test]
     fn noise_is_not_a_rise() {
         let hover = |t: f64| (1e-17 * (t * 1e3).sin(), 1e-14 * (t * 1e3).cos());
         assert_eq!(
-            first_rise(|t| [hover(t)], 0.0, 1.0, 0.1, 1e-11, 1e-15, true),
+            first_rise(|t| [hover(t)], 0.0, 1.0, 0.1, [1e-11], [1e-15]),
             None
         );
     }
@@ -224,13 +248,13 @@ mod tests {
     #[test]
     fn none_when_it_stays_below() {
         assert_eq!(
-            first_rise(|t| [(-1.0 - t, -1.0)], 0.0, 1.0, 0.1, 0.0, 0.0, false),
+            first_rise(|t| [(-1.0 - t, -1.0)], 0.0, 1.0, 0.1, [0.0], [0.0]),
             None
         );
         // Comes within 1e-6 of zero at t = pi/20 and turns back.
         let grazes = |t: f64| ((t * 10.0).sin() - 1.0 - 1e-6, 10.0 * (t * 10.0).cos());
         assert_eq!(
-            first_rise(|t| [grazes(t)], 0.0, 1.0, 0.5, 100.0, 0.0, false),
+            first_rise(|t| [grazes(t)], 0.0, 1.0, 0.5, [100.0], [0.0]),
             None
         );
     }

@@ -1,27 +1,52 @@
 //! The grip phase, Eqs. (4)-(6): the contact point moves with the cart, held by static friction.
 
-use super::oscillator::free;
+use super::cart::Cart;
+use super::oscillator::{free, step};
 use super::setup::{Setup, State};
 
 /// A grip phase from `start`.
 #[derive(Clone, Copy, Debug)]
 pub struct Grip {
     pub start: State,
+    pub cart: Cart,
 }
 
 impl Grip {
-    /// The static friction on the ball, Eq. (5): F_s = k m_eff X / (M + m_eff), positive backward.
-    #[inline]
-    pub fn friction(setup: &Setup, x: f64) -> f64 {
-        setup.grip_gain * x
+    /// The cart's string friction over the gripped system's mass, -dir F_c / (M + m_eff).
+    fn push(&self, setup: &Setup) -> f64 {
+        self.cart.friction(setup) / (setup.cart_mass + setup.m_eff)
     }
 
-    /// The state at `t`. The cart is a free oscillator of mass M + m alpha/(1+alpha), Eq. (6). Since
-    /// F_s = -m_eff dV/dt, the impulse on the ball is -m_eff (V - V0), which gives v_x and omega.
+    /// The static friction on the ball, positive backward. Eq. (5) with the cart moving: since
+    /// F_s = -m_eff dV/dt and (M + m_eff) dV/dt = -k X - dir F_c, F_s = m_eff (k X + dir F_c)/(M + m_eff)
+    /// (the paper's k m_eff X / (M + m_eff) when F_c = 0). With the cart stuck the ball rolls on a still
+    /// surface and needs none.
+    #[inline]
+    pub fn friction(&self, setup: &Setup, x: f64) -> f64 {
+        match self.cart {
+            Cart::Stuck => 0.0,
+            Cart::Moving(_) => setup.grip_gain * x - setup.m_eff * self.push(setup),
+        }
+    }
+
+    /// The state at `t`. The cart is a free oscillator of mass M + m alpha/(1+alpha), Eq. (6), driven by
+    /// the constant string friction while it moves. Since F_s = -m_eff dV/dt, the impulse on the ball
+    /// is -m_eff (V - V0), which gives v_x and omega.
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> State {
         let s0 = &self.start;
-        let (x, v) = free(s0.x, s0.v, setup.omega_grip, t - s0.t);
+        if self.cart == Cart::Stuck {
+            return State { t, ..*s0 };
+        }
+        let (omega, tau) = (setup.omega_grip, t - s0.t);
+        let (mut x, mut v) = free(s0.x, s0.v, omega, tau);
+        let push = self.push(setup);
+        if push != 0.0 {
+            let (s, c) = (omega * tau).sin_cos();
+            let (x_push, v_push) = step(s, c, omega, tau);
+            x += push * x_push;
+            v += push * v_push;
+        }
         let impulse = -setup.m_eff * (v - s0.v);
         State {
             t,
@@ -32,25 +57,53 @@ impl Grip {
         }
     }
 
+    /// The cart's acceleration, -(k X + dir F_c)/(M + m_eff), or 0 when stuck.
+    #[inline]
+    pub fn cart_acceleration(&self, setup: &Setup, s: &State) -> f64 {
+        match self.cart {
+            Cart::Stuck => 0.0,
+            Cart::Moving(_) => -setup.k * s.x / (setup.cart_mass + setup.m_eff) + self.push(setup),
+        }
+    }
+
     /// How far the grip is from breaking forward and backward: sign F_s - mu N for sign = +1 and -1,
     /// each with its rate. The grip breaks when either rises above zero.
     #[inline]
-    pub fn margins(setup: &Setup, s: &State) -> [(f64, f64); 2] {
+    pub fn margins(&self, setup: &Setup, s: &State) -> [(f64, f64); 2] {
         let (sin_wt, cos_wt) = (setup.w * s.t).sin_cos();
         let limit = setup.mu * setup.n0 * sin_wt.max(0.0);
         let limit_rate = setup.mu * setup.n0 * setup.w * cos_wt;
-        let (force, force_rate) = (setup.grip_gain * s.x, setup.grip_gain * s.v);
+        let force = self.friction(setup, s.x);
+        let force_rate = if self.cart == Cart::Stuck {
+            0.0
+        } else {
+            setup.grip_gain * s.v
+        };
         [
             (force - limit, force_rate - limit_rate),
             (-force - limit, -force_rate - limit_rate),
         ]
     }
 
-    /// A bound on the second derivative of either margin over the phase: F_s is k m_eff/(M + m_eff)
-    /// times a free oscillation of known amplitude, and mu N a sine of amplitude mu N0.
-    pub fn margin_curvature(&self, setup: &Setup) -> f64 {
-        let (x0, v0, omega) = (self.start.x, self.start.v, setup.omega_grip);
-        let x_accel = omega * (omega * omega * x0 * x0 + v0 * v0).sqrt();
-        setup.grip_gain * x_accel + setup.mu * setup.n0 * setup.w * setup.w
+    /// The size of the terms the cart's velocity is computed from, for the rounding floor of its event.
+    pub fn cart_speed_scale(&self, setup: &Setup) -> f64 {
+        let s0 = &self.start;
+        s0.v.abs()
+            + s0.x.abs() * setup.omega_grip
+            + self.push(setup).abs() * (setup.duration - s0.t)
+    }
+
+    /// Bounds over the phase on the second derivatives of its event functions: the margins, and the
+    /// cart's velocity. The cart swings about its equilibrium X_e = -dir F_c / k with a known
+    /// amplitude A, so |X''| <= Ω² A and |V''| <= Ω³ A; mu N is a sine of amplitude mu N0.
+    pub fn curvature(&self, setup: &Setup) -> (f64, f64) {
+        let normal = setup.mu * setup.n0 * setup.w * setup.w;
+        if self.cart == Cart::Stuck || setup.k == 0.0 {
+            return (normal, 0.0);
+        }
+        let omega = setup.omega_grip;
+        let offset = self.start.x - self.push(setup) * (setup.cart_mass + setup.m_eff) / setup.k;
+        let x_accel = omega * ((omega * offset).powi(2) + self.start.v.powi(2)).sqrt();
+        (setup.grip_gain * x_accel + normal, omega * x_accel)
     }
 }

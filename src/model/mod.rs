@@ -2,6 +2,7 @@
 //! No terminal, no files, no printing: everything else calls [`solve`] and reads the [`Bounce`].
 
 pub mod bounce;
+pub mod cart;
 pub mod events;
 pub mod grip;
 pub mod oscillator;
@@ -9,8 +10,10 @@ pub mod params;
 pub mod quadrature;
 pub mod setup;
 pub mod slide;
+pub mod transition;
 pub mod units;
 
 pub use bounce::{Bounce, Energy, Outcome, Phase, PhaseKind, Sample, SolveError, solve};
+pub use cart::Cart;
 pub use params::{PARAMS, ParamError, ParamId, ParamSpec, Params};
 pub use setup::State;

@@ -22,6 +22,19 @@ pub fn free(x0: f64, v0: f64, omega: f64, tau: f64) -> (f64, f64) {
     (x, v)
 }
 
+/// The response to a unit constant force per unit mass switched on at τ = 0, from rest:
+/// `X = (1 - cos Ωτ)/Ω²`, `V = sin(Ωτ)/Ω` (τ²/2 and τ at Ω = 0), given sin(Ωτ) and cos(Ωτ).
+/// 1 - cos is written as sin²/(1 + cos) where that avoids cancellation.
+#[inline]
+pub fn step(sin_omega_tau: f64, cos_omega_tau: f64, omega: f64, tau: f64) -> (f64, f64) {
+    if omega == 0.0 {
+        return (0.5 * tau * tau, tau);
+    }
+    let (s, c) = (sin_omega_tau, cos_omega_tau);
+    let one_minus_cos = if c > 0.0 { s * s / (1.0 + c) } else { 1.0 - c };
+    (one_minus_cos / (omega * omega), s / omega)
+}
+
 /// sin(Ωτ)/Ω from `sin_omega_tau` = sin(Ωτ), with its limit τ at Ω = 0.
 #[inline]
 pub fn sin_over(sin_omega_tau: f64, omega: f64, tau: f64) -> f64 {
@@ -96,6 +109,26 @@ mod tests {
         let (g, dg) = forced(0.0, w, 0.0, 1.0, t);
         assert!((g - (t / w - (w * t).sin() / (w * w))).abs() < 1e-15);
         assert!((dg - (1.0 - (w * t).cos()) / w).abs() < 1e-15);
+    }
+
+    #[test]
+    fn step_response() {
+        // X'' + Ω² X = 1 from rest.
+        for omega in [0.0f64, 1e-3, 10.0, 3000.0] {
+            let tau: f64 = 2e-3;
+            let (s, c) = (omega * tau).sin_cos();
+            let (x, v) = step(s, c, omega, tau);
+            let exact_x = if omega == 0.0 {
+                tau * tau / 2.0
+            } else {
+                2.0 * (omega * tau / 2.0).sin().powi(2) / (omega * omega)
+            };
+            assert!(
+                (x - exact_x).abs() <= 1e-15 * exact_x,
+                "{omega}: {x} {exact_x}"
+            );
+            assert!((v - tau * sinc(omega * tau)).abs() <= 1e-15 * tau);
+        }
     }
 
     #[test]

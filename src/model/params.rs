@@ -33,6 +33,9 @@ pub struct Params {
     pub cart_mass: f64,
     /// Spring stiffness k, N/m.
     pub stiffness: f64,
+    /// Coulomb friction on the cart, N (string-on-string friction; 0 is the paper's model).
+    #[serde(default)]
+    pub cart_friction: f64,
 }
 
 impl Default for Params {
@@ -49,6 +52,7 @@ impl Default for Params {
             alpha: 0.0,
             cart_mass: 0.0,
             stiffness: 0.0,
+            cart_friction: 0.0,
         };
         for spec in PARAMS {
             params.set(spec.id, spec.default);
@@ -71,6 +75,7 @@ pub enum ParamId {
     Alpha,
     CartMass,
     Stiffness,
+    CartFriction,
 }
 
 /// One end of an allowed range.
@@ -470,6 +475,22 @@ pub const PARAMS: &[ParamSpec] = &[
         default: 15000.0,
         help: "stiffness k of the spring that pulls the cart back (0 = a free cart)",
     },
+    ParamSpec {
+        id: ParamId::CartFriction,
+        flag: "cart-friction",
+        key: "cart_friction",
+        symbol: "F_c",
+        label: "string friction",
+        dimension: Dimension::Force,
+        display_unit: "N",
+        decimals: 1,
+        range: NON_NEGATIVE,
+        fine: Step::Add(1.0),
+        coarse: Step::Add(10.0),
+        default: 0.0,
+        help: "Coulomb friction on the cart (string-on-string friction): the cart sticks while the spring \
+               and the ball push it with less than this; 0 = the paper's model",
+    },
 ];
 
 /// The spec of one parameter.
@@ -499,6 +520,7 @@ impl Params {
             ParamId::Alpha => self.alpha,
             ParamId::CartMass => self.cart_mass,
             ParamId::Stiffness => self.stiffness,
+            ParamId::CartFriction => self.cart_friction,
         }
     }
 
@@ -516,6 +538,7 @@ impl Params {
             ParamId::Alpha => &mut self.alpha,
             ParamId::CartMass => &mut self.cart_mass,
             ParamId::Stiffness => &mut self.stiffness,
+            ParamId::CartFriction => &mut self.cart_friction,
         };
         *slot = value;
     }

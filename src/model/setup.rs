@@ -30,6 +30,8 @@ pub struct Setup {
     pub cart_mass: f64,
     pub k: f64,
     pub mu: f64,
+    /// String friction on the cart, N.
+    pub cart_friction: f64,
     pub duration: f64,
     /// w = pi/T, the angular frequency of the normal force.
     pub w: f64,
@@ -61,6 +63,7 @@ impl Setup {
             cart_mass: p.cart_mass,
             k: p.stiffness,
             mu: p.mu,
+            cart_friction: p.cart_friction,
             duration: p.duration,
             w,
             n0: (1.0 + p.ey) * PI * p.mass * vy1 / (2.0 * p.duration),

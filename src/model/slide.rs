@@ -1,6 +1,7 @@
 //! The sliding phase, Eqs. (1)-(3): friction of magnitude mu N opposing the slip.
 
-use super::oscillator::{forced, free, sin_over};
+use super::cart::Cart;
+use super::oscillator::{forced, free, sin_over, step};
 use super::setup::{Setup, State};
 
 /// A sliding phase from `start`, with the slip's sign `dir` (+1: the contact point moves forward
@@ -9,19 +10,23 @@ use super::setup::{Setup, State};
 pub struct Slide {
     pub start: State,
     pub dir: f64,
+    pub cart: Cart,
     sin_wt0: f64,
     cos_wt0: f64,
-    cart: CartResponse,
+    response: CartResponse,
+    /// The cart's string friction over its mass, -dir_cart F_c / M (0 without string friction).
+    push: f64,
 }
 
 /// How the cart's motion is written. Detuned: the response to the friction through the particular
-/// solution A sin(w t), A = F0 / (M (Ω² - w²)), two `sin_cos` per evaluation. Otherwise through
+/// solution A sin(w t), A = F0 / (M (Ω² - w²)), two `sin_cos` per evaluation. Forced: through
 /// [`forced`], which has no 1/(Ω² - w²) and stays exact at resonance and for very light carts, where
-/// the particular and free responses are huge and cancel.
+/// the particular and free responses are huge and cancel. Stuck: the cart does not move.
 #[derive(Clone, Copy, Debug)]
 enum CartResponse {
     Detuned { amplitude: f64 },
     Forced,
+    Stuck,
 }
 
 /// The detuned form is used while the particular response's speed A w is at most this many times the
@@ -29,12 +34,14 @@ enum CartResponse {
 const DETUNED_GAIN: f64 = 16.0;
 
 impl Slide {
-    pub fn new(setup: &Setup, start: State, dir: f64) -> Self {
+    pub fn new(setup: &Setup, start: State, dir: f64, cart: Cart) -> Self {
         let (sin_wt0, cos_wt0) = (setup.w * start.t).sin_cos();
         let (w, omega) = (setup.w, setup.omega_slide);
         let amplitude = dir * setup.mu * setup.n0 / (setup.cart_mass * (omega * omega - w * w));
         let speeds = start.vx.abs() + setup.r * start.omega.abs() + start.v.abs();
-        let cart = if (amplitude * w).abs() <= DETUNED_GAIN * speeds {
+        let response = if cart == Cart::Stuck {
+            CartResponse::Stuck
+        } else if (amplitude * w).abs() <= DETUNED_GAIN * speeds {
             CartResponse::Detuned { amplitude }
         } else {
             CartResponse::Forced
@@ -42,9 +49,11 @@ impl Slide {
         Slide {
             start,
             dir,
+            cart,
             sin_wt0,
             cos_wt0,
-            cart,
+            response,
+            push: cart.friction(setup) / setup.cart_mass,
         }
     }
 
@@ -54,8 +63,8 @@ impl Slide {
         self.dir * setup.mu * setup.normal(t)
     }
 
-    /// The state at `t`: Eq. (1) for v_x, Eq. (2) for omega, and Eq. (3), M X'' = F - k X, solved in
-    /// closed form (free response plus the response to the sinusoidal friction).
+    /// The state at `t`: Eq. (1) for v_x, Eq. (2) for omega, and Eq. (3), M X'' = F - k X (less the
+    /// string friction while the cart moves), solved in closed form.
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> State {
         self.evaluate(setup, t).0
@@ -73,7 +82,7 @@ impl Slide {
         // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
         let impulse =
             force_amplitude * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / w;
-        let (x, v) = match self.cart {
+        let (x, v) = match self.response {
             CartResponse::Detuned { amplitude } => {
                 // Free response from the start state, plus A (sin w t - its free continuation from t0).
                 let (s, c) = (omega * tau).sin_cos();
@@ -83,17 +92,25 @@ impl Slide {
                     self.sin_wt0 * cos_diff + self.cos_wt0 * (sin_w_tau - w * sin_over_omega);
                 let v_forced =
                     w * self.cos_wt0 * cos_diff - self.sin_wt0 * (w * sin_w_tau - omega * s);
+                let (x_push, v_push) = self.push_response(s, c, omega, tau);
                 (
-                    s0.x * c + s0.v * sin_over_omega + amplitude * x_forced,
-                    -s0.x * omega * s + s0.v * c + amplitude * v_forced,
+                    s0.x * c + s0.v * sin_over_omega + amplitude * x_forced + x_push,
+                    -s0.x * omega * s + s0.v * c + amplitude * v_forced + v_push,
                 )
             }
             CartResponse::Forced => {
                 let (x_free, v_free) = free(s0.x, s0.v, omega, tau);
                 let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
                 let drive = force_amplitude / setup.cart_mass;
-                (x_free + drive * g, v_free + drive * dg)
+                let (s, c) = if self.push == 0.0 {
+                    (0.0, 1.0)
+                } else {
+                    (omega * tau).sin_cos()
+                };
+                let (x_push, v_push) = self.push_response(s, c, omega, tau);
+                (x_free + drive * g + x_push, v_free + drive * dg + v_push)
             }
+            CartResponse::Stuck => (s0.x, 0.0),
         };
         let state = State {
             t,
@@ -105,20 +122,69 @@ impl Slide {
         (state, force_amplitude * sin_wt.max(0.0))
     }
 
-    /// A bound on |d²(slip)/dt²| from the start of the phase to the end of contact.
+    /// The cart's response to the constant string friction.
+    #[inline]
+    fn push_response(&self, s: f64, c: f64, omega: f64, tau: f64) -> (f64, f64) {
+        if self.push == 0.0 {
+            return (0.0, 0.0);
+        }
+        let (x, v) = step(s, c, omega, tau);
+        (self.push * x, self.push * v)
+    }
+
+    /// The cart's acceleration V' = (F - k X)/M less the string friction, given the friction `f`.
+    #[inline]
+    pub fn cart_acceleration(&self, setup: &Setup, s: &State, f: f64) -> f64 {
+        match self.cart {
+            Cart::Stuck => 0.0,
+            Cart::Moving(_) => (f - setup.k * s.x) / setup.cart_mass + self.push,
+        }
+    }
+
+    /// d(slip)/dt = -F/m_eff - V', given the friction `f` at `s`.
+    #[inline]
+    pub fn slip_rate(&self, setup: &Setup, s: &State, f: f64) -> f64 {
+        -f / setup.m_eff - self.cart_acceleration(setup, s, f)
+    }
+
+    /// The size of the terms the cart's velocity is computed from, for the rounding floor of its
+    /// event: the start velocity, the free swing, the response to the friction and to the string
+    /// friction over the rest of the contact.
+    pub fn cart_speed_scale(&self, setup: &Setup) -> f64 {
+        let s0 = &self.start;
+        let remaining = setup.duration - s0.t;
+        let drive = setup.mu * setup.n0 / setup.cart_mass;
+        let particular = match self.response {
+            CartResponse::Detuned { amplitude } => amplitude.abs() * setup.w,
+            _ => 0.0,
+        };
+        s0.v.abs()
+            + s0.x.abs() * setup.omega_slide
+            + (drive + self.push.abs()) * remaining
+            + particular
+    }
+
+    /// Bounds, from the start of the phase to the end of contact, on the second derivatives of the
+    /// phase's event functions: the slip, and the cart's velocity (moving) or the force that would
+    /// unstick it, F - k X (stuck).
     ///
     /// slip'' = -F'/m_eff - V''. The ball's part is at most mu N0 w / m_eff. The cart's V'' = (F' - kV)/M
     /// is bounded two ways, and the smaller is taken: from the amplitudes of the closed form (a free
-    /// oscillation plus the particular response A sin(w t), A = F0 / (M (k/M - w²))), tight except near
-    /// resonance; and from |V| <= sqrt(2 E0 / M) + mu N0 (T - t0) / M (friction can feed the cart no
-    /// faster), valid everywhere.
-    pub fn slip_curvature(&self, setup: &Setup) -> f64 {
+    /// oscillation, the particular response A sin(w t), A = F0 / (M (k/M - w²)), and the step response
+    /// to the string friction), tight except near resonance; and from |V| <= sqrt(2 E0 / M) +
+    /// (mu N0 + F_c)(T - t0) / M (the forces can feed the cart no faster), valid everywhere.
+    pub fn curvature(&self, setup: &Setup) -> (f64, f64) {
         let s0 = &self.start;
         let (w, omega, big_m) = (setup.w, setup.omega_slide, setup.cart_mass);
         let force = setup.mu * setup.n0;
         let ball = force * w / setup.m_eff;
+        if self.cart == Cart::Stuck {
+            return (ball, force * w * w);
+        }
+        let push = self.push.abs();
+        let remaining = setup.duration - s0.t;
         let v_max =
-            (2.0 * setup.cart_energy(s0) / big_m).sqrt() + force * (setup.duration - s0.t) / big_m;
+            (2.0 * setup.cart_energy(s0) / big_m).sqrt() + (force / big_m + push) * remaining;
         let crude = (force * w + setup.k * v_max) / big_m;
         let detuning = omega * omega - w * w;
         let amplitudes = if detuning == 0.0 {
@@ -129,13 +195,9 @@ impl Slide {
             let v_free = s0.v - a * w * self.cos_wt0;
             omega * omega * ((omega * x_free).powi(2) + v_free * v_free).sqrt()
                 + a.abs() * w * w * w
+                + push * omega
         };
-        ball + crude.min(amplitudes)
-    }
-
-    /// d(slip)/dt = -F/m_eff - (F - k X)/M, given the friction `f` at `s`.
-    #[inline]
-    pub fn slip_rate(setup: &Setup, s: &State, f: f64) -> f64 {
-        -f / setup.m_eff - (f - setup.k * s.x) / setup.cart_mass
+        let cart = crude.min(amplitudes);
+        (ball + cart, cart)
     }
 }

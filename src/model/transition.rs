@@ -1,0 +1,137 @@
+//! Which phase follows a transition: the combination of what the ball does (slide one way or the other,
+//! or grip) and what the cart does (move one way or the other, or stick) that is consistent with the
+//! friction laws at the contact and, with string friction, at the cart.
+
+use super::cart::Cart;
+use super::setup::{Setup, State};
+
+/// What the ball does in a phase.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Ball {
+    /// Sliding with the slip's sign (+1 or -1).
+    Slide(f64),
+    Grip,
+}
+
+/// Why a phase ended (or, at first contact, that none has yet).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Cause {
+    /// First contact.
+    Start,
+    /// The slip reached zero.
+    SlipZero,
+    /// The static friction reached mu N; the sign of F_s.
+    GripBreak(f64),
+    /// The moving cart came to rest.
+    CartStop,
+    /// The force on a stuck cart exceeded the string friction; the direction it pushes.
+    Unstick(i8),
+}
+
+/// The ball and cart modes of the phase that starts at `state` after `cause`, in a phase that was
+/// `ball` and `cart`.
+///
+/// A broken grip or a cart that comes unstuck leaves only one choice. Otherwise every candidate is
+/// checked, static ones first: a grip needs |F_s| <= mu N (Eq. 5), a stuck cart a net push of at most
+/// F_c, and a mode that starts from rest (zero slip, a cart at rest) must move the way its friction
+/// allows. Without string friction this is the paper's rule: grip if Eq. (5) can hold the ball, or
+/// else the friction reverses.
+pub fn next(setup: &Setup, state: &State, ball: Ball, cart: Cart, cause: Cause) -> (Ball, Cart) {
+    match cause {
+        Cause::GripBreak(sign) => return (Ball::Slide(sign), cart),
+        Cause::Unstick(dir) => return (ball, Cart::Moving(dir)),
+        _ => {}
+    }
+    let any_ball = [Ball::Grip, Ball::Slide(1.0), Ball::Slide(-1.0)];
+    let any_cart = [Cart::Stuck, Cart::Moving(1), Cart::Moving(-1)];
+    // A gripping ball is at zero slip too, so a cart that stops under it may let it slide.
+    let slip_at_rest = cause == Cause::SlipZero || ball == Ball::Grip;
+    let cart_at_rest = setup.cart_friction > 0.0 && (state.v == 0.0 || cause == Cause::CartStop);
+    let balls: &[Ball] = if slip_at_rest {
+        &any_ball
+    } else {
+        std::slice::from_ref(&ball)
+    };
+    let carts: &[Cart] = if cart_at_rest {
+        &any_cart
+    } else if setup.cart_friction == 0.0 {
+        &[Cart::Moving(1)]
+    } else {
+        std::slice::from_ref(&cart)
+    };
+    let at = At {
+        limit: setup.mu * setup.normal(state.t),
+        spring: setup.k * state.x,
+        slip_at_rest,
+        cart_at_rest,
+    };
+    let mut best = (f64::INFINITY, balls[0], carts[0]);
+    for &b in balls {
+        for &c in carts {
+            let violation = violation(setup, &at, b, c);
+            if violation == 0.0 {
+                return (b, c);
+            }
+            if violation < best.0 {
+                best = (violation, b, c);
+            }
+        }
+    }
+    (best.1, best.2)
+}
+
+/// The forces at a transition: mu N, the spring's k X, and which contacts are at rest.
+struct At {
+    limit: f64,
+    spring: f64,
+    slip_at_rest: bool,
+    cart_at_rest: bool,
+}
+
+/// How far (in newtons) the modes `ball` and `cart` are from consistent: 0 when they are.
+fn violation(setup: &Setup, at: &At, ball: Ball, cart: Cart) -> f64 {
+    let At {
+        limit,
+        spring,
+        slip_at_rest,
+        cart_at_rest,
+    } = *at;
+    let gripped_mass = setup.cart_mass + setup.m_eff;
+    match (ball, cart) {
+        // Rolling on a still cart needs no friction; the spring alone must not move the cart.
+        (Ball::Grip, Cart::Stuck) => (spring.abs() - setup.cart_friction).max(0.0),
+        (Ball::Grip, Cart::Moving(dir)) => {
+            let string = f64::from(dir) * setup.cart_friction;
+            let static_friction = setup.m_eff * (spring + string) / gripped_mass;
+            let mut v = (static_friction.abs() - limit).max(0.0);
+            if cart_at_rest {
+                // (M + m_eff) V' = -k X - dir F_c must start the cart moving in `dir`.
+                v += (f64::from(dir) * (spring + string)).max(0.0);
+            }
+            v
+        }
+        (Ball::Slide(dir), Cart::Stuck) => {
+            let friction = dir * limit;
+            let mut v = ((friction - spring).abs() - setup.cart_friction).max(0.0);
+            if slip_at_rest {
+                // On a still cart the friction only ever brings the slip back to zero.
+                v += limit;
+            }
+            v
+        }
+        (Ball::Slide(dir), Cart::Moving(cart_dir)) => {
+            let friction = dir * limit;
+            let push = friction - spring - f64::from(cart_dir) * setup.cart_friction;
+            let mut v = 0.0;
+            if cart_at_rest {
+                v += (-f64::from(cart_dir) * push).max(0.0);
+            }
+            if slip_at_rest {
+                // slip' = -F/m_eff - V' must carry the slip the way `dir` says.
+                let slip_rate = -friction / setup.m_eff - push / setup.cart_mass;
+                v += (-dir * slip_rate * setup.m_eff).max(0.0);
+            }
+            v
+        }
+    }
+}
