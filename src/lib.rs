@@ -3,6 +3,7 @@
 //!
 //! [`model`] is the simulation core; everything else (the command line, the exports) calls its API.
 
+pub mod analysis;
 pub mod cli;
 pub mod export;
 pub mod model;

@@ -1,7 +1,11 @@
 //! The command line: clap definitions and the headless commands. `main` only parses and dispatches.
 
+mod critical_angle;
+mod optimize;
 mod params_args;
+mod reproduce;
 mod simulate;
+mod sweep;
 
 use std::io::Write;
 use std::process::ExitCode;
@@ -22,6 +26,14 @@ pub struct Cli {
 pub enum Commands {
     /// Solve one bounce and print the outcome, the phases and the energy budget.
     Simulate(simulate::SimulateArgs),
+    /// Solve one bounce per value of a parameter and print the outcomes as CSV or JSON.
+    Sweep(sweep::SweepArgs),
+    /// The angle below which the ball slides for the whole contact: Eq. (7) and the full model.
+    CriticalAngle(critical_angle::CriticalAngleArgs),
+    /// The value of a parameter that maximises (or minimises) an outcome, and the bounce there.
+    Optimize(optimize::OptimizeArgs),
+    /// Check every number the paper prints (assets/claims.md) against the model.
+    Reproduce(reproduce::ReproduceArgs),
 }
 
 /// A failure to report: the message for stderr and the exit status.
@@ -45,6 +57,10 @@ impl Failure {
 pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
         Some(Commands::Simulate(args)) => simulate::run(&args),
+        Some(Commands::Sweep(args)) => sweep::run(&args),
+        Some(Commands::CriticalAngle(args)) => critical_angle::run(&args),
+        Some(Commands::Optimize(args)) => optimize::run(&args),
+        Some(Commands::Reproduce(args)) => reproduce::run(&args),
         None => simulate::run(&simulate::SimulateArgs::default()),
     };
     match result {
