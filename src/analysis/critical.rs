@@ -111,7 +111,9 @@ mod tests {
             spin: 0.0,
             ..Params::default()
         };
-        let expected = (1.0_f64 / (2.0 * 0.4 * (1.0 + 1.0 / 0.55))).atan().to_degrees();
+        let expected = (1.0_f64 / (2.0 * 0.4 * (1.0 + 1.0 / 0.55)))
+            .atan()
+            .to_degrees();
         let got = eq7(&p).degrees().unwrap();
         assert!((got - expected).abs() < 1e-12, "{got} {expected}");
     }

@@ -7,6 +7,7 @@ pub mod cases;
 pub mod claims;
 pub mod critical;
 pub mod error;
+pub mod figures;
 pub mod optimize;
 pub mod reproduce;
 pub mod retune;

@@ -1,6 +1,7 @@
 //! The command line: clap definitions and the headless commands. `main` only parses and dispatches.
 
 mod critical_angle;
+mod figure;
 mod optimize;
 mod params_args;
 mod reproduce;
@@ -34,6 +35,8 @@ pub enum Commands {
     Optimize(optimize::OptimizeArgs),
     /// Check every number the paper prints (assets/claims.md) against the model.
     Reproduce(reproduce::ReproduceArgs),
+    /// Draw the paper's Fig. 2 or Fig. 3 as SVG.
+    Figure(figure::FigureArgs),
 }
 
 /// A failure to report: the message for stderr and the exit status.
@@ -61,6 +64,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::CriticalAngle(args)) => critical_angle::run(&args),
         Some(Commands::Optimize(args)) => optimize::run(&args),
         Some(Commands::Reproduce(args)) => reproduce::run(&args),
+        Some(Commands::Figure(args)) => figure::run(&args),
         None => simulate::run(&simulate::SimulateArgs::default()),
     };
     match result {
