@@ -68,22 +68,19 @@ pub fn run(args: &CriticalAngleArgs) -> Result<(), Failure> {
             );
             let _ = writeln!(
                 out,
-                "  (v1 = {}, omega1 = {}, mu = {}, alpha = {}, e_y = {})",
+                "  v1 = {}, omega1 = {}, mu = {}, alpha = {}, e_y = {}; cart M = {}, k = {}",
                 shown(ParamId::Speed),
                 shown(ParamId::Spin),
                 shown(ParamId::Mu),
                 shown(ParamId::Alpha),
-                shown(ParamId::Ey)
-            );
-            let _ = writeln!(out, "  {:<32}{}", "Eq. (7), rigid surface", describe(eq7));
-            let cart = format!(
-                "full model, M = {}, k = {}",
+                shown(ParamId::Ey),
                 shown(ParamId::CartMass),
                 shown(ParamId::Stiffness)
             );
-            let _ = writeln!(out, "  {cart:<32}{}", describe(full));
+            let _ = writeln!(out, "  {:<26}{}", "Eq. (7), rigid surface", describe(eq7));
+            let _ = writeln!(out, "  {:<26}{}", "full model, this cart", describe(full));
             if let (Some(a), Some(b)) = (eq7.degrees(), full.degrees()) {
-                let _ = writeln!(out, "  {:<32}{:+.2} deg", "full model - Eq. (7)", b - a);
+                let _ = writeln!(out, "  {:<26}{:+.2} deg", "full model - Eq. (7)", b - a);
             }
             out
         }

@@ -218,7 +218,7 @@ fn fig3a(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             grip,
         )
         .note(format!(
-            "phases {}; {grip:.4} ms rounds to 2.26 (2.25 is it truncated)",
+            "phases {}; {grip:.4} ms rounds to 2.26, and reads 2.25 truncated",
             b.phase_summary()
         )),
         Row::new(
@@ -452,10 +452,10 @@ fn light_carts(base: &Params) -> Result<Vec<Row>, AnalysisError> {
     let describe = |o: &crate::analysis::optimize::Optimum| {
         let s = &o.bounce.setup;
         format!(
-            "k tuned by optimize over 100 N/m - 1 MN/m: {:.0} N/m; the cart's period while the ball grips, \
-             2 pi sqrt((M + m alpha/(1+alpha))/k) = {:.2} ms, against T = {:.2} ms",
+            "k tuned by optimize over 100 N/m - 1 MN/m: {:.0} N/m; the cart's half-period while the ball \
+             grips, pi sqrt((M + m alpha/(1+alpha))/k) = {:.2} ms, against T = {:.2} ms",
             o.value,
-            std::f64::consts::TAU / s.omega_grip * MILLI,
+            std::f64::consts::PI / s.omega_grip * MILLI,
             s.duration * MILLI
         )
     };
