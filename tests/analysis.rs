@@ -52,16 +52,17 @@ fn sweep_rows_are_single_solves_in_order() {
 #[test]
 fn sweep_csv_round_trips() {
     let span = Span::parse("angle", "10", "90", false).unwrap();
-    let rows = sweep::sweep(&Params::default(), &span, 5000).unwrap();
+    let steps = 70_000; // more than one block of the streamed CSV
+    let rows = sweep::sweep(&Params::default(), &span, steps).unwrap();
     let mut out = Vec::new();
-    sweep::write_csv(&mut out, &span.column(), &rows).unwrap();
+    sweep::write_csv(&mut out, &Params::default(), &span, steps).unwrap();
     let text = String::from_utf8(out).unwrap();
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines[0],
         "angle_deg,omega2,vx2,vy2,theta2_deg,ex,phases,slides_throughout"
     );
-    assert_eq!(lines.len(), 5001);
+    assert_eq!(lines.len(), steps + 1);
     for (line, row) in lines[1..].iter().zip(&rows) {
         let cells: Vec<&str> = line.split(',').collect();
         assert_eq!(cells[0].parse::<f64>().unwrap(), row.value);

@@ -207,6 +207,30 @@ fn sweep_rejects_bad_input_in_one_line() {
 }
 
 #[test]
+fn sweep_stops_with_status_2_at_a_bounce_the_core_cannot_solve() {
+    let (code, out, stderr) = run(&[
+        "sweep",
+        "--vary",
+        "stiffness",
+        "--from",
+        "1",
+        "--to",
+        "1e15",
+        "--steps",
+        "3",
+        "--cart-mass",
+        "1mg",
+    ]);
+    assert_eq!(code, 2, "{stderr}");
+    assert!(out.starts_with("stiffness_N_m,"));
+    assert_eq!(stderr.lines().count(), 1);
+    assert!(
+        stderr.contains("at --stiffness") && stderr.contains("too fast"),
+        "{stderr}"
+    );
+}
+
+#[test]
 fn critical_angle_prints_eq7_and_the_full_model() {
     let (code, out, _) = run(&[
         "critical-angle",

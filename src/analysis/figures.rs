@@ -90,6 +90,7 @@ pub fn fig2(base: &Params) -> Result<Figure, AnalysisError> {
             let curves = CARTS
                 .iter()
                 .map(|cart| {
+                    // The angle is the swept parameter; any valid start will do.
                     let p = cart.case(base, FIG3_ANGLE, spin);
                     let rows = sweep::sweep(&p, &angles, FIG2_STEPS)?;
                     Ok(Curve {

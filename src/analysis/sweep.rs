@@ -37,7 +37,17 @@ pub const COLUMNS: [&str; 7] = [
 
 /// One bounce per value of `span` (`steps` values, ends included), on all cores, in order.
 pub fn sweep(base: &Params, span: &Span, steps: usize) -> Result<Vec<Row>, AnalysisError> {
-    (0..steps)
+    rows(base, span, steps, 0..steps)
+}
+
+/// The rows of the values with indices `range` out of `steps`, on all cores, in order.
+fn rows(
+    base: &Params,
+    span: &Span,
+    steps: usize,
+    range: std::ops::Range<usize>,
+) -> Result<Vec<Row>, AnalysisError> {
+    range
         .into_par_iter()
         .map(|i| row(base, span, span.at(i, steps)))
         .collect()
@@ -59,35 +69,56 @@ pub fn row(base: &Params, span: &Span, value: f64) -> Result<Row, AnalysisError>
     })
 }
 
-/// Rows formatted per block on all cores, then written in order.
-const BLOCK: usize = 4096;
+/// Why a CSV sweep stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum CsvError {
+    #[error(transparent)]
+    Analysis(#[from] AnalysisError),
+    #[error(transparent)]
+    Io(#[from] io::Error),
+}
 
-/// Writes the rows as CSV with a header; `column` names the varied value (see [`Span::column`]).
-/// Numbers are written in full (shortest round-trip form); an undefined `ex` is an empty field.
-pub fn write_csv(out: &mut impl Write, column: &str, rows: &[Row]) -> io::Result<()> {
-    writeln!(out, "{column},{}", COLUMNS.join(","))?;
-    let blocks: Vec<String> = rows
-        .par_chunks(BLOCK)
-        .map(|block| {
-            let mut text = String::with_capacity(block.len() * 120);
-            for r in block {
-                let _ = write!(
-                    text,
-                    "{},{},{},{},{},",
-                    r.value, r.omega2, r.vx2, r.vy2, r.theta2_deg
-                );
-                if let Some(ex) = r.ex {
-                    let _ = write!(text, "{ex}");
-                }
-                let _ = writeln!(text, ",{},{}", r.phases, r.slides_throughout);
-            }
-            text
-        })
-        .collect();
-    for block in &blocks {
-        out.write_all(block.as_bytes())?;
+/// Bounces solved and written per block, so memory stays bounded for any number of steps.
+const BLOCK: usize = 1 << 16;
+
+/// Rows formatted per chunk on all cores.
+const CHUNK: usize = 4096;
+
+/// Solves the sweep and writes it as CSV with a header, block by block; `span.column()` names the
+/// varied value. Numbers are written in full (shortest round-trip form); an undefined `ex` is an empty
+/// field. A bounce that cannot be solved stops the sweep after the rows before its block.
+pub fn write_csv(
+    out: &mut impl Write,
+    base: &Params,
+    span: &Span,
+    steps: usize,
+) -> Result<(), CsvError> {
+    writeln!(out, "{},{}", span.column(), COLUMNS.join(","))?;
+    for start in (0..steps).step_by(BLOCK) {
+        let block = rows(base, span, steps, start..(start + BLOCK).min(steps))?;
+        let texts: Vec<String> = block.par_chunks(CHUNK).map(format_rows).collect();
+        for text in &texts {
+            out.write_all(text.as_bytes())?;
+        }
     }
     Ok(())
+}
+
+/// CSV lines of `rows`.
+fn format_rows(rows: &[Row]) -> String {
+    let mut text = String::with_capacity(rows.len() * 120);
+    for r in rows {
+        let _ = write!(
+            text,
+            "{},{},{},{},{},",
+            r.value, r.omega2, r.vx2, r.vy2, r.theta2_deg
+        );
+        if let Some(ex) = r.ex {
+            let _ = write!(text, "{ex}");
+        }
+        let _ = writeln!(text, ",{},{}", r.phases, r.slides_throughout);
+    }
+    text
 }
 
 /// The rows as a JSON array of objects with the CSV's keys.

@@ -5,6 +5,7 @@ use std::io::{BufWriter, Write};
 use clap::{Args, ValueEnum};
 
 use super::{Failure, ParamArgs, emit};
+use crate::analysis::sweep::CsvError;
 use crate::analysis::{Span, span, sweep};
 use crate::model::Params;
 
@@ -48,23 +49,26 @@ pub fn run(args: &SweepArgs) -> Result<(), Failure> {
         .map_err(Failure::usage)?;
     let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
     let steps = span::parse_count("--steps", &args.steps, 2).map_err(Failure::usage)?;
-    let rows = sweep::sweep(&base, &span, steps).map_err(Failure::usage)?;
     match args.format {
         Format::Csv => {
             let stdout = std::io::stdout().lock();
             let mut out = BufWriter::with_capacity(1 << 20, stdout);
-            let written =
-                sweep::write_csv(&mut out, &span.column(), &rows).and_then(|()| out.flush());
+            let written = sweep::write_csv(&mut out, &base, &span, steps)
+                .and_then(|()| out.flush().map_err(CsvError::Io));
             match written {
+                Err(CsvError::Analysis(e)) => Err(Failure::usage(e)),
                 // A closed pipe (`| head`) is not an error.
-                Err(e) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure {
-                    message: format!("cannot write output: {e}"),
-                    status: 1,
-                }),
+                Err(CsvError::Io(e)) if e.kind() != std::io::ErrorKind::BrokenPipe => {
+                    Err(Failure {
+                        message: format!("cannot write output: {e}"),
+                        status: 1,
+                    })
+                }
                 _ => Ok(()),
             }
         }
         Format::Json => {
+            let rows = sweep::sweep(&base, &span, steps).map_err(Failure::usage)?;
             let mut text = serde_json::to_string_pretty(&sweep::json(&span.column(), &rows))
                 .expect("JSON values always serialize");
             text.push('\n');
