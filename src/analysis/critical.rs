@@ -14,9 +14,11 @@ pub enum Critical {
     At(f64),
     /// The ball slides throughout at every angle up to normal incidence.
     AlwaysSlides,
-    /// The ball grips even at the most glancing angle (for Eq. (7): it arrives with its contact point
-    /// at rest or moving backward, which the equation does not cover).
+    /// The ball grips even at the most glancing angle.
     NeverSlidesThroughout,
+    /// Eq. (7) does not apply: r omega1 >= v1, so the contact point arrives at rest or moving backward
+    /// at every angle, and the equation assumes it moves forward.
+    Inapplicable,
 }
 
 impl Critical {
@@ -41,8 +43,7 @@ pub fn eq7(p: &Params) -> Critical {
     let c = (1.0 + p.ey) * p.mu * (1.0 + 1.0 / p.alpha);
     let s = p.radius * p.spin / p.speed;
     if s >= 1.0 {
-        // At glancing incidence the contact point already moves backward (or rests): Eq. (7) is moot.
-        return Critical::NeverSlidesThroughout;
+        return Critical::Inapplicable;
     }
     if s <= -c {
         // Even at normal incidence the friction impulse cannot stop the slip.
@@ -133,7 +134,7 @@ mod tests {
             spin: 400.0,
             ..Params::default()
         };
-        assert_eq!(eq7(&topspin), Critical::NeverSlidesThroughout);
+        assert_eq!(eq7(&topspin), Critical::Inapplicable);
         let frictionless = Params {
             mu: 0.0,
             ..Params::default()

@@ -15,7 +15,7 @@ pub enum Format {
     /// Readable lines.
     #[default]
     Table,
-    /// One JSON object: `eq7_deg`, `full_model_deg` (null when there is no such angle), their regimes and the parameters.
+    /// One JSON object: `eq7_deg`, `full_model_deg` (null when there is no such angle), their regimes (`eq7`, `full_model`) and the parameters.
     Json,
 }
 
@@ -34,6 +34,9 @@ fn describe(c: Critical) -> String {
         Critical::AlwaysSlides => "none: the ball slides throughout at every angle".into(),
         Critical::NeverSlidesThroughout => {
             "none: the ball does not slide throughout even at glancing incidence".into()
+        }
+        Critical::Inapplicable => {
+            "does not apply: r omega1 >= v1, the contact point never arrives moving forward".into()
         }
     }
 }
