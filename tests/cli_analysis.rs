@@ -397,6 +397,19 @@ fn reproduce_checks_every_claim_and_succeeds() {
 }
 
 #[test]
+fn reproduce_fails_when_differences_are_unexplained() {
+    // With another friction coefficient the paper's numbers are out of reach and no reason is shown.
+    let (code, out, stderr) = run(&["reproduce", "--mu", "0.3"]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(out.contains("unexplained: "), "{out}");
+    assert!(stderr.contains("without a demonstrated reason"), "{stderr}");
+    usage_error(
+        &["reproduce", "--mass", "0"],
+        &["--mass must be in (0, inf) kg", "got 0"],
+    );
+}
+
+#[test]
 fn figure_writes_svg_and_reports_bad_paths() {
     let dir = std::env::temp_dir().join(format!("snapback-cli-fig-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
