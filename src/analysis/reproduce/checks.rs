@@ -1,5 +1,6 @@
-//! The computation behind each claim of `assets/claims.md`. Each printed number appears once, beside
-//! its claim id; everything it is compared with is computed here from the model.
+//! The computation behind each claim of `assets/claims.md`. The paper's printed numbers are written
+//! beside their claim ids (the tests check that each appears in its claim's statement), and serve as
+//! targets when a reason for a difference is searched; everything compared with them is computed here.
 
 use rayon::prelude::*;
 
