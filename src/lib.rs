@@ -4,6 +4,7 @@
 //! [`model`] is the simulation core; everything else (the command line, the exports, the [`tui`] explorer)
 //! calls its API.
 
+pub mod analysis;
 pub mod cli;
 pub mod export;
 pub mod model;

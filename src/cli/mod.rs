@@ -1,8 +1,13 @@
 //! The command line: clap definitions and the headless commands. `main` only parses and dispatches.
 
+mod critical_angle;
+mod figure;
+mod optimize;
 mod params_args;
 mod presets;
+mod reproduce;
 mod simulate;
+mod sweep;
 mod tui;
 
 use std::io::Write;
@@ -28,6 +33,16 @@ pub enum Commands {
     Tui(tui::TuiArgs),
     /// List the presets (use one with --preset NAME on any command).
     Presets(presets::PresetsArgs),
+    /// Solve one bounce per value of a parameter and print the outcomes as CSV or JSON.
+    Sweep(sweep::SweepArgs),
+    /// The angle below which the ball slides for the whole contact: Eq. (7) and the full model.
+    CriticalAngle(critical_angle::CriticalAngleArgs),
+    /// The value of a parameter that maximises (or minimises) an outcome, and the bounce there.
+    Optimize(optimize::OptimizeArgs),
+    /// Check every number the paper prints (assets/claims.md) against the model.
+    Reproduce(reproduce::ReproduceArgs),
+    /// Draw the paper's Fig. 2 or Fig. 3 as SVG.
+    Figure(figure::FigureArgs),
 }
 
 /// A failure to report: the message for stderr and the exit status.
@@ -53,6 +68,11 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Simulate(args)) => simulate::run(&args),
         Some(Commands::Tui(args)) => tui::run(&args),
         Some(Commands::Presets(args)) => presets::run(&args),
+        Some(Commands::Sweep(args)) => sweep::run(&args),
+        Some(Commands::CriticalAngle(args)) => critical_angle::run(&args),
+        Some(Commands::Optimize(args)) => optimize::run(&args),
+        Some(Commands::Reproduce(args)) => reproduce::run(&args),
+        Some(Commands::Figure(args)) => figure::run(&args),
         None => tui::run(&tui::TuiArgs::default()),
     };
     match result {

@@ -1,5 +1,6 @@
-//! Text forms of a bounce for the headless commands: a readable table, JSON and CSV.
+//! Text forms of a bounce for the headless commands: a readable table, JSON and CSV; and figures as SVG.
 
 pub mod csv;
 pub mod json;
+pub mod svg;
 pub mod table;

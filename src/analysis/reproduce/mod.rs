@@ -1,0 +1,163 @@
+//! `reproduce`: every number of the paper listed in `assets/claims.md`, computed by the model and
+//! compared with the printed value. Nothing is hard-coded but the printed numbers themselves, each
+//! beside the id of the claim that states it (and the tests check that the claim's text contains it).
+
+mod checks;
+
+use serde::Serialize;
+
+use crate::model::Params;
+
+use super::AnalysisError;
+use super::claims::{self, Claim};
+
+/// How a computed value compares with the printed one.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Status {
+    /// Equal within the printed precision (half a unit of the last printed digit).
+    Reproduced,
+    /// Within 3 % of the printed value.
+    Close,
+    /// Further off; the row says why, with evidence the model computes.
+    Differs,
+}
+
+impl Status {
+    pub fn name(self) -> &'static str {
+        match self {
+            Status::Reproduced => "reproduced",
+            Status::Close => "close",
+            Status::Differs => "differs",
+        }
+    }
+}
+
+/// The relative gap below which a value is [`Status::Close`].
+pub const CLOSE: f64 = 0.03;
+
+/// One printed number and the model's value for it.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Row {
+    /// The claim's id in `assets/claims.md`.
+    pub id: &'static str,
+    pub quantity: String,
+    /// The paper's value.
+    pub paper: f64,
+    /// The model's value, in the unit the paper prints.
+    pub computed: f64,
+    pub unit: &'static str,
+    pub status: Status,
+    /// Evidence: how the value was computed, and for a difference the reason the model demonstrates.
+    pub note: String,
+    /// computed - paper.
+    pub difference: f64,
+    /// The number as the paper prints it, e.g. `2.25`.
+    #[serde(skip)]
+    pub printed: &'static str,
+    /// True when a difference comes with a demonstrated reason.
+    #[serde(skip)]
+    pub explained: bool,
+}
+
+impl Row {
+    /// Compares `computed` with the paper's `printed` number (in `unit`).
+    fn new(
+        id: &'static str,
+        quantity: impl Into<String>,
+        printed: &'static str,
+        unit: &'static str,
+        computed: f64,
+    ) -> Row {
+        let paper: f64 = printed
+            .parse()
+            .expect("printed values in the check table are numbers");
+        let decimals = printed.split_once('.').map_or(0, |(_, frac)| frac.len());
+        let precision = 0.5 * 10f64.powi(-(decimals as i32));
+        let difference = computed - paper;
+        let status = if difference.abs() <= precision * (1.0 + 1e-9) {
+            Status::Reproduced
+        } else if difference.abs() <= CLOSE * paper.abs() {
+            Status::Close
+        } else {
+            Status::Differs
+        };
+        Row {
+            id,
+            quantity: quantity.into(),
+            paper,
+            computed,
+            unit,
+            status,
+            note: String::new(),
+            difference,
+            printed,
+            explained: false,
+        }
+    }
+
+    /// Adds evidence to the note.
+    fn note(mut self, text: impl AsRef<str>) -> Row {
+        if !self.note.is_empty() {
+            self.note.push_str("; ");
+        }
+        self.note.push_str(text.as_ref());
+        self
+    }
+
+    /// Adds the demonstrated reason for a difference (`None`: no reason could be demonstrated).
+    fn reason(mut self, reason: Option<String>) -> Row {
+        if let Some(text) = reason {
+            self = self.note(text);
+            self.explained = true;
+        }
+        self
+    }
+
+    /// The computed value with two more decimals than the paper prints.
+    pub fn computed_text(&self) -> String {
+        let decimals = self.printed.split_once('.').map_or(0, |(_, f)| f.len()) + 2;
+        format!("{:.*}", decimals, self.computed)
+    }
+
+    /// True unless the row differs without a demonstrated reason.
+    pub fn accounted_for(&self) -> bool {
+        self.status != Status::Differs || self.explained
+    }
+}
+
+/// Every row, and the claims left without a row.
+#[derive(Clone, Debug)]
+pub struct Report {
+    pub rows: Vec<Row>,
+    /// Ids of `assets/claims.md` that no row checks.
+    pub missing: Vec<String>,
+}
+
+impl Report {
+    /// Rows that differ without a demonstrated reason.
+    pub fn unexplained(&self) -> Vec<&Row> {
+        self.rows.iter().filter(|r| !r.accounted_for()).collect()
+    }
+
+    /// True when every claim is checked and every row is reproduced, close or explained.
+    pub fn complete(&self) -> bool {
+        self.missing.is_empty() && self.unexplained().is_empty()
+    }
+
+    pub fn count(&self, status: Status) -> usize {
+        self.rows.iter().filter(|r| r.status == status).count()
+    }
+}
+
+/// Checks every claim. `base` supplies the ball, the speed, the friction and the impact (the paper's
+/// Sec. III values by default); each case then sets its own cart, angle and incident spin.
+pub fn reproduce(base: &Params) -> Result<Report, AnalysisError> {
+    let rows = checks::all(base)?;
+    let missing = claims::all()
+        .into_iter()
+        .map(|Claim { id, .. }| id)
+        .filter(|id| !rows.iter().any(|r| r.id == id))
+        .collect();
+    Ok(Report { rows, missing })
+}

@@ -1,0 +1,182 @@
+//! The range of one parameter that a sweep or an optimisation walks: `--vary PARAM --from A --to B`.
+
+use crate::model::params::{PARAMS, ParamSpec, Params};
+use crate::model::units;
+use crate::model::{Bounce, solve};
+
+use super::AnalysisError;
+
+/// A parameter and the interval it runs over, in its base unit; `log` spaces the values geometrically.
+#[derive(Clone, Copy, Debug)]
+pub struct Span {
+    pub spec: &'static ParamSpec,
+    pub from: f64,
+    pub to: f64,
+    pub log: bool,
+}
+
+/// The largest number of steps a sweep or a scan accepts (each row is kept in memory).
+pub const MAX_STEPS: usize = 10_000_000;
+
+impl Span {
+    /// Reads `--vary`, `--from` and `--to` as typed: `PARAM` is a flag name (`cart-mass`) or a key
+    /// (`cart_mass`), and the ends take unit suffixes (`1g`) and must lie in the parameter's range.
+    pub fn parse(vary: &str, from: &str, to: &str, log: bool) -> Result<Span, AnalysisError> {
+        let spec = crate::model::params::spec_named(vary.trim()).ok_or_else(|| {
+            let names: Vec<&str> = PARAMS.iter().map(|s| s.flag).collect();
+            AnalysisError::Input(format!(
+                "--vary must be one of {}; got {}",
+                names.join(", "),
+                vary.trim()
+            ))
+        })?;
+        let end = |flag: &'static str, text: &str| {
+            spec.parse(text)
+                .map_err(|source| AnalysisError::Param { flag, source })
+        };
+        Span::new(spec, end("--from", from)?, end("--to", to)?, log)
+    }
+
+    /// A span between two values already in range; `log` needs both ends above zero.
+    pub fn new(
+        spec: &'static ParamSpec,
+        from: f64,
+        to: f64,
+        log: bool,
+    ) -> Result<Span, AnalysisError> {
+        if log && (from <= 0.0 || to <= 0.0) {
+            let unit = spec.dimension.base_symbol();
+            return Err(AnalysisError::Input(format!(
+                "--log needs --from and --to above 0; got --from {} {unit} --to {} {unit}",
+                units::brief(from, 6),
+                units::brief(to, 6)
+            )));
+        }
+        Ok(Span {
+            spec,
+            from,
+            to,
+            log,
+        })
+    }
+
+    /// The `i`-th of `n` values (n >= 2), ends included exactly.
+    pub fn at(&self, i: usize, n: usize) -> f64 {
+        if i == 0 {
+            return self.from;
+        }
+        if i + 1 >= n {
+            return self.to;
+        }
+        self.from_unit(i as f64 / (n - 1) as f64)
+    }
+
+    /// The value at the fraction `u` of the way from `from` (0) to `to` (1), geometric when `log`.
+    pub fn from_unit(&self, u: f64) -> f64 {
+        if self.log {
+            (self.from.ln() + (self.to.ln() - self.from.ln()) * u).exp()
+        } else {
+            self.from + (self.to - self.from) * u
+        }
+    }
+
+    /// `n` values from `from` to `to`, ends included.
+    pub fn values(&self, n: usize) -> Vec<f64> {
+        (0..n).map(|i| self.at(i, n)).collect()
+    }
+
+    /// The CSV column of the varied value: the parameter's key and base unit, e.g. `angle_deg`,
+    /// `cart_mass_kg`, `stiffness_N_m`, `mu`.
+    pub fn column(&self) -> String {
+        column(self.spec)
+    }
+
+    /// The bounce with the varied parameter set to `value`.
+    pub fn solve(&self, base: &Params, value: f64) -> Result<Bounce, AnalysisError> {
+        let mut params = *base;
+        params.set(self.spec.id, value);
+        solve(&params).map_err(|source| AnalysisError::Solve {
+            flag: self.spec.flag,
+            value: format!(
+                "{} {}",
+                units::brief(value, 10),
+                self.spec.dimension.base_symbol()
+            )
+            .trim_end()
+            .to_string(),
+            source,
+        })
+    }
+}
+
+/// The column name of a parameter: its key and base unit, `/` written `_`.
+pub fn column(spec: &ParamSpec) -> String {
+    let unit = spec.dimension.base_symbol();
+    if unit.is_empty() {
+        spec.key.to_string()
+    } else {
+        format!("{}_{}", spec.key, unit.replace('/', "_"))
+    }
+}
+
+/// Reads a count flag such as `--steps`: an integer in `[min, MAX_STEPS]`.
+pub fn parse_count(flag: &str, text: &str, min: usize) -> Result<usize, AnalysisError> {
+    match text.trim().parse::<usize>() {
+        Ok(n) if (min..=MAX_STEPS).contains(&n) => Ok(n),
+        _ => Err(AnalysisError::Input(format!(
+            "{flag} must be an integer in [{min}, {MAX_STEPS}]; got {}",
+            text.trim()
+        ))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn columns_carry_the_base_unit() {
+        let col = |name| column(crate::model::params::spec_named(name).unwrap());
+        assert_eq!(col("angle"), "angle_deg");
+        assert_eq!(col("cart-mass"), "cart_mass_kg");
+        assert_eq!(col("stiffness"), "stiffness_N_m");
+        assert_eq!(col("mu"), "mu");
+        assert_eq!(col("spin"), "spin_rad_s");
+    }
+
+    #[test]
+    fn ends_are_exact_and_log_is_geometric() {
+        let span = Span::parse("stiffness", "1kN/m", "100kN/m", true).unwrap();
+        let v = span.values(3);
+        assert_eq!(v[0], 1000.0);
+        assert_eq!(v[2], 100000.0);
+        assert!((v[1] - 10000.0).abs() < 1e-8);
+        let lin = Span::parse("angle", "10", "20", false).unwrap();
+        assert_eq!(lin.values(11)[3], 13.0);
+    }
+
+    #[test]
+    fn bad_input_names_flag_range_and_value() {
+        let err = Span::parse("spinn", "0", "1", false)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("--vary must be one of angle, speed"),
+            "{err}"
+        );
+        assert!(err.ends_with("got spinn"), "{err}");
+        let err = Span::parse("angle", "10", "95", false)
+            .unwrap_err()
+            .to_string();
+        assert_eq!(err, "--to: --angle must be in (0, 90] deg; got 95");
+        let err = Span::parse("stiffness", "0", "10", true)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("--log needs --from and --to above 0"),
+            "{err}"
+        );
+        let err = parse_count("--steps", "1", 2).unwrap_err().to_string();
+        assert_eq!(err, "--steps must be an integer in [2, 10000000]; got 1");
+    }
+}

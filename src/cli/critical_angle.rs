@@ -1,0 +1,92 @@
+//! `snapback critical-angle`: the angle below which the ball slides for the whole contact, from
+//! Eq. (7) and from the full model for the given cart.
+
+use std::fmt::Write;
+
+use clap::{Args, ValueEnum};
+
+use super::{Failure, ParamArgs, emit};
+use crate::analysis::critical::{self, Critical};
+use crate::model::Params;
+use crate::model::params::{ParamId, spec};
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// Readable lines.
+    #[default]
+    Table,
+    /// One JSON object: `eq7_deg`, `full_model_deg` (null when there is no such angle), their regimes (`eq7`, `full_model`) and the parameters.
+    Json,
+}
+
+#[derive(Clone, Debug, Default, Args)]
+pub struct CriticalAngleArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+}
+
+fn describe(c: Critical) -> String {
+    match c {
+        Critical::At(deg) => format!("{deg:.2} deg"),
+        Critical::AlwaysSlides => "none: the ball slides throughout at every angle".into(),
+        Critical::NeverSlidesThroughout => {
+            "none: the ball does not slide throughout even at glancing incidence".into()
+        }
+        Critical::Inapplicable => {
+            "does not apply: r omega1 >= v1, the contact point never arrives moving forward".into()
+        }
+    }
+}
+
+pub fn run(args: &CriticalAngleArgs) -> Result<(), Failure> {
+    let params = args
+        .params
+        .apply(Params::default())
+        .map_err(Failure::usage)?;
+    let eq7 = critical::eq7(&params);
+    let full = critical::full_model(&params).map_err(Failure::usage)?;
+    let text = match args.format {
+        Format::Json => {
+            let doc = serde_json::json!({
+                "eq7_deg": eq7.degrees(),
+                "full_model_deg": full.degrees(),
+                "eq7": eq7,
+                "full_model": full,
+                "params": params,
+            });
+            let mut text =
+                serde_json::to_string_pretty(&doc).expect("JSON values always serialize");
+            text.push('\n');
+            text
+        }
+        Format::Table => {
+            let shown = |id| spec(id).show(params.get(id));
+            let mut out = String::new();
+            let _ = writeln!(
+                out,
+                "Critical angle of incidence: below it the ball slides for the whole contact"
+            );
+            let _ = writeln!(
+                out,
+                "  v1 = {}, omega1 = {}, mu = {}, alpha = {}, e_y = {}; cart M = {}, k = {}",
+                shown(ParamId::Speed),
+                shown(ParamId::Spin),
+                shown(ParamId::Mu),
+                shown(ParamId::Alpha),
+                shown(ParamId::Ey),
+                shown(ParamId::CartMass),
+                shown(ParamId::Stiffness)
+            );
+            let _ = writeln!(out, "  {:<26}{}", "Eq. (7), rigid surface", describe(eq7));
+            let _ = writeln!(out, "  {:<26}{}", "full model, this cart", describe(full));
+            if let (Some(a), Some(b)) = (eq7.degrees(), full.degrees()) {
+                let _ = writeln!(out, "  {:<26}{:+.2} deg", "full model - Eq. (7)", b - a);
+            }
+            out
+        }
+    };
+    emit(&text)
+}

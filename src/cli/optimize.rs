@@ -1,0 +1,119 @@
+//! `snapback optimize`: the value of one parameter that maximises an outcome, and the bounce there.
+
+use std::fmt::Write;
+
+use clap::{Args, ValueEnum};
+
+use super::{Failure, ParamArgs, emit};
+use crate::analysis::optimize::{self, DEFAULT_SCAN, Objective};
+use crate::analysis::{Span, span};
+use crate::export;
+use crate::model::Params;
+use crate::model::units;
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum Format {
+    /// The optimum, then the bounce there as `simulate` prints it.
+    #[default]
+    Table,
+    /// One JSON object: `vary`, `value`, `unit`, `objective`, `objective_value`, `minimize`, `scan`, `log`, `bounce`.
+    Json,
+}
+
+#[derive(Clone, Debug, Args)]
+pub struct OptimizeArgs {
+    #[command(flatten)]
+    pub params: ParamArgs,
+    /// The parameter to vary: a parameter flag without dashes (stiffness, cart-mass, angle, ...).
+    #[arg(long, value_name = "PARAM")]
+    pub vary: String,
+    /// One end of the range (a unit suffix is allowed: 1kN/m).
+    #[arg(long, value_name = "A", allow_hyphen_values = true)]
+    pub from: String,
+    /// The other end.
+    #[arg(long, value_name = "B", allow_hyphen_values = true)]
+    pub to: String,
+    /// What to maximise: omega2 (rad/s), ex, vx2 (m/s) or theta2 (deg).
+    #[arg(long, value_name = "NAME", default_value = "omega2")]
+    pub objective: String,
+    /// Minimise instead of maximise.
+    #[arg(long)]
+    pub minimize: bool,
+    /// Scan geometrically (automatic when the range spans two decades or more).
+    #[arg(long)]
+    pub log: bool,
+    /// Points of the scan that precedes Brent's method (at least 3).
+    #[arg(long, value_name = "N", default_value_t = DEFAULT_SCAN.to_string(), allow_hyphen_values = true)]
+    pub scan: String,
+    /// Output format.
+    #[arg(long, value_enum, default_value_t = Format::Table)]
+    pub format: Format,
+}
+
+pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
+    let base = args
+        .params
+        .apply(Params::default())
+        .map_err(Failure::usage)?;
+    let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
+    let objective = Objective::parse(&args.objective).map_err(Failure::usage)?;
+    let scan = span::parse_count("--scan", &args.scan, 3).map_err(Failure::usage)?;
+    let best =
+        optimize::optimize(&base, &span, objective, args.minimize, scan).map_err(Failure::usage)?;
+    let spec = span.spec;
+    let unit = spec.dimension.base_symbol();
+    let text = match args.format {
+        Format::Json => {
+            let doc = serde_json::json!({
+                "vary": spec.flag,
+                "value": best.value,
+                "unit": unit,
+                "objective": objective.name(),
+                "objective_value": best.objective_value,
+                "objective_unit": objective.unit(),
+                "minimize": args.minimize,
+                "scan": scan,
+                "log": best.span.log,
+                "bounce": export::json::value(&best.bounce),
+            });
+            let mut text =
+                serde_json::to_string_pretty(&doc).expect("JSON values always serialize");
+            text.push('\n');
+            text
+        }
+        Format::Table => {
+            let mut out = String::new();
+            let goal = if args.minimize {
+                "minimises"
+            } else {
+                "maximises"
+            };
+            let _ = writeln!(
+                out,
+                "The {} {} {} ({} scan points{}, then Brent's method)",
+                spec.label,
+                goal,
+                objective.name(),
+                scan,
+                if best.span.log { ", geometric" } else { "" }
+            );
+            let _ = writeln!(
+                out,
+                "  {:<24}{} {unit} ({})",
+                format!("{} {}", spec.label, spec.symbol),
+                units::brief(best.value, 10),
+                spec.show(best.value)
+            );
+            let _ = writeln!(
+                out,
+                "  {:<24}{} {}\n",
+                objective.name(),
+                units::brief(best.objective_value, 8),
+                objective.unit()
+            );
+            out.push_str(&export::table::summary(&best.bounce));
+            out
+        }
+    };
+    emit(&text)
+}

@@ -1,0 +1,359 @@
+//! The analyses against the core: sweeps against single solves, the critical angle against Eq. (7),
+//! optimisation against a dense scan, the claims coverage, and the figures' SVG.
+
+use snapback::analysis::cases::{HEAVY, SOFT};
+use snapback::analysis::claims;
+use snapback::analysis::critical::{self, Critical};
+use snapback::analysis::figures::Which;
+use snapback::analysis::optimize::{Objective, optimize};
+use snapback::analysis::reproduce::{self, Status};
+use snapback::analysis::{Span, retune, sweep, timeline};
+use snapback::export::svg;
+use snapback::model::params::ParamId;
+use snapback::model::{Params, solve};
+
+#[test]
+fn sweep_rows_are_single_solves_in_order() {
+    let base = Params::default();
+    for (name, from, to, log) in [
+        ("angle", "5", "90", false),
+        ("stiffness", "1kN/m", "100kN/m", true),
+        ("spin", "100", "-300", false),
+        ("cart-mass", "0.5g", "2kg", true),
+    ] {
+        let span = Span::parse(name, from, to, log).unwrap();
+        let rows = sweep::sweep(&base, &span, 37).unwrap();
+        assert_eq!(rows.len(), 37);
+        assert_eq!(rows[0].value, span.from);
+        assert_eq!(rows[36].value, span.to);
+        for row in &rows {
+            let mut p = base;
+            p.set(span.spec.id, row.value);
+            let b = solve(&p).unwrap();
+            assert_eq!(row.omega2, b.outcome.omega2);
+            assert_eq!(row.vx2, b.outcome.vx2);
+            assert_eq!(row.vy2, b.outcome.vy2);
+            assert_eq!(row.theta2_deg, b.outcome.theta2_deg);
+            assert_eq!(row.ex, b.outcome.ex);
+            assert_eq!(row.phases, b.phase_summary());
+            assert_eq!(row.slides_throughout, b.slides_throughout());
+        }
+        let ordered = rows.windows(2).all(|w| {
+            if span.from < span.to {
+                w[0].value < w[1].value
+            } else {
+                w[0].value > w[1].value
+            }
+        });
+        assert!(ordered, "{name}");
+    }
+}
+
+#[test]
+fn sweep_csv_round_trips() {
+    let span = Span::parse("angle", "10", "90", false).unwrap();
+    let steps = 70_000; // more than one block of the streamed CSV
+    let rows = sweep::sweep(&Params::default(), &span, steps).unwrap();
+    let mut out = Vec::new();
+    sweep::write_csv(&mut out, &Params::default(), &span, steps).unwrap();
+    let text = String::from_utf8(out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(
+        lines[0],
+        "angle_deg,omega2,vx2,vy2,theta2_deg,ex,phases,slides_throughout"
+    );
+    assert_eq!(lines.len(), steps + 1);
+    for (line, row) in lines[1..].iter().zip(&rows) {
+        let cells: Vec<&str> = line.split(',').collect();
+        assert_eq!(cells[0].parse::<f64>().unwrap(), row.value);
+        assert_eq!(cells[1].parse::<f64>().unwrap(), row.omega2);
+        assert_eq!(cells[5].parse::<f64>().ok(), row.ex);
+        assert_eq!(cells[6], row.phases);
+        assert_eq!(cells[7], row.slides_throughout.to_string());
+    }
+}
+
+#[test]
+fn full_model_critical_angle_tends_to_eq7_for_a_heavy_cart() {
+    for (spin, mu) in [(0.0, 0.4), (-100.0, 0.4), (-200.0, 0.3), (50.0, 0.6)] {
+        let mut p = HEAVY.case(&Params::default(), 45.0, spin);
+        p.mu = mu;
+        p.cart_mass = 1e6;
+        let eq7 = critical::eq7(&p).degrees().unwrap();
+        let full = critical::full_model(&p).unwrap().degrees().unwrap();
+        assert!((full - eq7).abs() < 0.01, "spin {spin}: {full} vs {eq7}");
+    }
+}
+
+#[test]
+fn eq7_matches_the_papers_spinless_value_and_its_own_equation() {
+    let p = HEAVY.case(&Params::default(), 45.0, 0.0);
+    let theta = critical::eq7(&p).degrees().unwrap();
+    assert!((theta - 23.9).abs() < 0.05, "{theta}");
+    let back = HEAVY.case(&Params::default(), 45.0, -100.0);
+    let t = critical::eq7(&back).degrees().unwrap().to_radians();
+    let rhs = (1.0 - back.radius * back.spin / (back.speed * t.cos()))
+        / (2.0 * back.mu * (1.0 + 1.0 / back.alpha));
+    assert!((t.tan() - rhs).abs() < 1e-12);
+}
+
+#[test]
+fn critical_angle_separates_sliding_from_gripping() {
+    let p = SOFT.case(&Params::default(), 45.0, -100.0);
+    let Critical::At(deg) = critical::full_model(&p).unwrap() else {
+        panic!("the soft spring has a critical angle");
+    };
+    let at = |a: f64| {
+        let mut q = p;
+        q.angle_deg = a;
+        solve(&q).unwrap().slides_throughout()
+    };
+    assert!(at(deg - 0.005));
+    assert!(!at(deg + 0.005));
+    let frictionless = Params { mu: 0.0, ..p };
+    assert_eq!(
+        critical::full_model(&frictionless).unwrap(),
+        Critical::AlwaysSlides
+    );
+}
+
+/// The best value of a dense scan, for comparison with `optimize`.
+fn dense_best(base: &Params, span: &Span, objective: Objective, minimize: bool) -> (f64, f64) {
+    let rows = sweep::sweep(base, span, 20_000).unwrap();
+    let sign = if minimize { -1.0 } else { 1.0 };
+    rows.iter()
+        .map(|r| {
+            let mut p = *base;
+            p.set(span.spec.id, r.value);
+            let o = solve(&p).unwrap().outcome;
+            (r.value, objective.of(&o).unwrap())
+        })
+        .max_by(|a, b| (sign * a.1).total_cmp(&(sign * b.1)))
+        .unwrap()
+}
+
+#[test]
+fn optimize_beats_a_dense_scan() {
+    let one_gram = Params {
+        cart_mass: 1e-3,
+        ..Params::default()
+    };
+    let cases = [
+        (
+            one_gram,
+            "stiffness",
+            "100",
+            "1e6",
+            Objective::Omega2,
+            false,
+        ),
+        (
+            Params::default(),
+            "angle",
+            "1",
+            "90",
+            Objective::Omega2,
+            false,
+        ),
+        (
+            Params::default(),
+            "stiffness",
+            "1000",
+            "1e5",
+            Objective::Ex,
+            false,
+        ),
+        (
+            Params::default(),
+            "angle",
+            "20",
+            "80",
+            Objective::Theta2,
+            true,
+        ),
+        (
+            Params::default(),
+            "spin",
+            "-300",
+            "300",
+            Objective::Vx2,
+            false,
+        ),
+    ];
+    for (base, name, from, to, objective, minimize) in cases {
+        let span = Span::parse(name, from, to, false).unwrap();
+        let best = optimize(&base, &span, objective, minimize, 400).unwrap();
+        let scan_span = snapback::analysis::optimize::scan_span(&span);
+        let (x, y) = dense_best(&base, &scan_span, objective, minimize);
+        let better = if minimize {
+            best.objective_value <= y + 1e-9 * y.abs()
+        } else {
+            best.objective_value >= y - 1e-9 * y.abs()
+        };
+        assert!(better, "{name}: {} vs dense {y}", best.objective_value);
+        let width = (span.to - span.from).abs();
+        let near = if scan_span.log {
+            (best.value / x).ln().abs() < 1e-3
+        } else {
+            (best.value - x).abs() < 1e-3 * width
+        };
+        assert!(near, "{name}: {} vs dense {x}", best.value);
+        assert_eq!(
+            objective.of(&best.bounce.outcome),
+            Some(best.objective_value)
+        );
+    }
+}
+
+#[test]
+fn reproduce_covers_every_claim_with_its_printed_numbers() {
+    let report = reproduce::reproduce(&Params::default()).unwrap();
+    let claims = claims::all();
+    assert!(report.missing.is_empty(), "{:?}", report.missing);
+    for claim in &claims {
+        assert!(report.rows.iter().any(|r| r.id == claim.id), "{}", claim.id);
+    }
+    for row in &report.rows {
+        let claim = claims
+            .iter()
+            .find(|c| c.id == row.id)
+            .unwrap_or_else(|| panic!("{} is not a claim id", row.id));
+        let quoted = claim.statement.contains(row.printed)
+            || (row.printed == "0" && claim.statement.contains("zero"));
+        assert!(
+            quoted,
+            "{}: {} not in {:?}",
+            row.id, row.printed, claim.statement
+        );
+        assert!(row.computed.is_finite(), "{} {}", row.id, row.quantity);
+        assert!(row.accounted_for(), "{} {}", row.id, row.quantity);
+        let precision_ok = row.status != Status::Reproduced
+            || row.difference.abs() <= 0.5 * 10f64.powi(-decimals(row.printed)) + 1e-12;
+        assert!(precision_ok, "{} {}", row.id, row.quantity);
+    }
+    assert!(report.complete());
+}
+
+fn decimals(printed: &str) -> i32 {
+    printed.split_once('.').map_or(0, |(_, f)| f.len() as i32)
+}
+
+#[test]
+fn reproduce_rows_match_the_model() {
+    let report = reproduce::reproduce(&Params::default()).unwrap();
+    let row = |id: &str, quantity: &str| {
+        report
+            .rows
+            .iter()
+            .find(|r| r.id == id && r.quantity.contains(quantity))
+            .unwrap_or_else(|| panic!("{id} {quantity}"))
+            .computed
+    };
+    let fig3c = solve(&Params::default()).unwrap();
+    assert_eq!(row("fig3c-spin", "omega2"), fig3c.outcome.omega2);
+    assert!((row("fig3a-grip-time", "sliding") - 2.2579).abs() < 1e-4);
+    assert!((row("fig3c-max-x", "maximum") - 7.689).abs() < 1e-3);
+    let coefficient = 2.0 * 0.4 * 10.0 / (0.55 * 0.033);
+    assert!((row("eq8-coefficient", "coefficient") - coefficient).abs() < 1e-9);
+}
+
+#[test]
+fn the_cart_turns_round_where_its_velocity_vanishes() {
+    let b = solve(&Params::default()).unwrap();
+    let (t, x) = timeline::peak(&b, |s| s.x);
+    let s = b.sample_at(t);
+    assert!(s.v.abs() < 1e-5, "{}", s.v);
+    assert_eq!(s.x, x);
+    assert!((t * 1e3 - 3.075).abs() < 1e-3);
+}
+
+#[test]
+fn retune_finds_the_value_that_prints_a_number() {
+    let p = Params::default();
+    let k = retune::retune(&p, ParamId::Stiffness, 5e3, 5e4, 162.8, |q| {
+        solve(q).ok().map(|b| b.outcome.omega2)
+    })
+    .unwrap();
+    let q = Params { stiffness: k, ..p };
+    assert!((solve(&q).unwrap().outcome.omega2 - 162.8).abs() < 1e-6);
+}
+
+#[test]
+fn figures_follow_eq8_at_glancing_angles() {
+    let fig = Which::Fig2.data(&Params::default()).unwrap();
+    assert_eq!(fig.panels.len(), 2);
+    for (panel, spin) in fig.panels.iter().zip([0.0, -100.0]) {
+        assert_eq!(panel.curves.len(), 3);
+        for curve in &panel.curves {
+            let (theta, omega2) = curve.points[50];
+            let eq8 = spin + 2.0 * 0.4 * 10.0 / (0.55 * 0.033) * theta.to_radians().sin();
+            assert!((omega2 - eq8).abs() < 1e-9);
+        }
+    }
+    let fig3 = Which::Fig3.data(&Params::default()).unwrap();
+    assert_eq!(fig3.panels.len(), 3);
+    assert!(fig3.panels.iter().all(|p| p.curves.len() == 3));
+}
+
+/// Every piece of text in an SVG document.
+fn svg_texts(svg: &str) -> Vec<String> {
+    let doc = roxmltree::Document::parse(svg).expect("the SVG is XML");
+    assert_eq!(doc.root_element().tag_name().name(), "svg");
+    doc.descendants()
+        .filter(|n| n.is_text())
+        .filter_map(|n| n.text())
+        .map(str::to_string)
+        .collect()
+}
+
+#[test]
+fn svg_figures_are_xml_with_axis_titles_and_legends() {
+    let base = Params::default();
+    let expected: [(Which, &[&str]); 2] = [
+        (
+            Which::Fig2,
+            &[
+                "θ1 (deg)",
+                "ω2 (rad/s)",
+                "M = 10 kg, k = 4×10⁴ N/m",
+                "(b) ω1 = -100 rad/s",
+            ],
+        ),
+        (
+            Which::Fig3,
+            &[
+                "t (ms)",
+                "F (N)",
+                "X (mm)",
+                "ω (rad/s)",
+                "M = 10 g, k = 1.5×10⁴ N/m",
+            ],
+        ),
+    ];
+    for (which, titles) in expected {
+        let svg = svg::render(&which.data(&base).unwrap()).unwrap();
+        let texts = svg_texts(&svg);
+        for title in titles {
+            assert!(
+                texts.iter().any(|t| t.trim() == *title),
+                "{}: {title} missing",
+                which.name()
+            );
+        }
+    }
+}
+
+#[test]
+fn svg_is_written_atomically_or_not_at_all() {
+    let dir = std::env::temp_dir().join(format!("snapback-svg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fig = Which::Fig3.data(&Params::default()).unwrap();
+    let path = dir.join("fig3.svg");
+    svg::write(&fig, &path).unwrap();
+    svg_texts(&std::fs::read_to_string(&path).unwrap());
+    let leftovers = std::fs::read_dir(&dir).unwrap().count();
+    assert_eq!(leftovers, 1);
+    let err = svg::write(&fig, &dir.join("missing").join("x.svg")).unwrap_err();
+    assert!(err.to_string().contains("missing"), "{err}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
