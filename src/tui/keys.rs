@@ -276,7 +276,7 @@ pub const FILE_PROMPT: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Enter)],
         Action::PromptSubmit,
-        "save or open; a relative name is in the current directory",
+        "save or open (nothing typed: the name in brackets)",
         Some(("⏎", "ok")),
     ),
     bind(
@@ -288,7 +288,7 @@ pub const FILE_PROMPT: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Tab)],
         Action::PromptComplete,
-        "complete the file name",
+        "complete the file name (nothing typed: take the one in brackets)",
         Some(("Tab", "complete")),
     ),
     bind(

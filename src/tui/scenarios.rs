@@ -25,11 +25,12 @@ pub enum FileKind {
     Open,
 }
 
-/// The file prompt: what it is for and the name typed so far.
+/// The file prompt: what it is for, the name typed so far, and the name Enter takes when none is typed.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct FilePrompt {
     pub kind: FileKind,
     pub text: String,
+    pub default: String,
 }
 
 impl App {
@@ -65,19 +66,21 @@ impl App {
                 self.mode = Mode::Normal;
             }
             Action::StartSave => {
-                let text = self
+                let default = self
                     .last_file
                     .clone()
                     .unwrap_or_else(|| DEFAULT_SCENARIO_FILE.to_string());
                 self.mode = Mode::File(FilePrompt {
                     kind: FileKind::Save,
-                    text,
+                    text: String::new(),
+                    default,
                 });
             }
             Action::StartOpen => {
                 self.mode = Mode::File(FilePrompt {
                     kind: FileKind::Open,
-                    text: self.last_file.clone().unwrap_or_default(),
+                    text: String::new(),
+                    default: self.last_file.clone().unwrap_or_default(),
                 });
             }
             Action::PromptInsert(c) => {
@@ -93,14 +96,23 @@ impl App {
             Action::PromptComplete => {
                 let dir = self.dir.clone();
                 if let Mode::File(prompt) = &mut self.mode {
-                    prompt.text = complete(&dir, &prompt.text);
+                    // Tab on nothing typed takes the default, to edit.
+                    prompt.text = if prompt.text.is_empty() {
+                        prompt.default.clone()
+                    } else {
+                        complete(&dir, &prompt.text)
+                    };
                 }
             }
             Action::PromptSubmit => {
                 if let Mode::File(prompt) = std::mem::replace(&mut self.mode, Mode::Normal) {
+                    let typed = match prompt.text.trim() {
+                        "" => prompt.default.trim(),
+                        typed => typed,
+                    };
                     match prompt.kind {
-                        FileKind::Save => self.submit_save(prompt.text.trim()),
-                        FileKind::Open => self.submit_open(prompt.text.trim()),
+                        FileKind::Save => self.submit_save(typed),
+                        FileKind::Open => self.submit_open(typed),
                     }
                 }
             }

@@ -83,11 +83,16 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
 pub fn prompt(app: &App) -> Option<(String, String)> {
     match &app.mode {
         Mode::File(prompt) => {
-            let label = match prompt.kind {
-                FileKind::Save => "save the parameters as: ",
-                FileKind::Open => "open scenario file: ",
+            let what = match prompt.kind {
+                FileKind::Save => "save the parameters as",
+                FileKind::Open => "open scenario file",
             };
-            Some((label.to_string(), prompt.text.clone()))
+            let label = if prompt.default.is_empty() {
+                format!("{what}: ")
+            } else {
+                format!("{what} [{}]: ", prompt.default)
+            };
+            Some((label, prompt.text.clone()))
         }
         Mode::Overwrite(path) => Some((
             format!("{} exists; overwrite it? ", path.display()),
