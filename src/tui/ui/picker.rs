@@ -94,8 +94,15 @@ pub fn prompt(app: &App) -> Option<(String, String)> {
             };
             Some((label, prompt.text.clone()))
         }
+        // The file's name only, so the question fits on one line; the saved message gives the full path.
         Mode::Overwrite(path) => Some((
-            format!("{} exists; overwrite it? ", path.display()),
+            format!(
+                "{} exists; overwrite it? ",
+                path.file_name().map_or_else(
+                    || path.display().to_string(),
+                    |n| n.to_string_lossy().into_owned()
+                )
+            ),
             String::new(),
         )),
         _ => None,
