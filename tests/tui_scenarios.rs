@@ -406,6 +406,10 @@ fn reset_goes_back_to_where_the_explorer_started() {
     drive(&mut app, 80, 24, events);
     assert_eq!(app.selected_spec().id, ParamId::CartMass);
     assert_eq!(app.params, light);
+    // The picker opens on the preset the parameters are.
+    drive(&mut app, 80, 24, vec![char('p')]);
+    let index = PRESETS.iter().position(|p| p.name == "light-1g").unwrap();
+    assert_eq!(app.mode, Mode::Picker(index));
 }
 
 #[test]
