@@ -260,7 +260,9 @@ fn the_help_overlay_lists_every_key() {
     for (w, h) in SIZES {
         let (app, screen) = explore(w, h, vec![key(KeyCode::Char('?'))]);
         assert_eq!(app.mode, Mode::Help);
-        for binding in keys::EXPLORER.iter().chain(keys::PROMPT) {
+        // At 80 x 24 the prompt's keys are left out (the status line shows them while typing).
+        let prompt = if h >= 48 { keys::PROMPT } else { &[] };
+        for binding in keys::EXPLORER.iter().chain(prompt) {
             let row = format!("{:<14} {}", keys_label(binding), binding.help);
             assert!(
                 screen.contains(&row),

@@ -1,9 +1,14 @@
 //! The explorer's state and the one place it changes: [`App::update`] applies an [`Action`], re-solves the
 //! bounce and recomputes the derived curves. Drawing only reads an `App`.
 
+use std::path::PathBuf;
+
 use crate::model::params::{PARAMS, ParamSpec};
 use crate::model::{Bounce, Params, Sample, SolveError, solve};
 
+use super::baseline::Baseline;
+use super::history::History;
+use super::scenarios::FilePrompt;
 use super::sweep::Sweep;
 use super::ui::theme::Theme;
 
@@ -63,6 +68,33 @@ pub enum Action {
     ToggleHelp,
     CloseHelp,
     Quit,
+    /// Open the preset picker.
+    OpenPicker,
+    PickerUp,
+    PickerDown,
+    /// Apply the preset chosen in the picker.
+    PickerApply,
+    PickerClose,
+    /// Ask for a file name to save the parameters to.
+    StartSave,
+    /// Ask for a scenario file to open.
+    StartOpen,
+    /// A character typed into the file prompt.
+    PromptInsert(char),
+    PromptBackspace,
+    /// Complete the file name typed so far.
+    PromptComplete,
+    PromptSubmit,
+    PromptCancel,
+    /// Yes, overwrite the existing file.
+    ConfirmOverwrite,
+    Undo,
+    Redo,
+    /// Pin the current bounce as the baseline (replacing any).
+    PinBaseline,
+    ClearBaseline,
+    /// Write the time series as CSV and the outcome as JSON.
+    Export,
 }
 
 /// Who gets the keys.
@@ -73,6 +105,12 @@ pub enum Mode {
     Help,
     /// The value prompt is open with the text typed so far.
     Editing(String),
+    /// The preset picker is open with this preset (an index into `scenario::PRESETS`) highlighted.
+    Picker(usize),
+    /// A file name is being typed, to save to or open.
+    File(FilePrompt),
+    /// Saving would replace this existing file: yes or no?
+    Overwrite(PathBuf),
 }
 
 /// How a status message should look.
@@ -107,6 +145,16 @@ pub struct App {
     pub series: Vec<Sample>,
     /// Rebound spin against incidence angle, for the sweep view.
     pub sweep: Sweep,
+    /// Where the explorer started (R goes back here): the defaults, or a preset, scenario or flags.
+    pub start: Params,
+    /// Parameter changes that can be undone and redone.
+    pub history: History,
+    /// A pinned bounce the charts and the outcome compare against.
+    pub baseline: Option<Baseline>,
+    /// Where scenario files and exports go, and relative file names are read from.
+    pub dir: PathBuf,
+    /// The scenario file last opened or saved, as typed, offered by the next prompt.
+    pub last_file: Option<String>,
 }
 
 impl App {
@@ -124,6 +172,11 @@ impl App {
             series: bounce.series(SERIES_SAMPLES),
             sweep: Sweep::compute(&params),
             bounce,
+            start: params,
+            history: History::default(),
+            baseline: None,
+            dir: std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
+            last_file: None,
         })
     }
 
@@ -157,10 +210,10 @@ impl App {
             Action::Reset => {
                 let spec = self.selected_spec();
                 let mut params = self.params;
-                params.set(spec.id, spec.default);
+                params.set(spec.id, self.start.get(spec.id));
                 self.try_apply(params);
             }
-            Action::ResetAll => self.try_apply(Params::default()),
+            Action::ResetAll => self.try_apply(self.start),
             Action::NextView => self.view = self.view.next(),
             Action::ToggleHelp => {
                 self.mode = if self.mode == Mode::Help {
@@ -170,6 +223,24 @@ impl App {
                 }
             }
             Action::Quit => self.quit = true,
+            Action::OpenPicker
+            | Action::PickerUp
+            | Action::PickerDown
+            | Action::PickerApply
+            | Action::PickerClose
+            | Action::StartSave
+            | Action::StartOpen
+            | Action::PromptInsert(_)
+            | Action::PromptBackspace
+            | Action::PromptComplete
+            | Action::PromptSubmit
+            | Action::PromptCancel
+            | Action::ConfirmOverwrite
+            | Action::Undo
+            | Action::Redo
+            | Action::PinBaseline
+            | Action::ClearBaseline
+            | Action::Export => self.update_scenarios(action),
         }
     }
 
@@ -210,20 +281,28 @@ impl App {
         }
     }
 
-    /// Solves `params`; on success they become current, otherwise the old ones stay and the reason is shown.
+    /// Solves `params`; on success they become current (a change `u` undoes), otherwise the old ones stay
+    /// and the reason is shown.
     fn try_apply(&mut self, params: Params) {
         if params == self.params {
             return;
         }
-        match solve(&params) {
-            Ok(bounce) => {
-                self.params = params;
-                self.series = bounce.series(SERIES_SAMPLES);
-                self.sweep = Sweep::compute(&params);
-                self.bounce = bounce;
-            }
+        let before = self.params;
+        match self.set_params(params) {
+            Ok(()) => self.history.record(before),
             Err(e) => self.refuse(e.to_string()),
         }
+    }
+
+    /// Solves `params` and makes them current with everything derived from them; on failure nothing
+    /// changes. The history is the caller's business.
+    pub(super) fn set_params(&mut self, params: Params) -> Result<(), SolveError> {
+        let bounce = solve(&params)?;
+        self.params = params;
+        self.series = bounce.series(SERIES_SAMPLES);
+        self.sweep = Sweep::compute(&params);
+        self.bounce = bounce;
+        Ok(())
     }
 
     fn refuse(&mut self, reason: String) {

@@ -143,13 +143,13 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Char('r'))],
         Action::Reset,
-        "reset the selected parameter to its default",
+        "reset the selected parameter to where it started",
         Some(("r", "reset")),
     ),
     bind(
         &[Plain(KeyCode::Char('R'))],
         Action::ResetAll,
-        "reset every parameter (the paper's Fig. 3(c))",
+        "reset every parameter to where the explorer started",
         Some(("R", "all")),
     ),
     bind(
@@ -169,6 +169,49 @@ pub const EXPLORER: &[Binding] = &[
         Action::Quit,
         "quit (Esc closes this help first)",
         Some(("q", "quit")),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('p'))],
+        Action::OpenPicker,
+        "pick a preset: the paper's cases and some what-ifs",
+        Some(("p", "presets")),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('s'))],
+        Action::StartSave,
+        "save the parameters as a scenario file (TOML)",
+        Some(("s", "save")),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('o'))],
+        Action::StartOpen,
+        "open a scenario file",
+        Some(("o", "open")),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('u'))],
+        Action::Undo,
+        "undo the last parameter change",
+        Some(("u", "undo")),
+    ),
+    bind(&[Ctrl('r')], Action::Redo, "redo what u undid", None),
+    bind(
+        &[Plain(KeyCode::Char('b'))],
+        Action::PinBaseline,
+        "pin this bounce as the dimmer baseline (again: re-pin)",
+        Some(("b", "baseline")),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('B'))],
+        Action::ClearBaseline,
+        "clear the baseline",
+        None,
+    ),
+    bind(
+        &[Plain(KeyCode::Char('x'))],
+        Action::Export,
+        "export the series (CSV) and outcome (JSON) here",
+        Some(("x", "export")),
     ),
 ];
 
@@ -195,11 +238,93 @@ pub const PROMPT: &[Binding] = &[
     bind(&[Ctrl('c')], Action::Quit, "quit", None),
 ];
 
+/// The keys of the preset picker.
+pub const PICKER: &[Binding] = &[
+    bind(
+        &[Plain(KeyCode::Up), Plain(KeyCode::Char('k'))],
+        Action::PickerUp,
+        "the preset above",
+        Some(("↑↓", "choose")),
+    ),
+    bind(
+        &[Plain(KeyCode::Down), Plain(KeyCode::Char('j'))],
+        Action::PickerDown,
+        "the preset below",
+        None,
+    ),
+    bind(
+        &[Plain(KeyCode::Enter)],
+        Action::PickerApply,
+        "apply it (u undoes)",
+        Some(("⏎", "apply")),
+    ),
+    bind(
+        &[
+            Plain(KeyCode::Esc),
+            Plain(KeyCode::Char('p')),
+            Plain(KeyCode::Char('q')),
+        ],
+        Action::PickerClose,
+        "close, changing nothing",
+        Some(("Esc", "close")),
+    ),
+    bind(&[Ctrl('c')], Action::Quit, "quit", None),
+];
+
+/// The keys of the file-name prompt (save and open).
+pub const FILE_PROMPT: &[Binding] = &[
+    bind(
+        &[Plain(KeyCode::Enter)],
+        Action::PromptSubmit,
+        "save or open (nothing typed: the name in brackets)",
+        Some(("⏎", "ok")),
+    ),
+    bind(
+        &[Plain(KeyCode::Esc)],
+        Action::PromptCancel,
+        "cancel",
+        Some(("Esc", "cancel")),
+    ),
+    bind(
+        &[Plain(KeyCode::Tab)],
+        Action::PromptComplete,
+        "complete the file name (nothing typed: take the one in brackets)",
+        Some(("Tab", "complete")),
+    ),
+    bind(
+        &[Plain(KeyCode::Backspace)],
+        Action::PromptBackspace,
+        "delete the last character",
+        None,
+    ),
+    bind(&[Ctrl('c')], Action::Quit, "quit", None),
+];
+
+/// The keys of the question whether to overwrite an existing file.
+pub const OVERWRITE: &[Binding] = &[
+    bind(
+        &[Plain(KeyCode::Char('y'))],
+        Action::ConfirmOverwrite,
+        "replace the file",
+        Some(("y", "overwrite")),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('n')), Plain(KeyCode::Esc)],
+        Action::PromptCancel,
+        "keep the file, save nothing",
+        Some(("n", "keep it")),
+    ),
+    bind(&[Ctrl('c')], Action::Quit, "quit", None),
+];
+
 /// The bindings in force in `mode`.
 pub fn bindings(mode: &Mode) -> &'static [Binding] {
     match mode {
         Mode::Editing(_) => PROMPT,
         Mode::Normal | Mode::Help => EXPLORER,
+        Mode::Picker(_) => PICKER,
+        Mode::File(_) => FILE_PROMPT,
+        Mode::Overwrite(_) => OVERWRITE,
     }
 }
 
@@ -222,6 +347,13 @@ pub fn action_for(event: &KeyEvent, mode: &Mode) -> Option<Action> {
                 .intersects(KeyModifiers::CONTROL | KeyModifiers::ALT) =>
         {
             Some(Action::EditInsert(c))
+        }
+        (None, Mode::File(_), KeyCode::Char(c))
+            if !event
+                .modifiers
+                .intersects(KeyModifiers::CONTROL | KeyModifiers::ALT) =>
+        {
+            Some(Action::PromptInsert(c))
         }
         _ => bound,
     }
@@ -276,7 +408,7 @@ mod tests {
             action_for(&press(KeyCode::Char('c'), KeyModifiers::CONTROL), &n),
             Some(Action::Quit)
         );
-        assert_eq!(action_for(&press(KeyCode::Char('x'), none), &n), None);
+        assert_eq!(action_for(&press(KeyCode::Char('z'), none), &n), None);
     }
 
     #[test]

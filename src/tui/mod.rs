@@ -7,7 +7,10 @@
 //! runs it on the real terminal.
 
 pub mod app;
+pub mod baseline;
+pub mod history;
 pub mod keys;
+pub mod scenarios;
 pub mod sweep;
 pub mod terminal;
 pub mod ui;
@@ -100,6 +103,8 @@ where
 /// How to start the explorer.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
+    /// The starting point: the defaults, or what a preset, a scenario file and flags made of them.
+    /// `r` and `R` reset to it.
     pub params: Params,
     pub marker: Marker,
     /// False to draw without colours (NO_COLOR).

@@ -7,6 +7,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
+use super::baseline;
 use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_extent};
 use crate::model::Sample;
 use crate::tui::app::App;
@@ -35,6 +36,14 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
                 .collect(),
         )
     };
+    // The pinned baseline, if any, under the current curve.
+    let faint = |value: fn(&Sample) -> f64| match &app.baseline {
+        Some(b) => {
+            let points: Vec<(f64, f64)> = b.series.iter().map(|s| (ms(s), value(s))).collect();
+            baseline::curve(&points, theme, area.width)
+        }
+        None => Vec::new(),
+    };
     let transitions: Vec<Mark> = bounce
         .phases
         .iter()
@@ -55,15 +64,20 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         zero.clone(),
         Mark::Dashed(limit, theme.limit()),
         Mark::Dashed(negative, theme.limit()),
-        path(|s| s.friction),
     ];
-    let mut displacement = vec![zero.clone(), path(|s| s.x * 1e3)];
-    let mut spin = vec![zero, path(|s| s.omega)];
+    force.extend(faint(|s| s.friction));
+    force.push(path(|s| s.friction));
+    let mut displacement = vec![zero.clone()];
+    displacement.extend(faint(|s| s.x * 1e3));
+    displacement.push(path(|s| s.x * 1e3));
+    let mut spin = vec![zero];
+    spin.extend(faint(|s| s.omega));
+    spin.push(path(|s| s.omega));
     for marks in [&mut force, &mut displacement, &mut spin] {
         marks.extend(transitions.iter().cloned());
     }
 
-    let titles = [
+    let mut titles = [
         Line::from(vec![
             Span::styled(" friction force F (N) ", theme.title()),
             Span::styled("┄ ±μN grip limit ", Style::new().fg(theme.limit())),
@@ -71,6 +85,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         Line::from(Span::styled(" cart displacement X (mm) ", theme.title())),
         Line::from(Span::styled(" ball spin ω (rad/s) ", theme.title())),
     ];
+    if app.baseline.is_some() {
+        for title in &mut titles[1..] {
+            title.push_span(baseline::legend(theme));
+        }
+    }
     let scales: Vec<Scale> = [&force, &displacement, &spin]
         .iter()
         .zip(rows)
@@ -87,7 +106,12 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         .unwrap_or(0)
         .max(x_title.len() as u16);
     let (_, data_width) = Plot::data_columns(area, label_width);
-    let x = Scale::exact(0.0, duration * 1e3, tick_budget(data_width, 6));
+    // Time runs to the end of the longer contact when a baseline is pinned.
+    let end = app
+        .baseline
+        .as_ref()
+        .map_or(duration, |b| b.bounce.setup.duration.max(duration));
+    let x = Scale::exact(0.0, end * 1e3, tick_budget(data_width, 6));
 
     let segments = bounce
         .phases

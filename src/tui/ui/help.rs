@@ -51,22 +51,38 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     };
     let mut lines = vec![Line::styled("Keys", theme.title())];
     lines.extend(rows(keys::EXPLORER, theme, key_width));
-    lines.push(Line::styled("While typing a value", theme.title()));
-    lines.extend(rows(keys::PROMPT, theme, key_width));
-    lines.push(Line::styled(
-        format!("{} {} (--{})", spec.label, spec.symbol, spec.flag),
-        theme.title(),
-    ));
-    lines.push(Line::raw(format!(" {}", spec.help)));
-    lines.push(Line::raw(format!(
-        " range {}; {units}; default {}",
-        spec.range_text(),
-        spec.show(spec.default)
-    )));
+    let mut prompt = vec![Line::styled("While typing a value", theme.title())];
+    prompt.extend(rows(keys::PROMPT, theme, key_width));
+    let notes = vec![
+        Line::styled(
+            format!("{} {} (--{})", spec.label, spec.symbol, spec.flag),
+            theme.title(),
+        ),
+        Line::raw(format!(" {}", spec.help)),
+        Line::raw(format!(
+            " range {}; {units}; default {}",
+            spec.range_text(),
+            spec.show(spec.default)
+        )),
+    ];
 
     let width = area.width.saturating_sub(2).min(100);
-    // Keys come first: on a short screen only the parameter's notes are cut.
-    let height = (lines.len() as u16 + 2).min(area.height);
+    // Keys come first; on a short screen the sections after them are left out whole, in this order (the
+    // status line shows the prompt's keys while typing).
+    let text_width = usize::from(width.saturating_sub(2)).max(1);
+    let rows_of = |lines: &[Line]| -> usize {
+        lines
+            .iter()
+            .map(|l| l.width().max(1).div_ceil(text_width))
+            .sum()
+    };
+    let room = usize::from(area.height.saturating_sub(2));
+    for section in [prompt, notes] {
+        if rows_of(&lines) + rows_of(&section) <= room {
+            lines.extend(section);
+        }
+    }
+    let height = (rows_of(&lines) as u16 + 2).min(area.height);
     let popup = area.centered(Constraint::Length(width), Constraint::Length(height));
     let block = Block::bordered()
         .title(Span::styled(" help ", theme.title()))

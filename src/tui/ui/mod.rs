@@ -13,12 +13,14 @@
 //!  status.rs: message, value prompt or key hints
 //! ```
 //!
-//! help.rs draws its overlay on top; below [`MIN_WIDTH`] x [`MIN_HEIGHT`] only a notice is drawn.
+//! help.rs draws its overlay on top, and picker.rs the preset picker; below [`MIN_WIDTH`] x [`MIN_HEIGHT`] only a notice is drawn.
 
+mod baseline;
 mod charts;
 mod help;
 mod outcome;
 mod params;
+pub mod picker;
 pub mod plot;
 mod status;
 mod sweep;
@@ -61,6 +63,9 @@ pub fn draw(frame: &mut Frame, app: &App) {
     status::render(frame, status_row, app);
     if app.mode == Mode::Help {
         help::render(frame, main, app);
+    }
+    if let Mode::Picker(_) = app.mode {
+        picker::render(frame, main, app);
     }
 }
 

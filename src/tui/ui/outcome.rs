@@ -9,6 +9,7 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 
 use crate::model::Bounce;
 use crate::tui::app::App;
+use crate::tui::baseline::signed;
 use crate::tui::ui::theme::Theme;
 
 /// Phases listed before the rest are summarised as a count.
@@ -106,6 +107,38 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         ]),
         Line::from(timeline(b, theme)),
     ];
+    // Against a pinned baseline: current minus baseline, on lines of their own when there is room, else
+    // in place of the rpm and after e_x.
+    if let Some(base) = &app.baseline {
+        let d = base.deltas(b);
+        let d_omega2 = signed(d.omega2, 1);
+        let d_ex = d.ex.map_or("n/a".to_string(), |x| signed(x, 3));
+        if wide {
+            let differs = base.differences(&app.params);
+            let differs = if differs.is_empty() {
+                "nothing yet".to_string()
+            } else {
+                differs.join(", ")
+            };
+            lines.splice(
+                4..4,
+                [
+                    Line::from(vec![
+                        label("", "Δω2 vs baseline"),
+                        Span::styled(format!("{d_omega2} rad/s"), theme.emphasis()),
+                    ]),
+                    Line::from(vec![label("", "Δe_x vs baseline"), Span::raw(d_ex)]),
+                    Line::from(vec![
+                        label("", "baseline differs"),
+                        Span::styled(format!("in {differs}"), theme.dim()),
+                    ]),
+                ],
+            );
+        } else {
+            lines[0].spans[2] = Span::raw(format!(" Δ{d_omega2}"));
+            lines[3].spans.push(Span::raw(format!(" Δ{d_ex}")));
+        }
+    }
     if wide {
         let share = |j: f64| format!("{:.1} %", 100.0 * j / e.initial);
         lines.push(Line::from(vec![

@@ -10,6 +10,7 @@ use ratatui::widgets::{Paragraph, Wrap};
 use crate::model::units;
 use crate::tui::app::{App, Mode, Tone};
 use crate::tui::keys;
+use crate::tui::ui::picker;
 
 /// What the prompt says about units: `cart mass M [kg; or e.g. 10g]`.
 pub fn prompt_label(app: &App) -> String {
@@ -45,9 +46,13 @@ pub fn height(app: &App, width: u16) -> u16 {
 pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let theme = &app.theme;
     let mut spans: Vec<Span> = Vec::new();
-    if let Mode::Editing(text) = &app.mode {
-        spans.push(Span::styled(prompt_label(app), theme.key()));
-        spans.push(Span::raw(text.clone()));
+    let prompt = match &app.mode {
+        Mode::Editing(text) => Some((prompt_label(app), text.clone())),
+        _ => picker::prompt(app),
+    };
+    if let Some((label, text)) = prompt {
+        spans.push(Span::styled(label, theme.key()));
+        spans.push(Span::raw(text));
         let cursor_x = area.x + spans.iter().map(|s| s.width() as u16).sum::<u16>();
         frame.set_cursor_position((cursor_x.min(area.right().saturating_sub(1)), area.y));
         spans.push(Span::raw("   "));

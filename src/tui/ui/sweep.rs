@@ -7,6 +7,7 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
+use super::baseline;
 use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_extent};
 use crate::model::PhaseKind;
 use crate::tui::app::App;
@@ -36,12 +37,20 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             (p.angle_deg, p.omega2, color)
         })
         .collect();
-    let marks = vec![
+    let mut marks = vec![
         Mark::Horizontal(0.0, theme.guide()),
         Mark::Vertical(angle, theme.current()),
-        Mark::Path(curve),
-        Mark::Dot(angle, omega2, theme.current()),
     ];
+    if let Some(b) = &app.baseline {
+        let points: Vec<(f64, f64)> = b
+            .sweep
+            .points
+            .iter()
+            .map(|p| (p.angle_deg, p.omega2))
+            .collect();
+        marks.extend(baseline::curve(&points, theme, area.width));
+    }
+    marks.extend([Mark::Path(curve), Mark::Dot(angle, omega2, theme.current())]);
 
     let (low, high) = y_extent(&marks);
     let rows = chart.height.saturating_sub(FRAME_ROWS);
@@ -92,13 +101,16 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     } else {
         " ω2 (rad/s) against θ1 "
     };
-    let title = Line::from(vec![
+    let mut title = Line::from(vec![
         Span::styled(name, theme.title()),
         Span::styled(
             format!("┆ θ1 {angle:.1}°: ω2 {omega2:.1} "),
             Style::new().fg(theme.current()),
         ),
     ]);
+    if app.baseline.is_some() && area.width >= 100 {
+        title.push_span(baseline::legend(theme));
+    }
     let plot = Plot {
         title,
         x,

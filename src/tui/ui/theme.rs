@@ -102,4 +102,9 @@ impl Theme {
             .fg(self.pick(Color::Red))
             .add_modifier(Modifier::BOLD)
     }
+    /// The pinned baseline's curves, under the current ones. Without colour they are drawn dotted
+    /// instead (see `ui::charts`).
+    pub fn baseline(&self) -> Color {
+        self.pick(Color::DarkGray)
+    }
 }

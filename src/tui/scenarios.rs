@@ -1,0 +1,414 @@
+//! Scenarios in the explorer: the preset picker (`p`), saving (`s`) and opening (`o`) scenario files,
+//! undo and redo (`u`, Ctrl-R), the baseline (`b`, `B`) and exporting (`x`). Every way the parameters
+//! change goes through the history, so each can be undone.
+
+use std::path::{Path, PathBuf};
+
+use crate::export;
+use crate::model::Params;
+use crate::scenario::{self, PRESETS, Scenario, ScenarioError};
+
+use super::app::{Action, App, Message, Mode, Tone};
+use super::baseline::Baseline;
+use super::history;
+
+/// The file name `s` offers when no scenario file has been opened or saved yet.
+pub const DEFAULT_SCENARIO_FILE: &str = "snapback-scenario.toml";
+
+/// Evenly spaced samples in an export (both sides of every transition are added), as `simulate` writes.
+pub const EXPORT_SAMPLES: usize = 501;
+
+/// What a file prompt is for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FileKind {
+    Save,
+    Open,
+}
+
+/// The file prompt: what it is for, the name typed so far, and the name Enter takes when none is typed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FilePrompt {
+    pub kind: FileKind,
+    pub text: String,
+    pub default: String,
+}
+
+impl App {
+    /// Applies the actions of this module (see [`App::update`]).
+    pub(super) fn update_scenarios(&mut self, action: Action) {
+        match action {
+            Action::OpenPicker => {
+                let current = PRESETS
+                    .iter()
+                    .position(|p| p.scenario().apply(Params::default()) == self.params);
+                self.mode = Mode::Picker(current.unwrap_or(0));
+            }
+            Action::PickerUp | Action::PickerDown => {
+                if let Mode::Picker(i) = &mut self.mode {
+                    let n = PRESETS.len();
+                    *i = if action == Action::PickerUp {
+                        (*i + n - 1) % n
+                    } else {
+                        (*i + 1) % n
+                    };
+                }
+            }
+            Action::PickerApply => {
+                if let Mode::Picker(i) = std::mem::replace(&mut self.mode, Mode::Normal) {
+                    self.apply_preset(i);
+                }
+            }
+            Action::PickerClose | Action::PromptCancel => {
+                if let Mode::Overwrite(path) = &self.mode {
+                    let text = format!("not saved: {} is kept as it was", path.display());
+                    self.info(text);
+                }
+                self.mode = Mode::Normal;
+            }
+            Action::StartSave => {
+                let default = self
+                    .last_file
+                    .clone()
+                    .unwrap_or_else(|| DEFAULT_SCENARIO_FILE.to_string());
+                self.mode = Mode::File(FilePrompt {
+                    kind: FileKind::Save,
+                    text: String::new(),
+                    default,
+                });
+            }
+            Action::StartOpen => {
+                self.mode = Mode::File(FilePrompt {
+                    kind: FileKind::Open,
+                    text: String::new(),
+                    default: self.last_file.clone().unwrap_or_default(),
+                });
+            }
+            Action::PromptInsert(c) => {
+                if let Mode::File(prompt) = &mut self.mode {
+                    prompt.text.push(c);
+                }
+            }
+            Action::PromptBackspace => {
+                if let Mode::File(prompt) = &mut self.mode {
+                    prompt.text.pop();
+                }
+            }
+            Action::PromptComplete => {
+                let dir = self.dir.clone();
+                if let Mode::File(prompt) = &mut self.mode {
+                    // Tab on nothing typed takes the default, to edit.
+                    prompt.text = if prompt.text.is_empty() {
+                        prompt.default.clone()
+                    } else {
+                        complete(&dir, &prompt.text)
+                    };
+                }
+            }
+            Action::PromptSubmit => {
+                if let Mode::File(prompt) = std::mem::replace(&mut self.mode, Mode::Normal) {
+                    let typed = match prompt.text.trim() {
+                        "" => prompt.default.trim(),
+                        typed => typed,
+                    };
+                    match prompt.kind {
+                        FileKind::Save => self.submit_save(typed),
+                        FileKind::Open => self.submit_open(typed),
+                    }
+                }
+            }
+            Action::ConfirmOverwrite => {
+                if let Mode::Overwrite(path) = std::mem::replace(&mut self.mode, Mode::Normal) {
+                    self.save_to(&path);
+                }
+            }
+            Action::Undo => self.walk_history(true),
+            Action::Redo => self.walk_history(false),
+            Action::PinBaseline => {
+                let replaced = self.baseline.is_some();
+                self.baseline = Some(Baseline {
+                    params: self.params,
+                    bounce: self.bounce.clone(),
+                    series: self.series.clone(),
+                    sweep: self.sweep.clone(),
+                });
+                let text = format!(
+                    "baseline {}: ω2 {:.1} rad/s, drawn dimmer; b pins again, B clears",
+                    if replaced { "replaced" } else { "pinned" },
+                    self.bounce.outcome.omega2
+                );
+                self.info(text);
+            }
+            Action::ClearBaseline => {
+                let text = if self.baseline.take().is_some() {
+                    "baseline cleared"
+                } else {
+                    "no baseline to clear (b pins one)"
+                };
+                self.info(text.to_string());
+            }
+            Action::Export => self.export(),
+            _ => {}
+        }
+    }
+
+    fn info(&mut self, text: String) {
+        self.message = Some(Message {
+            text,
+            tone: Tone::Info,
+        });
+    }
+
+    fn error(&mut self, text: String) {
+        self.message = Some(Message {
+            text,
+            tone: Tone::Error,
+        });
+    }
+
+    /// `name` as a path: relative to [`App::dir`], `~/` in the home directory, absolute as it is.
+    pub fn resolve(&self, name: &str) -> PathBuf {
+        resolve(&self.dir, name)
+    }
+
+    /// Makes `params` current as one change that can be undone; `what` says what it was. False (with
+    /// the reason shown) when the solver refuses them.
+    fn change_to(&mut self, params: Params, what: String) -> bool {
+        if params == self.params {
+            self.info(format!("{what} (the parameters were already these)"));
+            return true;
+        }
+        let before = self.params;
+        match self.set_params(params) {
+            Ok(()) => {
+                self.history.record(before);
+                self.info(what);
+                true
+            }
+            Err(e) => {
+                self.error(format!("{e} (parameters unchanged)"));
+                false
+            }
+        }
+    }
+
+    fn apply_preset(&mut self, index: usize) {
+        let Some(preset) = PRESETS.get(index) else {
+            return;
+        };
+        let scenario = preset.scenario();
+        let what = format!("preset {}: {}", preset.name, scenario.description);
+        self.change_to(scenario.apply(Params::default()), what);
+    }
+
+    fn submit_save(&mut self, typed: &str) {
+        if typed.is_empty() {
+            self.error("save: no file name given (nothing saved)".into());
+            return;
+        }
+        let name = if typed.ends_with(".toml") {
+            typed.to_string()
+        } else {
+            format!("{typed}.toml")
+        };
+        let path = self.resolve(&name);
+        self.last_file = Some(name);
+        if path.is_dir() {
+            self.error(format!("{} is a directory (nothing saved)", path.display()));
+        } else if path.exists() {
+            self.mode = Mode::Overwrite(path);
+        } else {
+            self.save_to(&path);
+        }
+    }
+
+    fn save_to(&mut self, path: &Path) {
+        let name = path
+            .file_stem()
+            .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
+        let description = format!(
+            "Saved from the snapback explorer (ω2 {:.1} rad/s)",
+            self.bounce.outcome.omega2
+        );
+        match Scenario::from_params(&name, &description, &self.params).save(path) {
+            Ok(()) => self.info(format!("saved {}", path.display())),
+            Err(e) => self.error(format!("not saved: {e}")),
+        }
+    }
+
+    fn submit_open(&mut self, typed: &str) {
+        if typed.is_empty() {
+            self.error("open: no file name given".into());
+            return;
+        }
+        // `what-if` opens what-if.toml when there is no file called what-if.
+        let mut name = typed.to_string();
+        if !self.resolve(&name).exists() && self.resolve(&format!("{name}.toml")).is_file() {
+            name.push_str(".toml");
+        }
+        match load(&self.resolve(&name), &name) {
+            Ok(scenario) => {
+                self.last_file = Some(name.clone());
+                let what = if scenario.description.is_empty() {
+                    format!("opened {name}")
+                } else {
+                    format!("opened {name}: {}", scenario.description)
+                };
+                self.change_to(scenario.apply(Params::default()), what);
+            }
+            Err(e) => self.error(format!("{e} (parameters unchanged)")),
+        }
+    }
+
+    fn walk_history(&mut self, back: bool) {
+        let (word, target) = if back {
+            ("undo", self.history.undo(self.params))
+        } else {
+            ("redo", self.history.redo(self.params))
+        };
+        let Some(target) = target else {
+            self.info(format!("{word}: nothing to {word}"));
+            return;
+        };
+        let from = self.params;
+        match self.set_params(target) {
+            Ok(()) => {
+                let left = if back {
+                    self.history.undo_len()
+                } else {
+                    self.history.redo_len()
+                };
+                let text = format!(
+                    "{word}: {} ({left} more to {word})",
+                    history::describe(&from, &target)
+                );
+                self.info(text);
+            }
+            Err(e) => {
+                // Parameters that solved once solve again; put the history back all the same (the
+                // opposite walk from `target` restores both lists).
+                if back {
+                    self.history.redo(target);
+                } else {
+                    self.history.undo(target);
+                }
+                self.error(format!("{word}: {e}"));
+            }
+        }
+    }
+
+    /// Writes `snapback-N.csv` (the time series) and `snapback-N.json` (the outcome) into [`App::dir`],
+    /// N the first number that names neither file yet.
+    fn export(&mut self) {
+        let Some(n) = (1..10_000).find(|n| {
+            let (csv, json) = export_paths(&self.dir, *n);
+            !csv.exists() && !json.exists()
+        }) else {
+            self.error(format!(
+                "not exported: {} already holds 10000 exports",
+                self.dir.display()
+            ));
+            return;
+        };
+        let (csv, json) = export_paths(&self.dir, n);
+        let series = export::csv::series(&self.bounce.series(EXPORT_SAMPLES));
+        let outcome = export::json::bounce(&self.bounce);
+        let written = scenario::write_atomically(&csv, series.as_bytes())
+            .map_err(|e| format!("{}: {e}", csv.display()))
+            .and_then(|()| {
+                scenario::write_atomically(&json, outcome.as_bytes())
+                    .map_err(|e| format!("{}: {e}", json.display()))
+            });
+        match written {
+            Ok(()) => self.info(format!(
+                "exported the series to {} and the outcome to {}",
+                csv.display(),
+                json.display()
+            )),
+            Err(e) => self.error(format!("not exported: {e}")),
+        }
+    }
+}
+
+/// The pair of files export number `n` writes.
+pub fn export_paths(dir: &Path, n: u32) -> (PathBuf, PathBuf) {
+    (
+        dir.join(format!("snapback-{n}.csv")),
+        dir.join(format!("snapback-{n}.json")),
+    )
+}
+
+/// A scenario file, with errors naming it as `name` (the name typed, not the full path).
+fn load(path: &Path, name: &str) -> Result<Scenario, ScenarioError> {
+    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+        path: name.to_string(),
+        source,
+    })?;
+    Scenario::parse(&text, name)
+}
+
+fn resolve(dir: &Path, name: &str) -> PathBuf {
+    if let Some(rest) = name.strip_prefix("~/")
+        && let Some(home) = std::env::var_os("HOME")
+    {
+        return PathBuf::from(home).join(rest);
+    }
+    dir.join(name)
+}
+
+/// `typed` completed as far as the files in its directory agree: the one match, with `/` after a
+/// directory, or the longest prefix all matches share. Unchanged when nothing matches.
+fn complete(dir: &Path, typed: &str) -> String {
+    let (folder, prefix) = match typed.rfind('/') {
+        Some(i) => (&typed[..=i], &typed[i + 1..]),
+        None => ("", typed),
+    };
+    let Ok(entries) = std::fs::read_dir(resolve(dir, if folder.is_empty() { "." } else { folder }))
+    else {
+        return typed.to_string();
+    };
+    let mut matches: Vec<(String, bool)> = entries
+        .filter_map(Result::ok)
+        .filter_map(|e| {
+            let name = e.file_name().to_string_lossy().into_owned();
+            let hidden = name.starts_with('.') && !prefix.starts_with('.');
+            (name.starts_with(prefix) && !hidden)
+                .then(|| (name, e.file_type().is_ok_and(|t| t.is_dir())))
+        })
+        .collect();
+    matches.sort();
+    match matches.as_slice() {
+        [] => typed.to_string(),
+        [(name, is_dir)] => format!("{folder}{name}{}", if *is_dir { "/" } else { "" }),
+        [(first, _), rest @ ..] => {
+            let mut shared = first.clone();
+            for (name, _) in rest {
+                let n = shared
+                    .chars()
+                    .zip(name.chars())
+                    .take_while(|(a, b)| a == b)
+                    .count();
+                shared = shared.chars().take(n).collect();
+            }
+            format!("{folder}{shared}")
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn completes_to_the_shared_prefix_then_the_one_match() {
+        let dir = std::env::temp_dir().join(format!("snapback-complete-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("sub")).unwrap();
+        for f in ["what-if.toml", "what-else.toml", "other.toml"] {
+            std::fs::write(dir.join(f), "").unwrap();
+        }
+        assert_eq!(complete(&dir, "wh"), "what-");
+        assert_eq!(complete(&dir, "what-i"), "what-if.toml");
+        assert_eq!(complete(&dir, "su"), "sub/");
+        assert_eq!(complete(&dir, "zzz"), "zzz");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}

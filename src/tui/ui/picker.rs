@@ -1,0 +1,110 @@
+//! The preset picker overlay (`p`): every preset with its description, the highlighted one's full
+//! description and source below; and what the status line asks while a file name is typed (`s`, `o`) or
+//! an overwrite is to be confirmed.
+
+use ratatui::Frame;
+use ratatui::layout::{Constraint, Rect};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
+
+use crate::scenario::PRESETS;
+use crate::tui::app::{App, Mode};
+use crate::tui::scenarios::FileKind;
+
+/// `text` cut to `width` characters, with `…` when cut.
+fn fit(text: &str, width: usize) -> String {
+    if text.chars().count() <= width {
+        text.to_string()
+    } else {
+        let mut cut: String = text.chars().take(width.saturating_sub(1)).collect();
+        cut.push('…');
+        cut
+    }
+}
+
+pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+    let Mode::Picker(selected) = app.mode else {
+        return;
+    };
+    let theme = &app.theme;
+    let width = area.width.saturating_sub(2).min(110);
+    let inner = usize::from(width.saturating_sub(2));
+    let name_width = PRESETS.iter().map(|p| p.name.len()).max().unwrap_or(0);
+    let scenarios: Vec<_> = PRESETS.iter().map(|p| p.scenario()).collect();
+    let mut lines: Vec<Line> = PRESETS
+        .iter()
+        .zip(&scenarios)
+        .enumerate()
+        .map(|(i, (preset, scenario))| {
+            let row = fit(
+                &format!(" {:<name_width$}  {}", preset.name, scenario.description),
+                inner,
+            );
+            if i == selected {
+                Line::styled(format!("{row:<inner$}"), theme.selected())
+            } else {
+                Line::from(vec![
+                    Span::styled(format!(" {:<name_width$}", preset.name), theme.key()),
+                    Span::raw(row.chars().skip(name_width + 1).collect::<String>()),
+                ])
+            }
+        })
+        .collect();
+    if let Some(chosen) = scenarios.get(selected) {
+        lines.push(Line::raw(""));
+        lines.push(Line::raw(chosen.description.clone()));
+        if !chosen.source.is_empty() {
+            lines.push(Line::styled(
+                format!("source: {}", chosen.source),
+                theme.dim(),
+            ));
+        }
+    }
+    // Rows the wrapped lines take.
+    let rows: u16 = lines
+        .iter()
+        .map(|l| l.width().max(1).div_ceil(inner.max(1)) as u16)
+        .sum();
+    let height = (rows + 2).min(area.height);
+    let popup = area.centered(Constraint::Length(width), Constraint::Length(height));
+    let block = Block::bordered()
+        .title(Span::styled(" presets ", theme.title()))
+        .title_bottom(Line::from(" ↑↓ choose · ⏎ apply (u undoes) · Esc close ").right_aligned());
+    frame.render_widget(Clear, popup);
+    frame.render_widget(
+        Paragraph::new(lines)
+            .block(block)
+            .wrap(Wrap { trim: false }),
+        popup,
+    );
+}
+
+/// What the status line asks, and the text typed so far, while a file prompt or question is open.
+pub fn prompt(app: &App) -> Option<(String, String)> {
+    match &app.mode {
+        Mode::File(prompt) => {
+            let what = match prompt.kind {
+                FileKind::Save => "save the parameters as",
+                FileKind::Open => "open scenario file",
+            };
+            let label = if prompt.default.is_empty() {
+                format!("{what}: ")
+            } else {
+                format!("{what} [{}]: ", prompt.default)
+            };
+            Some((label, prompt.text.clone()))
+        }
+        // The file's name only, so the question fits on one line; the saved message gives the full path.
+        Mode::Overwrite(path) => Some((
+            format!(
+                "{} exists; overwrite it? ",
+                path.file_name().map_or_else(
+                    || path.display().to_string(),
+                    |n| n.to_string_lossy().into_owned()
+                )
+            ),
+            String::new(),
+        )),
+        _ => None,
+    }
+}
