@@ -1,10 +1,15 @@
 //! The explorer's state and the one place it changes: [`App::update`] applies an [`Action`], re-solves the
-//! bounce and recomputes the derived curves. Drawing only reads an `App`.
+//! bounce and recomputes the derived curves; [`App::advance`] moves the time cursor while playing. Drawing
+//! only reads an `App`.
+
+use std::time::Duration;
 
 use crate::model::params::{PARAMS, ParamSpec};
 use crate::model::{Bounce, Params, Sample, SolveError, solve};
 
+use super::playback::{self, Speed};
 use super::sweep::Sweep;
+use super::travel::Travel;
 use super::ui::theme::Theme;
 
 /// Evenly spaced samples of the time series behind the contact charts (transitions are added by the core).
@@ -37,8 +42,9 @@ impl View {
     }
 }
 
-/// Something the user asked for; [`super::keys`] turns key presses into these.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Something the user asked for; [`super::keys`] turns key presses into these (and a mouse click on a
+/// chart into [`Action::CursorTo`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Action {
     SelectPrevious,
     SelectNext,
@@ -60,6 +66,26 @@ pub enum Action {
     /// Reset every parameter to its default.
     ResetAll,
     NextView,
+    /// Move the time cursor to the previous or next multiple of 0.05 ms.
+    CursorStep {
+        forward: bool,
+    },
+    /// Move the time cursor to the previous or next phase transition (or to 0 or T past the last one).
+    CursorPhase {
+        forward: bool,
+    },
+    /// Move the time cursor to the start of the contact.
+    CursorHome,
+    /// Move the time cursor to the end of the contact, T.
+    CursorEnd,
+    /// Move the time cursor to this time, s (clamped to the contact).
+    CursorTo(f64),
+    /// Play the bounce in slow motion from the cursor, or pause; from the end it starts again at 0.
+    TogglePlay,
+    /// Double or halve the playback speed.
+    ChangeSpeed {
+        faster: bool,
+    },
     ToggleHelp,
     CloseHelp,
     Quit,
@@ -107,6 +133,13 @@ pub struct App {
     pub series: Vec<Sample>,
     /// Rebound spin against incidence angle, for the sweep view.
     pub sweep: Sweep,
+    /// The time cursor, s, in `[0, T]`: the charts' vertical line, their readouts and the schematic.
+    pub cursor: f64,
+    /// True while the bounce plays in slow motion.
+    pub playing: bool,
+    pub speed: Speed,
+    /// The ball's travel and rotation (numerical integrals of the exact solution), for the schematic.
+    pub travel: Travel,
 }
 
 impl App {
@@ -123,8 +156,52 @@ impl App {
             theme,
             series: bounce.series(SERIES_SAMPLES),
             sweep: Sweep::compute(&params),
+            cursor: 0.0,
+            playing: false,
+            speed: Speed::default(),
+            travel: Travel::compute(&bounce),
             bounce,
         })
+    }
+
+    /// The contact time T, s.
+    pub fn duration(&self) -> f64 {
+        self.bounce.setup.duration
+    }
+
+    /// The core's sample at the cursor; at a transition, that of the phase that begins there.
+    pub fn cursor_sample(&self) -> Sample {
+        self.bounce.sample_at(self.cursor)
+    }
+
+    /// When the cursor is exactly on a transition, the sample at the end of the phase before it (the
+    /// friction force jumps there; every other value is continuous).
+    pub fn cursor_before(&self) -> Option<Sample> {
+        let index = self.bounce.phase_index_at(self.cursor);
+        (index > 0 && self.bounce.phases[index].start == self.cursor)
+            .then(|| self.bounce.sample_in(index - 1, self.cursor))
+    }
+
+    /// The transitions the cursor can jump to: 0, the start of every phase after the first, and T.
+    fn stops(&self) -> impl Iterator<Item = f64> + '_ {
+        std::iter::once(0.0)
+            .chain(self.bounce.phases.iter().skip(1).map(|p| p.start))
+            .chain(std::iter::once(self.duration()))
+    }
+
+    /// Moves the cursor on by `elapsed` wall time at the playback speed, stopping at T. True if anything
+    /// changed (only while playing).
+    pub fn advance(&mut self, elapsed: Duration) -> bool {
+        if !self.playing {
+            return false;
+        }
+        let duration = self.duration();
+        self.cursor += elapsed.as_secs_f64() * self.speed.rate();
+        if self.cursor >= duration {
+            self.cursor = duration;
+            self.playing = false;
+        }
+        true
     }
 
     /// The spec of the highlighted parameter.
@@ -162,6 +239,42 @@ impl App {
             }
             Action::ResetAll => self.try_apply(Params::default()),
             Action::NextView => self.view = self.view.next(),
+            Action::CursorStep { forward } => {
+                self.cursor = playback::step(self.cursor, forward, self.duration());
+            }
+            Action::CursorPhase { forward } => {
+                let t = self.cursor;
+                let stop = if forward {
+                    self.stops().find(|&s| s > t)
+                } else {
+                    self.stops().filter(|&s| s < t).last()
+                };
+                if let Some(stop) = stop {
+                    self.cursor = stop;
+                }
+            }
+            Action::CursorHome => self.cursor = 0.0,
+            Action::CursorEnd => self.cursor = self.duration(),
+            Action::CursorTo(t) => self.cursor = t.clamp(0.0, self.duration()),
+            Action::TogglePlay => {
+                if self.playing {
+                    self.playing = false;
+                } else {
+                    if self.cursor >= self.duration() {
+                        self.cursor = 0.0;
+                    }
+                    self.playing = true;
+                }
+            }
+            Action::ChangeSpeed { faster } => {
+                if !self.speed.change(faster) {
+                    let end = if faster { "fastest" } else { "slowest" };
+                    self.message = Some(Message {
+                        text: format!("playback is at its {end}: {}", self.speed.label()),
+                        tone: Tone::Info,
+                    });
+                }
+            }
             Action::ToggleHelp => {
                 self.mode = if self.mode == Mode::Help {
                     Mode::Normal
@@ -217,9 +330,15 @@ impl App {
         }
         match solve(&params) {
             Ok(bounce) => {
+                // The cursor keeps its time if T is unchanged, else its fraction of T; playback goes on.
+                let (old, new) = (self.duration(), bounce.setup.duration);
+                if new != old {
+                    self.cursor = (self.cursor / old * new).clamp(0.0, new);
+                }
                 self.params = params;
                 self.series = bounce.series(SERIES_SAMPLES);
                 self.sweep = Sweep::compute(&params);
+                self.travel = Travel::compute(&bounce);
                 self.bounce = bounce;
             }
             Err(e) => self.refuse(e.to_string()),

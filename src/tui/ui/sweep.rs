@@ -101,6 +101,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     ]);
     let plot = Plot {
         title,
+        readout: None,
         x,
         y,
         x_title,
