@@ -133,6 +133,8 @@ pub struct App {
     pub series: Vec<Sample>,
     /// Rebound spin against incidence angle, for the sweep view.
     pub sweep: Sweep,
+    /// The same for the comparison incident spin ([`Sweep::comparison_spin`]).
+    pub sweep_comparison: Sweep,
     /// The time cursor, s, in `[0, T]`: the charts' vertical line, their readouts and the schematic.
     pub cursor: f64,
     /// True while the bounce plays in slow motion.
@@ -156,6 +158,7 @@ impl App {
             theme,
             series: bounce.series(SERIES_SAMPLES),
             sweep: Sweep::compute(&params),
+            sweep_comparison: Sweep::comparison(&params),
             cursor: 0.0,
             playing: false,
             speed: Speed::default(),
@@ -335,9 +338,17 @@ impl App {
                 if new != old {
                     self.cursor = (self.cursor / old * new).clamp(0.0, new);
                 }
+                // The sweeps do not depend on the angle: stepping it needs no new sweep.
+                let angle_free = |p: &Params| Params {
+                    angle_deg: 0.0,
+                    ..*p
+                };
+                if angle_free(&params) != angle_free(&self.params) {
+                    self.sweep = Sweep::compute(&params);
+                    self.sweep_comparison = Sweep::comparison(&params);
+                }
                 self.params = params;
                 self.series = bounce.series(SERIES_SAMPLES);
-                self.sweep = Sweep::compute(&params);
                 self.travel = Travel::compute(&bounce);
                 self.bounce = bounce;
             }

@@ -54,6 +54,11 @@ impl Theme {
         self.pick(Color::Magenta)
     }
 
+    /// The comparison curve (the other incident spin) in the sweep view.
+    pub fn comparison(&self) -> Color {
+        self.pick(Color::Magenta)
+    }
+
     /// The ball and the cart in the schematic: the terminal's own colour.
     pub fn body(&self) -> Color {
         Color::Reset
