@@ -43,6 +43,7 @@ fn view_name(view: View) -> &'static str {
     match view {
         View::Contact => "contact",
         View::Sweep => "sweep",
+        View::Heatmap => "heatmap",
     }
 }
 

@@ -344,7 +344,10 @@ fn tab_shows_the_sweep_with_the_current_angle() {
         );
         assert!(screen.contains("slides"), "{screen}");
     }
-    let (app, _) = explore(80, 24, vec![key(KeyCode::Tab), key(KeyCode::Tab)]);
+    // Contact, sweep, heatmap, and round again.
+    let (app, _) = explore(80, 24, vec![key(KeyCode::Tab); 2]);
+    assert_eq!(app.view, View::Heatmap);
+    let (app, _) = explore(80, 24, vec![key(KeyCode::Tab); 3]);
     assert_eq!(app.view, View::Contact);
 }
 

@@ -7,6 +7,7 @@ use std::time::Duration;
 use crate::model::params::{PARAMS, ParamSpec};
 use crate::model::{Bounce, Params, Sample, SolveError, solve};
 
+use super::heatmap::Heatmap;
 use super::playback::{self, Speed};
 use super::sweep::Sweep;
 use super::travel::Travel;
@@ -22,10 +23,12 @@ pub enum View {
     Contact,
     /// Rebound spin against incidence angle for the current parameters (the paper's Fig. 2).
     Sweep,
+    /// Rebound spin over cart mass and spring stiffness, computed off the UI thread.
+    Heatmap,
 }
 
 impl View {
-    const ALL: [View; 2] = [View::Contact, View::Sweep];
+    const ALL: [View; 3] = [View::Contact, View::Sweep, View::Heatmap];
 
     /// The next view in the Tab order.
     pub fn next(self) -> View {
@@ -38,6 +41,7 @@ impl View {
         match self {
             View::Contact => "contact",
             View::Sweep => "ω2 vs θ1",
+            View::Heatmap => "ω2 over M, k",
         }
     }
 }
@@ -116,7 +120,7 @@ pub struct Message {
 }
 
 /// Everything the explorer shows.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct App {
     pub params: Params,
     /// Index into [`PARAMS`] of the highlighted parameter.
@@ -142,6 +146,8 @@ pub struct App {
     pub speed: Speed,
     /// The ball's travel and rotation (numerical integrals of the exact solution), for the schematic.
     pub travel: Travel,
+    /// omega2 over cart mass and stiffness, for the heatmap view; computed when that view is shown.
+    pub heatmap: Heatmap,
 }
 
 impl App {
@@ -163,8 +169,26 @@ impl App {
             playing: false,
             speed: Speed::default(),
             travel: Travel::compute(&bounce),
+            heatmap: Heatmap::default(),
             bounce,
         })
+    }
+
+    /// Takes the heatmap rows that have arrived; true if the map changed.
+    pub fn poll_heatmap(&mut self) -> bool {
+        self.heatmap.poll()
+    }
+
+    /// True while the heatmap is being computed: the event loop then wakes now and then to collect rows.
+    pub fn heatmap_pending(&self) -> bool {
+        self.heatmap.pending()
+    }
+
+    /// Asks for the heatmap of the current parameters if it is on screen.
+    fn refresh_heatmap(&mut self) {
+        if self.view == View::Heatmap {
+            self.heatmap.request(&self.params);
+        }
     }
 
     /// The contact time T, s.
@@ -241,7 +265,10 @@ impl App {
                 self.try_apply(params);
             }
             Action::ResetAll => self.try_apply(Params::default()),
-            Action::NextView => self.view = self.view.next(),
+            Action::NextView => {
+                self.view = self.view.next();
+                self.refresh_heatmap();
+            }
             Action::CursorStep { forward } => {
                 self.cursor = playback::step(self.cursor, forward, self.duration());
             }
@@ -348,6 +375,7 @@ impl App {
                     self.sweep_comparison = Sweep::comparison(&params);
                 }
                 self.params = params;
+                self.refresh_heatmap();
                 self.series = bounce.series(SERIES_SAMPLES);
                 self.travel = Travel::compute(&bounce);
                 self.bounce = bounce;

@@ -186,7 +186,7 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Tab)],
         Action::NextView,
-        "next view: contact charts, ω2 against θ1 (Fig. 2)",
+        "next view: contact, ω2 against θ1 (Fig. 2), ω2 map",
         hint("Tab", "view"),
     ),
     bind(

@@ -8,6 +8,7 @@
 //! on the real terminal.
 
 pub mod app;
+pub mod heatmap;
 pub mod keys;
 pub mod playback;
 pub mod sweep;
@@ -129,7 +130,8 @@ fn mouse_action(mouse: &MouseEvent, screen: Rect, app: &App) -> Option<Action> {
 
 /// The event loop: draw, then for each input that matters update and draw again, until the app quits or
 /// the inputs end. While the bounce plays, the loop asks for a tick every [`playback::FRAME`] and draws
-/// each; paused, nothing is drawn between events.
+/// each; while the heatmap is computed on its worker thread, it ticks as often to draw the rows that have
+/// arrived; otherwise nothing is drawn between events.
 pub fn run<B, E>(terminal: &mut Terminal<B>, app: &mut App, events: &mut E) -> io::Result<()>
 where
     B: Backend + FrameSync,
@@ -138,12 +140,16 @@ where
 {
     draw(terminal, app)?;
     while !app.quit {
-        let frame = app.playing.then_some(playback::FRAME);
+        // A frame's wait while playing, or while the heatmap fills in (to collect its rows); else none.
+        let frame = (app.playing || app.heatmap_pending()).then_some(playback::FRAME);
         let Some(input) = events.next_input(frame)? else {
             break;
         };
         let redraw = match input {
-            Input::Tick(elapsed) => app.advance(elapsed),
+            Input::Tick(elapsed) => {
+                let moved = app.advance(elapsed);
+                app.poll_heatmap() || moved
+            }
             Input::Event(Event::Key(key)) => match keys::action_for(&key, &app.mode) {
                 Some(action) => {
                     app.update(action);

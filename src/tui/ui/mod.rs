@@ -7,7 +7,8 @@
 //! │ …   (every parameter)       │ 100┤    ⣀⡠⠤⠒⠉ ┃
 //! └─────────────────────────────┘   0┤⠤⠒⠉      ┃   charts.rs: F, X and ω over the
 //! ┌ outcome ────────────────────┐    └┬────┬────┬───   contact with the time cursor, or
-//! │ ω2, v_x2, θ2, e_x, phases,  │ t (ms)   1    2      sweep.rs: ω2 against θ1
+//! │ ω2, v_x2, θ2, e_x, phases,  │ t (ms)   1    2      sweep.rs: ω2 against θ1, or
+//! │                             │                      heatmap.rs: ω2 over M and k
 //! │ energy lost to friction     │─ X (mm) ──────────────────── X 4.213 mm  V 1.234 m/s
 //! └─────────────────────────────┘ …
 //! ┌ t 1.320 ms · grip ──────────┐
@@ -21,6 +22,7 @@
 //! help.rs draws its overlay on top; below [`MIN_WIDTH`] x [`MIN_HEIGHT`] only a notice is drawn.
 
 mod charts;
+mod heatmap;
 mod help;
 mod outcome;
 mod params;
@@ -118,6 +120,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
     match app.view {
         View::Contact => charts::render(frame, regions.view, app),
         View::Sweep => sweep::render(frame, regions.view, app),
+        View::Heatmap => heatmap::render(frame, regions.view, app),
     }
     status::render(frame, regions.status, app, regions.schematic.is_some());
     if app.mode == Mode::Help {
