@@ -233,9 +233,11 @@ mod tests {
 
     #[test]
     fn stale_rows_are_dropped() {
-        let mut map = Heatmap::default();
-        map.generation = 3;
-        map.rows = vec![None; STIFFNESSES];
+        let mut map = Heatmap {
+            generation: 3,
+            rows: vec![None; STIFFNESSES],
+            ..Heatmap::default()
+        };
         let row = |generation| Row {
             generation,
             index: 2,
