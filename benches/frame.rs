@@ -1,5 +1,8 @@
-//! Keystroke to frame: one key press (stepping the angle), the re-solve, the Fig. 2 sweep over 180 angles
-//! and a full frame drawn into ratatui's TestBackend at 160 x 48. Target: a median of at most 5 ms.
+//! Keystroke to frame: one key press (stepping the incident spin, the worst case: the re-solve and both
+//! Fig. 2 sweeps over 180 angles, for the current and the comparison spin), the ball's travel integrals and
+//! a full frame, schematic included, drawn into ratatui's TestBackend at 160 x 48. Target: a median of at
+//! most 5 ms. Also one frame of playback: a clock tick that moves the time
+//! cursor, and the frame.
 
 use std::hint::black_box;
 
@@ -9,7 +12,7 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use snapback::model::Params;
 use snapback::tui::ui::theme::Theme;
-use snapback::tui::{App, View, draw, keys};
+use snapback::tui::{Action, App, View, draw, keys, playback};
 
 fn keystroke_to_frame(c: &mut Criterion) {
     let right = KeyEvent::new(KeyCode::Right, KeyModifiers::NONE);
@@ -18,10 +21,13 @@ fn keystroke_to_frame(c: &mut Criterion) {
         let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
         let mut app = App::new(Params::default(), Theme::default()).unwrap();
         app.view = view;
+        // Select the incident spin: stepping it changes every curve (the angle would leave the sweeps be).
+        app.update(Action::SelectNext);
+        app.update(Action::SelectNext);
         let mut up = true;
         c.bench_function(&format!("frame/{}", view_name(view)), |b| {
             b.iter(|| {
-                // Alternate Right and Left so every press changes the angle (60 <-> 61 degrees).
+                // Alternate Right and Left so every press changes the spin (-100 <-> -90 rad/s).
                 let key = if up { &right } else { &left };
                 up = !up;
                 let action = keys::action_for(black_box(key), &app.mode).unwrap();
@@ -37,8 +43,25 @@ fn view_name(view: View) -> &'static str {
     match view {
         View::Contact => "contact",
         View::Sweep => "sweep",
+        View::Heatmap => "heatmap",
     }
 }
 
-criterion_group!(benches, keystroke_to_frame);
+fn playback_frame(c: &mut Criterion) {
+    let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
+    let mut app = App::new(Params::default(), Theme::default()).unwrap();
+    c.bench_function("frame/playback", |b| {
+        b.iter(|| {
+            if !app.playing {
+                app.update(Action::TogglePlay);
+            }
+            app.advance(black_box(playback::FRAME * 4));
+            draw(&mut terminal, &app).unwrap();
+            black_box(terminal.backend().buffer().area);
+        })
+    });
+    assert!(app.cursor > 0.0);
+}
+
+criterion_group!(benches, keystroke_to_frame, playback_frame);
 criterion_main!(benches);

@@ -1,5 +1,8 @@
 //! The explorer's state and the one place it changes: [`App::update`] applies an [`Action`], re-solves the
-//! bounce and recomputes the derived curves. Drawing only reads an `App`.
+//! bounce and recomputes the derived curves; [`App::advance`] moves the time cursor while playing. Drawing
+//! only reads an `App`.
+
+use std::time::Duration;
 
 use std::path::PathBuf;
 
@@ -7,9 +10,12 @@ use crate::model::params::{PARAMS, ParamSpec};
 use crate::model::{Bounce, Params, Sample, SolveError, solve};
 
 use super::baseline::Baseline;
+use super::heatmap::Heatmap;
 use super::history::History;
+use super::playback::{self, Speed};
 use super::scenarios::FilePrompt;
 use super::sweep::Sweep;
+use super::travel::Travel;
 use super::ui::theme::Theme;
 
 /// Evenly spaced samples of the time series behind the contact charts (transitions are added by the core).
@@ -22,10 +28,12 @@ pub enum View {
     Contact,
     /// Rebound spin against incidence angle for the current parameters (the paper's Fig. 2).
     Sweep,
+    /// Rebound spin over cart mass and spring stiffness, computed off the UI thread.
+    Heatmap,
 }
 
 impl View {
-    const ALL: [View; 2] = [View::Contact, View::Sweep];
+    const ALL: [View; 3] = [View::Contact, View::Sweep, View::Heatmap];
 
     /// The next view in the Tab order.
     pub fn next(self) -> View {
@@ -38,12 +46,14 @@ impl View {
         match self {
             View::Contact => "contact",
             View::Sweep => "ω2 vs θ1",
+            View::Heatmap => "ω2 over M, k",
         }
     }
 }
 
-/// Something the user asked for; [`super::keys`] turns key presses into these.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Something the user asked for; [`super::keys`] turns key presses into these (and a mouse click on a
+/// chart into [`Action::CursorTo`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Action {
     SelectPrevious,
     SelectNext,
@@ -65,6 +75,26 @@ pub enum Action {
     /// Reset every parameter to its default.
     ResetAll,
     NextView,
+    /// Move the time cursor to the previous or next multiple of 0.05 ms.
+    CursorStep {
+        forward: bool,
+    },
+    /// Move the time cursor to the previous or next phase transition (or to 0 or T past the last one).
+    CursorPhase {
+        forward: bool,
+    },
+    /// Move the time cursor to the start of the contact.
+    CursorHome,
+    /// Move the time cursor to the end of the contact, T.
+    CursorEnd,
+    /// Move the time cursor to this time, s (clamped to the contact).
+    CursorTo(f64),
+    /// Play the bounce in slow motion from the cursor, or pause; from the end it starts again at 0.
+    TogglePlay,
+    /// Double or halve the playback speed.
+    ChangeSpeed {
+        faster: bool,
+    },
     ToggleHelp,
     CloseHelp,
     Quit,
@@ -128,7 +158,7 @@ pub struct Message {
 }
 
 /// Everything the explorer shows.
-#[derive(Clone, Debug)]
+#[derive(Debug)]
 pub struct App {
     pub params: Params,
     /// Index into [`PARAMS`] of the highlighted parameter.
@@ -145,6 +175,8 @@ pub struct App {
     pub series: Vec<Sample>,
     /// Rebound spin against incidence angle, for the sweep view.
     pub sweep: Sweep,
+    /// The same for the comparison incident spin ([`Sweep::comparison_spin`]).
+    pub sweep_comparison: Sweep,
     /// Where the explorer started (R goes back here): the defaults, or a preset, scenario or flags.
     pub start: Params,
     /// Parameter changes that can be undone and redone.
@@ -155,6 +187,15 @@ pub struct App {
     pub dir: PathBuf,
     /// The scenario file last opened or saved, as typed, offered by the next prompt.
     pub last_file: Option<String>,
+    /// The time cursor, s, in `[0, T]`: the charts' vertical line, their readouts and the schematic.
+    pub cursor: f64,
+    /// True while the bounce plays in slow motion.
+    pub playing: bool,
+    pub speed: Speed,
+    /// The ball's travel and rotation (numerical integrals of the exact solution), for the schematic.
+    pub travel: Travel,
+    /// omega2 over cart mass and stiffness, for the heatmap view; computed when that view is shown.
+    pub heatmap: Heatmap,
 }
 
 impl App {
@@ -171,6 +212,12 @@ impl App {
             theme,
             series: bounce.series(SERIES_SAMPLES),
             sweep: Sweep::compute(&params),
+            sweep_comparison: Sweep::comparison(&params),
+            cursor: 0.0,
+            playing: false,
+            speed: Speed::default(),
+            travel: Travel::compute(&bounce),
+            heatmap: Heatmap::default(),
             bounce,
             start: params,
             history: History::default(),
@@ -178,6 +225,63 @@ impl App {
             dir: std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
             last_file: None,
         })
+    }
+
+    /// Takes the heatmap rows that have arrived; true if the map changed.
+    pub fn poll_heatmap(&mut self) -> bool {
+        self.heatmap.poll()
+    }
+
+    /// True while the heatmap is being computed: the event loop then wakes now and then to collect rows.
+    pub fn heatmap_pending(&self) -> bool {
+        self.heatmap.pending()
+    }
+
+    /// Asks for the heatmap of the current parameters if it is on screen.
+    fn refresh_heatmap(&mut self) {
+        if self.view == View::Heatmap {
+            self.heatmap.request(&self.params);
+        }
+    }
+
+    /// The contact time T, s.
+    pub fn duration(&self) -> f64 {
+        self.bounce.setup.duration
+    }
+
+    /// The core's sample at the cursor; at a transition, that of the phase that begins there.
+    pub fn cursor_sample(&self) -> Sample {
+        self.bounce.sample_at(self.cursor)
+    }
+
+    /// When the cursor is exactly on a transition, the sample at the end of the phase before it (the
+    /// friction force jumps there; every other value is continuous).
+    pub fn cursor_before(&self) -> Option<Sample> {
+        let index = self.bounce.phase_index_at(self.cursor);
+        (index > 0 && self.bounce.phases[index].start == self.cursor)
+            .then(|| self.bounce.sample_in(index - 1, self.cursor))
+    }
+
+    /// The transitions the cursor can jump to: 0, the start of every phase after the first, and T.
+    fn stops(&self) -> impl Iterator<Item = f64> + '_ {
+        std::iter::once(0.0)
+            .chain(self.bounce.phases.iter().skip(1).map(|p| p.start))
+            .chain(std::iter::once(self.duration()))
+    }
+
+    /// Moves the cursor on by `elapsed` wall time at the playback speed, stopping at T. True if anything
+    /// changed (only while playing).
+    pub fn advance(&mut self, elapsed: Duration) -> bool {
+        if !self.playing {
+            return false;
+        }
+        let duration = self.duration();
+        self.cursor += elapsed.as_secs_f64() * self.speed.rate();
+        if self.cursor >= duration {
+            self.cursor = duration;
+            self.playing = false;
+        }
+        true
     }
 
     /// The spec of the highlighted parameter.
@@ -214,7 +318,46 @@ impl App {
                 self.try_apply(params);
             }
             Action::ResetAll => self.try_apply(self.start),
-            Action::NextView => self.view = self.view.next(),
+            Action::NextView => {
+                self.view = self.view.next();
+                self.refresh_heatmap();
+            }
+            Action::CursorStep { forward } => {
+                self.cursor = playback::step(self.cursor, forward, self.duration());
+            }
+            Action::CursorPhase { forward } => {
+                let t = self.cursor;
+                let stop = if forward {
+                    self.stops().find(|&s| s > t)
+                } else {
+                    self.stops().filter(|&s| s < t).last()
+                };
+                if let Some(stop) = stop {
+                    self.cursor = stop;
+                }
+            }
+            Action::CursorHome => self.cursor = 0.0,
+            Action::CursorEnd => self.cursor = self.duration(),
+            Action::CursorTo(t) => self.cursor = t.clamp(0.0, self.duration()),
+            Action::TogglePlay => {
+                if self.playing {
+                    self.playing = false;
+                } else {
+                    if self.cursor >= self.duration() {
+                        self.cursor = 0.0;
+                    }
+                    self.playing = true;
+                }
+            }
+            Action::ChangeSpeed { faster } => {
+                if !self.speed.change(faster) {
+                    let end = if faster { "fastest" } else { "slowest" };
+                    self.message = Some(Message {
+                        text: format!("playback is at its {end}: {}", self.speed.label()),
+                        tone: Tone::Info,
+                    });
+                }
+            }
             Action::ToggleHelp => {
                 self.mode = if self.mode == Mode::Help {
                     Mode::Normal
@@ -298,9 +441,24 @@ impl App {
     /// changes. The history is the caller's business.
     pub(super) fn set_params(&mut self, params: Params) -> Result<(), SolveError> {
         let bounce = solve(&params)?;
+        // The cursor keeps its time if T is unchanged, else its fraction of T; playback goes on.
+        let (old, new) = (self.duration(), bounce.setup.duration);
+        if new != old {
+            self.cursor = (self.cursor / old * new).clamp(0.0, new);
+        }
+        // The sweeps do not depend on the angle: stepping it needs no new sweep.
+        let angle_free = |p: &Params| Params {
+            angle_deg: 0.0,
+            ..*p
+        };
+        if angle_free(&params) != angle_free(&self.params) {
+            self.sweep = Sweep::compute(&params);
+            self.sweep_comparison = Sweep::comparison(&params);
+        }
         self.params = params;
+        self.refresh_heatmap();
         self.series = bounce.series(SERIES_SAMPLES);
-        self.sweep = Sweep::compute(&params);
+        self.travel = Travel::compute(&bounce);
         self.bounce = bounce;
         Ok(())
     }

@@ -37,14 +37,17 @@ impl Key {
     pub fn label(self) -> String {
         fn code(code: KeyCode) -> String {
             match code {
-                KeyCode::Up => "Up".into(),
-                KeyCode::Down => "Down".into(),
-                KeyCode::Left => "Left".into(),
-                KeyCode::Right => "Right".into(),
+                KeyCode::Up => "↑".into(),
+                KeyCode::Down => "↓".into(),
+                KeyCode::Left => "←".into(),
+                KeyCode::Right => "→".into(),
                 KeyCode::Enter => "Enter".into(),
                 KeyCode::Esc => "Esc".into(),
                 KeyCode::Tab => "Tab".into(),
                 KeyCode::Backspace => "Backspace".into(),
+                KeyCode::Home => "Home".into(),
+                KeyCode::End => "End".into(),
+                KeyCode::Char(' ') => "Space".into(),
                 KeyCode::Char(c) => c.to_string(),
                 other => format!("{other:?}"),
             }
@@ -57,22 +60,50 @@ impl Key {
     }
 }
 
+/// A short form of a binding for the status line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Hint {
+    pub keys: &'static str,
+    pub word: &'static str,
+    /// Essential hints get the room first on a narrow status line; the others fill what is left.
+    pub essential: bool,
+}
+
+/// An essential hint.
+const fn hint(keys: &'static str, word: &'static str) -> Option<Hint> {
+    Some(Hint {
+        keys,
+        word,
+        essential: true,
+    })
+}
+
+/// A hint shown when there is room.
+const fn extra(keys: &'static str, word: &'static str) -> Option<Hint> {
+    Some(Hint {
+        keys,
+        word,
+        essential: false,
+    })
+}
+
 /// Keys bound to one action, with the words that explain it.
 #[derive(Clone, Copy, Debug)]
 pub struct Binding {
     pub keys: &'static [Key],
     pub action: Action,
-    /// What the help overlay says the keys do.
+    /// What the help overlay says the keys do; empty for the second of a pair, whose keys the overlay
+    /// writes on the row of the binding before it (`[ / ]`), whose words say what both do.
     pub help: &'static str,
-    /// A short form for the status line (keys, word), if the binding earns a place there.
-    pub hint: Option<(&'static str, &'static str)>,
+    /// A short form for the status line, if the binding earns a place there.
+    pub hint: Option<Hint>,
 }
 
 const fn bind(
     keys: &'static [Key],
     action: Action,
     help: &'static str,
-    hint: Option<(&'static str, &'static str)>,
+    hint: Option<Hint>,
 ) -> Binding {
     Binding {
         keys,
@@ -89,13 +120,13 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Up), Plain(KeyCode::Char('k'))],
         Action::SelectPrevious,
-        "select the parameter above",
-        Some(("↑↓", "select")),
+        "select the parameter above / below",
+        hint("↑↓", "select"),
     ),
     bind(
         &[Plain(KeyCode::Down), Plain(KeyCode::Char('j'))],
         Action::SelectNext,
-        "select the parameter below",
+        "",
         None,
     ),
     bind(
@@ -104,8 +135,8 @@ pub const EXPLORER: &[Binding] = &[
             up: false,
             coarse: false,
         },
-        "decrease by a fine step (1 deg for the angle)",
-        Some(("←→", "step")),
+        "step down / up by a fine step (1 deg for the angle)",
+        hint("←→", "step"),
     ),
     bind(
         &[Plain(KeyCode::Right), Plain(KeyCode::Char('l'))],
@@ -113,105 +144,154 @@ pub const EXPLORER: &[Binding] = &[
             up: true,
             coarse: false,
         },
-        "increase by a fine step",
+        "",
         None,
     ),
     bind(
-        &[Shift(KeyCode::Left), Plain(KeyCode::Char('H'))],
+        &[Plain(KeyCode::Char('H')), Shift(KeyCode::Left)],
         Action::Step {
             up: false,
             coarse: true,
         },
-        "decrease by a coarse step (10 deg for the angle)",
-        Some(("H/L", "coarse")),
+        "a coarse step down / up (10 deg for the angle)",
+        extra("H/L", "coarse"),
     ),
     bind(
-        &[Shift(KeyCode::Right), Plain(KeyCode::Char('L'))],
+        &[Plain(KeyCode::Char('L')), Shift(KeyCode::Right)],
         Action::Step {
             up: true,
             coarse: true,
         },
-        "increase by a coarse step",
+        "",
         None,
     ),
     bind(
         &[Plain(KeyCode::Enter), Plain(KeyCode::Char('e'))],
         Action::StartEdit,
-        "type an exact value; units as on the command line: 10g",
-        Some(("⏎", "type")),
+        "type a value; units as on the command line: 10g",
+        hint("⏎", "type"),
     ),
     bind(
         &[Plain(KeyCode::Char('r'))],
         Action::Reset,
-        "reset the selected parameter to where it started",
-        Some(("r", "reset")),
+        "reset this parameter / all of them to the start",
+        extra("r", "reset"),
     ),
     bind(
         &[Plain(KeyCode::Char('R'))],
         Action::ResetAll,
-        "reset every parameter to where the explorer started",
-        Some(("R", "all")),
+        "",
+        extra("R", "all"),
     ),
     bind(
         &[Plain(KeyCode::Tab)],
         Action::NextView,
-        "switch view: contact charts / ω2 against θ1 (Fig. 2)",
-        Some(("Tab", "view")),
+        "next view: contact, ω2 against θ1 (Fig. 2), ω2 map",
+        hint("Tab", "view"),
     ),
+    bind(
+        &[Plain(KeyCode::Char(' '))],
+        Action::TogglePlay,
+        "play in slow motion from the time cursor, or pause",
+        hint("␣", "play"),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('+')), Plain(KeyCode::Char('='))],
+        Action::ChangeSpeed { faster: true },
+        "play twice / half as fast (default 1 ms per 2 s)",
+        extra("+-", "speed"),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('-'))],
+        Action::ChangeSpeed { faster: false },
+        "",
+        None,
+    ),
+    bind(
+        &[Plain(KeyCode::Char('['))],
+        Action::CursorStep { forward: false },
+        "time cursor back / on 0.05 ms; or click a chart",
+        extra("[]", "time"),
+    ),
+    bind(
+        &[Plain(KeyCode::Char(']'))],
+        Action::CursorStep { forward: true },
+        "",
+        None,
+    ),
+    bind(
+        &[Plain(KeyCode::Char('{'))],
+        Action::CursorPhase { forward: false },
+        "time cursor to the previous / next transition",
+        extra("{}", "phase"),
+    ),
+    bind(
+        &[Plain(KeyCode::Char('}'))],
+        Action::CursorPhase { forward: true },
+        "",
+        None,
+    ),
+    bind(
+        &[Plain(KeyCode::Home)],
+        Action::CursorHome,
+        "time cursor to the start / end of the contact",
+        None,
+    ),
+    bind(&[Plain(KeyCode::End)], Action::CursorEnd, "", None),
     bind(
         &[Plain(KeyCode::Char('?'))],
         Action::ToggleHelp,
         "open or close this help",
-        Some(("?", "help")),
+        hint("?", "help"),
     ),
     bind(
         &[Plain(KeyCode::Char('q')), Plain(KeyCode::Esc), Ctrl('c')],
         Action::Quit,
         "quit (Esc closes this help first)",
-        Some(("q", "quit")),
+        hint("q", "quit"),
     ),
     bind(
         &[Plain(KeyCode::Char('p'))],
         Action::OpenPicker,
         "pick a preset: the paper's cases and some what-ifs",
-        Some(("p", "presets")),
+        extra("p", "presets"),
     ),
     bind(
         &[Plain(KeyCode::Char('s'))],
         Action::StartSave,
-        "save the parameters as a scenario file (TOML)",
-        Some(("s", "save")),
+        "save the parameters as a scenario file / open one",
+        extra("s", "save"),
     ),
     bind(
         &[Plain(KeyCode::Char('o'))],
         Action::StartOpen,
-        "open a scenario file",
-        Some(("o", "open")),
+        "",
+        extra("o", "open"),
     ),
     bind(
         &[Plain(KeyCode::Char('u'))],
         Action::Undo,
-        "undo the last parameter change",
-        Some(("u", "undo")),
+        "undo / redo a parameter change",
+        extra("u", "undo"),
     ),
-    bind(&[Ctrl('r')], Action::Redo, "redo what u undid", None),
+    bind(&[Ctrl('r')], Action::Redo, "", None),
     bind(
         &[Plain(KeyCode::Char('b'))],
         Action::PinBaseline,
-        "pin this bounce as the dimmer baseline (again: re-pin)",
-        Some(("b", "baseline")),
+        "pin this bounce as a dim baseline / clear it",
+        extra("b", "baseline"),
     ),
     bind(
         &[Plain(KeyCode::Char('B'))],
         Action::ClearBaseline,
-        "clear the baseline",
+        "",
         None,
     ),
     bind(
         &[Plain(KeyCode::Char('x'))],
         Action::Export,
         "export the series (CSV) and outcome (JSON) here",
-        Some(("x", "export")),
+        extra("x", "export"),
     ),
 ];
 
@@ -220,14 +300,14 @@ pub const PROMPT: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Enter)],
         Action::EditSubmit,
-        "apply; a bare number is in kg, m, s, N/m, deg or rad/s",
-        Some(("⏎", "apply")),
+        "apply; bare numbers in kg, m, s, N/m, deg, rad/s",
+        hint("⏎", "apply"),
     ),
     bind(
         &[Plain(KeyCode::Esc)],
         Action::EditCancel,
         "leave the value as it was",
-        Some(("Esc", "cancel")),
+        hint("Esc", "cancel"),
     ),
     bind(
         &[Plain(KeyCode::Backspace)],
@@ -244,7 +324,7 @@ pub const PICKER: &[Binding] = &[
         &[Plain(KeyCode::Up), Plain(KeyCode::Char('k'))],
         Action::PickerUp,
         "the preset above",
-        Some(("↑↓", "choose")),
+        hint("↑↓", "choose"),
     ),
     bind(
         &[Plain(KeyCode::Down), Plain(KeyCode::Char('j'))],
@@ -256,7 +336,7 @@ pub const PICKER: &[Binding] = &[
         &[Plain(KeyCode::Enter)],
         Action::PickerApply,
         "apply it (u undoes)",
-        Some(("⏎", "apply")),
+        hint("⏎", "apply"),
     ),
     bind(
         &[
@@ -266,7 +346,7 @@ pub const PICKER: &[Binding] = &[
         ],
         Action::PickerClose,
         "close, changing nothing",
-        Some(("Esc", "close")),
+        hint("Esc", "close"),
     ),
     bind(&[Ctrl('c')], Action::Quit, "quit", None),
 ];
@@ -277,19 +357,19 @@ pub const FILE_PROMPT: &[Binding] = &[
         &[Plain(KeyCode::Enter)],
         Action::PromptSubmit,
         "save or open (nothing typed: the name in brackets)",
-        Some(("⏎", "ok")),
+        hint("⏎", "ok"),
     ),
     bind(
         &[Plain(KeyCode::Esc)],
         Action::PromptCancel,
         "cancel",
-        Some(("Esc", "cancel")),
+        hint("Esc", "cancel"),
     ),
     bind(
         &[Plain(KeyCode::Tab)],
         Action::PromptComplete,
         "complete the file name (nothing typed: take the one in brackets)",
-        Some(("Tab", "complete")),
+        hint("Tab", "complete"),
     ),
     bind(
         &[Plain(KeyCode::Backspace)],
@@ -306,13 +386,13 @@ pub const OVERWRITE: &[Binding] = &[
         &[Plain(KeyCode::Char('y'))],
         Action::ConfirmOverwrite,
         "replace the file",
-        Some(("y", "overwrite")),
+        hint("y", "overwrite"),
     ),
     bind(
         &[Plain(KeyCode::Char('n')), Plain(KeyCode::Esc)],
         Action::PromptCancel,
         "keep the file, save nothing",
-        Some(("n", "keep it")),
+        hint("n", "keep it"),
     ),
     bind(&[Ctrl('c')], Action::Quit, "quit", None),
 ];
@@ -359,7 +439,7 @@ pub fn action_for(event: &KeyEvent, mode: &Mode) -> Option<Action> {
     }
 }
 
-/// The keys of a binding as the help overlay writes them: `Up, k`.
+/// The keys of a binding as the help overlay writes them: `↑, k`.
 pub fn keys_label(binding: &Binding) -> String {
     binding
         .keys
@@ -367,6 +447,22 @@ pub fn keys_label(binding: &Binding) -> String {
         .map(|k| k.label())
         .collect::<Vec<_>>()
         .join(", ")
+}
+
+/// The rows of the help overlay for `bindings`: the keys and what they do, the second of a pair on the
+/// row of the first (`↑, k / ↓, j`, `select the parameter above / below`).
+pub fn help_rows(bindings: &[Binding]) -> Vec<(String, &'static str)> {
+    let mut rows: Vec<(String, &'static str)> = Vec::new();
+    for b in bindings {
+        match rows.last_mut() {
+            Some((keys, _)) if b.help.is_empty() => {
+                keys.push_str(" / ");
+                keys.push_str(&keys_label(b));
+            }
+            _ => rows.push((keys_label(b), b.help)),
+        }
+    }
+    rows
 }
 
 #[cfg(test)]
@@ -409,6 +505,65 @@ mod tests {
             Some(Action::Quit)
         );
         assert_eq!(action_for(&press(KeyCode::Char('z'), none), &n), None);
+    }
+
+    #[test]
+    fn time_keys_with_or_without_shift() {
+        let n = Mode::Normal;
+        let shift = KeyModifiers::SHIFT;
+        let none = KeyModifiers::NONE;
+        // Terminals report `{`, `}` and `+` with Shift or without it.
+        for m in [none, shift] {
+            assert_eq!(
+                action_for(&press(KeyCode::Char('{'), m), &n),
+                Some(Action::CursorPhase { forward: false })
+            );
+            assert_eq!(
+                action_for(&press(KeyCode::Char('}'), m), &n),
+                Some(Action::CursorPhase { forward: true })
+            );
+            assert_eq!(
+                action_for(&press(KeyCode::Char('+'), m), &n),
+                Some(Action::ChangeSpeed { faster: true })
+            );
+        }
+        assert_eq!(
+            action_for(&press(KeyCode::Char('='), none), &n),
+            Some(Action::ChangeSpeed { faster: true })
+        );
+        assert_eq!(
+            action_for(&press(KeyCode::Char(' '), none), &n),
+            Some(Action::TogglePlay)
+        );
+        assert_eq!(
+            action_for(&press(KeyCode::Home, none), &n),
+            Some(Action::CursorHome)
+        );
+        assert_eq!(
+            action_for(&press(KeyCode::End, none), &n),
+            Some(Action::CursorEnd)
+        );
+        // In the prompt, a space or a bracket is text.
+        let editing = Mode::Editing(String::new());
+        assert_eq!(
+            action_for(&press(KeyCode::Char(' '), none), &editing),
+            Some(Action::EditInsert(' '))
+        );
+    }
+
+    #[test]
+    fn pairs_share_a_help_row() {
+        let rows = help_rows(EXPLORER);
+        assert!(rows.contains(&(
+            "[ / ]".to_string(),
+            "time cursor back / on 0.05 ms; or click a chart"
+        )));
+        assert!(rows.contains(&(
+            "Home / End".to_string(),
+            "time cursor to the start / end of the contact"
+        )));
+        assert!(rows.iter().all(|(_, help)| !help.is_empty()));
+        assert!(!EXPLORER[0].help.is_empty());
     }
 
     #[test]

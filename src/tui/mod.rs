@@ -2,25 +2,31 @@
 //! change the parameters.
 //!
 //! A key press becomes an [`Action`] ([`keys`]), [`App::update`] applies it and re-solves, and [`ui::draw`]
-//! draws a frame from the [`App`] without changing it. [`run`] is that loop, generic over the ratatui
-//! backend and the [`EventSource`], so tests drive it with scripted events on a `TestBackend`; [`open`]
-//! runs it on the real terminal.
+//! draws a frame from the [`App`] without changing it. While the bounce plays in slow motion, clock ticks
+//! move the time cursor ([`App::advance`]). [`run`] is that loop, generic over the ratatui backend and the
+//! [`EventSource`], so tests drive it with scripted events and ticks on a `TestBackend`; [`open`] runs it
+//! on the real terminal.
 
 pub mod app;
 pub mod baseline;
+pub mod heatmap;
 pub mod history;
 pub mod keys;
+pub mod playback;
 pub mod scenarios;
 pub mod sweep;
 pub mod terminal;
+pub mod travel;
 pub mod ui;
 
 use std::collections::VecDeque;
 use std::io::{self, IsTerminal};
+use std::time::{Duration, Instant};
 
-use crossterm::event::{self, Event};
+use crossterm::event::{self, Event, MouseButton, MouseEvent, MouseEventKind};
 use ratatui::Terminal;
 use ratatui::backend::Backend;
+use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
 pub use app::{Action, App, Mode, View};
@@ -29,33 +35,75 @@ use ui::theme::Theme;
 
 use crate::model::{Params, SolveError};
 
-/// Where events come from: the terminal, or a script in tests.
-pub trait EventSource {
-    /// The next event, waiting for it; `None` when there will be no more.
-    fn next_event(&mut self) -> io::Result<Option<Event>>;
+/// What the event loop reacts to: a terminal event, or wall time passing while the bounce plays.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Input {
+    Event(Event),
+    /// Wall time elapsed since the previous tick (or since playback started).
+    Tick(Duration),
 }
 
-/// The terminal's events. Blocks until one arrives, so an idle explorer uses no CPU.
-pub struct TerminalEvents;
-
-impl EventSource for TerminalEvents {
-    fn next_event(&mut self) -> io::Result<Option<Event>> {
-        event::read().map(Some)
+impl From<Event> for Input {
+    fn from(event: Event) -> Self {
+        Input::Event(event)
     }
 }
 
-/// Events given in advance; the loop ends when they run out.
-pub struct Scripted(pub VecDeque<Event>);
+/// Where inputs come from: the terminal and a clock, or a script in tests.
+pub trait EventSource {
+    /// The next input. With `frame` set (while playing), a [`Input::Tick`] comes at least every `frame` of
+    /// wall time if no event comes first; with `None` (paused), wait for an event for as long as it takes:
+    /// time passing alone brings nothing. `None` when there will be no more inputs.
+    fn next_input(&mut self, frame: Option<Duration>) -> io::Result<Option<Input>>;
+}
 
-impl<I: IntoIterator<Item = Event>> From<I> for Scripted {
-    fn from(events: I) -> Self {
-        Scripted(events.into_iter().collect())
+/// The terminal's events and the wall clock. Paused, it blocks until an event arrives, so an idle
+/// explorer uses no CPU; playing, it also wakes once a frame.
+#[derive(Debug, Default)]
+pub struct TerminalEvents {
+    /// When the last tick was, while playing.
+    last_tick: Option<Instant>,
+}
+
+impl EventSource for TerminalEvents {
+    fn next_input(&mut self, frame: Option<Duration>) -> io::Result<Option<Input>> {
+        let Some(frame) = frame else {
+            self.last_tick = None;
+            return event::read().map(|e| Some(Input::Event(e)));
+        };
+        let last = *self.last_tick.get_or_insert_with(Instant::now);
+        let wait = (last + frame).saturating_duration_since(Instant::now());
+        if event::poll(wait)? {
+            return event::read().map(|e| Some(Input::Event(e)));
+        }
+        let now = Instant::now();
+        self.last_tick = Some(now);
+        Ok(Some(Input::Tick(now - last)))
+    }
+}
+
+/// Inputs given in advance; the loop ends when they run out. A tick scripted while the bounce is paused
+/// stands for time passing with nothing happening, as on the terminal: it is skipped.
+pub struct Scripted(pub VecDeque<Input>);
+
+impl<I, T> From<I> for Scripted
+where
+    I: IntoIterator<Item = T>,
+    T: Into<Input>,
+{
+    fn from(inputs: I) -> Self {
+        Scripted(inputs.into_iter().map(Into::into).collect())
     }
 }
 
 impl EventSource for Scripted {
-    fn next_event(&mut self) -> io::Result<Option<Event>> {
-        Ok(self.0.pop_front())
+    fn next_input(&mut self, frame: Option<Duration>) -> io::Result<Option<Input>> {
+        while let Some(input) = self.0.pop_front() {
+            if frame.is_some() || !matches!(input, Input::Tick(_)) {
+                return Ok(Some(input));
+            }
+        }
+        Ok(None)
     }
 }
 
@@ -72,8 +120,21 @@ where
     terminal.backend_mut().end_frame()
 }
 
-/// The event loop: draw, then for each event that matters update and draw again, until the app quits or
-/// the events end. Nothing is drawn between events.
+/// The action a mouse event asks for: a left click or drag on the contact charts puts the time cursor
+/// at the time under the pointer.
+fn mouse_action(mouse: &MouseEvent, screen: Rect, app: &App) -> Option<Action> {
+    match mouse.kind {
+        MouseEventKind::Down(MouseButton::Left) | MouseEventKind::Drag(MouseButton::Left) => {
+            ui::time_at(screen, app, mouse.column, mouse.row).map(Action::CursorTo)
+        }
+        _ => None,
+    }
+}
+
+/// The event loop: draw, then for each input that matters update and draw again, until the app quits or
+/// the inputs end. While the bounce plays, the loop asks for a tick every [`playback::FRAME`] and draws
+/// each; while the heatmap is computed on its worker thread, it ticks as often to draw the rows that have
+/// arrived; otherwise nothing is drawn between events.
 pub fn run<B, E>(terminal: &mut Terminal<B>, app: &mut App, events: &mut E) -> io::Result<()>
 where
     B: Backend + FrameSync,
@@ -82,18 +143,37 @@ where
 {
     draw(terminal, app)?;
     while !app.quit {
-        let Some(event) = events.next_event()? else {
+        // A frame's wait while playing, or while the heatmap fills in (to collect its rows); else none.
+        let frame = (app.playing || app.heatmap_pending()).then_some(playback::FRAME);
+        let Some(input) = events.next_input(frame)? else {
             break;
         };
-        match event {
-            Event::Key(key) => match keys::action_for(&key, &app.mode) {
-                Some(action) => app.update(action),
-                None => continue,
+        let redraw = match input {
+            Input::Tick(elapsed) => {
+                let moved = app.advance(elapsed);
+                app.poll_heatmap() || moved
+            }
+            Input::Event(Event::Key(key)) => match keys::action_for(&key, &app.mode) {
+                Some(action) => {
+                    app.update(action);
+                    true
+                }
+                None => false,
             },
-            Event::Resize(..) => {}
-            _ => continue,
-        }
-        if !app.quit {
+            Input::Event(Event::Mouse(mouse)) => {
+                let size = terminal.size().map_err(io::Error::other)?;
+                match mouse_action(&mouse, Rect::from((Position::ORIGIN, size)), app) {
+                    Some(action) => {
+                        app.update(action);
+                        true
+                    }
+                    None => false,
+                }
+            }
+            Input::Event(Event::Resize(..)) => true,
+            Input::Event(_) => false,
+        };
+        if redraw && !app.quit {
             draw(terminal, app)?;
         }
     }
@@ -138,6 +218,10 @@ pub fn open(options: Options) -> Result<(), OpenError> {
     };
     let mut app = App::new(options.params, theme)?;
     let mut session = terminal::Session::start()?;
-    run(&mut session.terminal, &mut app, &mut TerminalEvents)?;
+    run(
+        &mut session.terminal,
+        &mut app,
+        &mut TerminalEvents::default(),
+    )?;
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! The paper's Fig. 2 for the current parameters: rebound spin omega2 against incidence angle theta1,
-//! solved at [`Sweep::ANGLES`] angles evenly spaced over (0, 90] degrees.
+//! solved at [`Sweep::ANGLES`] angles evenly spaced over (0, 90] degrees, and the same for a comparison
+//! incident spin (the paper's two cases, omega1 = 0 and -100 rad/s), with the angles where the two cross.
 
 use crate::model::{ParamId, Params, solve};
 
@@ -40,6 +41,44 @@ impl Sweep {
         Sweep { points }
     }
 
+    /// The incident spin the comparison curve is drawn for: none, or the paper's backspin of -100 rad/s
+    /// when the current spin is already none.
+    pub fn comparison_spin(spin: f64) -> f64 {
+        if spin == 0.0 { -100.0 } else { 0.0 }
+    }
+
+    /// The sweep for the comparison spin, other parameters as in `params`.
+    pub fn comparison(params: &Params) -> Sweep {
+        let mut p = *params;
+        p.set(ParamId::Spin, Self::comparison_spin(params.spin));
+        Self::compute(&p)
+    }
+
+    /// The angles, degrees, where this curve crosses `other` (linearly interpolated between the solved
+    /// angles): where the sign of the difference of omega2 changes.
+    pub fn crossings(&self, other: &Sweep) -> Vec<f64> {
+        let diff: Vec<(f64, f64)> = self
+            .points
+            .iter()
+            .filter_map(|p| {
+                let q = other.points.iter().find(|q| q.angle_deg == p.angle_deg)?;
+                Some((p.angle_deg, p.omega2 - q.omega2))
+            })
+            .collect();
+        diff.windows(2)
+            .filter_map(|w| {
+                let ((a0, d0), (a1, d1)) = (w[0], w[1]);
+                if d0 == 0.0 {
+                    Some(a0)
+                } else if d0 * d1 < 0.0 {
+                    Some(a0 + (a1 - a0) * d0 / (d0 - d1))
+                } else {
+                    None
+                }
+            })
+            .collect()
+    }
+
     /// The runs of angles (first, last, in degrees) over which the ball slides throughout.
     pub fn sliding_ranges(&self) -> Vec<(f64, f64)> {
         let mut ranges: Vec<(f64, f64)> = Vec::new();
@@ -70,5 +109,24 @@ mod tests {
         assert_eq!(low, 0.5);
         // The paper: with omega1 = -100 rad/s the ball slides throughout below about 31 degrees.
         assert!(high > 25.0 && high < 40.0, "{high}");
+    }
+
+    #[test]
+    fn backspin_overtakes_no_spin_at_steep_angles_on_a_light_cart() {
+        // The paper's Fig. 2: for the 10 g cart, omega1 = -100 rad/s gives less spin than omega1 = 0 below
+        // about 60 degrees and can give more above.
+        let params = Params::default();
+        let current = Sweep::compute(&params);
+        let other = Sweep::comparison(&params);
+        assert_eq!(Sweep::comparison_spin(params.spin), 0.0);
+        let crossings = current.crossings(&other);
+        assert_eq!(crossings.len(), 1, "{crossings:?}");
+        assert!(crossings[0] > 55.0 && crossings[0] < 80.0, "{crossings:?}");
+        let at = |s: &Sweep, a: f64| s.points.iter().find(|p| p.angle_deg == a).unwrap().omega2;
+        assert!(at(&current, 30.0) < at(&other, 30.0));
+        assert!(at(&current, 85.0) > at(&other, 85.0));
+        // Symmetric: the crossing is the same seen from the other curve.
+        assert_eq!(other.crossings(&current).len(), 1);
+        assert_eq!(Sweep::comparison_spin(0.0), -100.0);
     }
 }

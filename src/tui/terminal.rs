@@ -4,6 +4,7 @@
 use std::io::{self, Stdout, Write, stdout};
 
 use crossterm::cursor::{Hide, Show};
+use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
 use crossterm::terminal::{
     BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
     disable_raw_mode, enable_raw_mode,
@@ -47,11 +48,12 @@ pub struct Session {
 }
 
 impl Session {
-    /// Installs the panic hook, then enters raw mode and the alternate screen.
+    /// Installs the panic hook, then enters raw mode and the alternate screen and asks for mouse events
+    /// (a click on a chart moves the time cursor; terminals that do not report the mouse ignore this).
     pub fn start() -> io::Result<Session> {
         install_panic_hook();
         enable_raw_mode()?;
-        let started = execute!(stdout(), EnterAlternateScreen, Hide)
+        let started = execute!(stdout(), EnterAlternateScreen, EnableMouseCapture, Hide)
             .and_then(|()| Terminal::new(CrosstermBackend::new(stdout())));
         match started {
             Ok(terminal) => Ok(Session { terminal }),
@@ -69,11 +71,17 @@ impl Drop for Session {
     }
 }
 
-/// Leaves raw mode and the alternate screen and shows the cursor; errors are ignored, as there is
-/// nothing better to do on the way out. Safe to call more than once.
+/// Stops the mouse reports, leaves raw mode and the alternate screen and shows the cursor; errors are
+/// ignored, as there is nothing better to do on the way out. Safe to call more than once.
 pub fn restore() {
     let _ = disable_raw_mode();
-    let _ = execute!(stdout(), EndSynchronizedUpdate, LeaveAlternateScreen, Show);
+    let _ = execute!(
+        stdout(),
+        EndSynchronizedUpdate,
+        DisableMouseCapture,
+        LeaveAlternateScreen,
+        Show
+    );
 }
 
 /// Restores the terminal before the default hook prints the panic, so the message is readable.

@@ -1,16 +1,24 @@
-//! The contact view (the paper's Fig. 3): the phase timeline over three stacked charts sharing the time
-//! axis in ms: friction force F with the grip limit +/- mu N, cart displacement X and ball spin omega.
-//! Curves take the colour of their phase; dashed verticals mark the transitions.
+//! The contact view (the paper's Fig. 3): a row for the time cursor, the phase timeline, then three stacked
+//! charts sharing the time axis in ms: friction force F with the grip limit +/- mu N, cart displacement X
+//! and ball spin omega. Curves take the colour of their phase; dashed verticals mark the transitions.
+//!
+//! The time cursor is a solid vertical line across the three charts. The values at it are written at the
+//! right of each chart's title (F and mu N; X and the cart velocity V; omega and the slip speed), and its
+//! time, phase and the playback state on the row above the timeline. All come from the core's
+//! `Bounce::sample_at`: exactly at a transition they are those of the phase that begins there; the
+//! friction force, the one value that jumps there, is written `before→after`.
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
+use ratatui::widgets::Paragraph;
 
 use super::baseline;
 use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_extent};
 use crate::model::Sample;
 use crate::tui::app::App;
+use crate::tui::ui::theme::Theme;
 
 /// Points of the dashed grip-limit envelope.
 const ENVELOPE_POINTS: usize = 200;
@@ -20,11 +28,35 @@ fn y_budget(rows: u16) -> usize {
     (usize::from(rows) + 2).div_ceil(2).clamp(2, 7)
 }
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+/// `value` with `decimals` places, never `-0.0`.
+pub fn fixed(value: f64, decimals: usize) -> String {
+    let text = format!("{value:.decimals$}");
+    match text.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => text,
+    }
+}
+
+/// Where everything of the contact view goes, and the scales; drawing and mouse clicks both use it.
+struct ContactLayout {
+    cursor_row: Rect,
+    band_row: Rect,
+    rows: [Rect; 3],
+    marks: [Vec<Mark>; 3],
+    scales: Vec<Scale>,
+    x: Scale,
+    label_width: u16,
+}
+
+fn layout(area: Rect, app: &App) -> ContactLayout {
     let theme = &app.theme;
     let bounce = &app.bounce;
-    let [band_row, charts] =
-        Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
+    let [cursor_row, band_row, charts] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Length(1),
+        Constraint::Min(0),
+    ])
+    .areas(area);
     let rows: [Rect; 3] = Layout::vertical([Constraint::Fill(1); 3]).areas(charts);
 
     let ms = |s: &Sample| s.t * 1e3;
@@ -75,21 +107,9 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     spin.push(path(|s| s.omega));
     for marks in [&mut force, &mut displacement, &mut spin] {
         marks.extend(transitions.iter().cloned());
+        marks.push(Mark::Cursor(app.cursor * 1e3, theme.cursor()));
     }
 
-    let mut titles = [
-        Line::from(vec![
-            Span::styled(" friction force F (N) ", theme.title()),
-            Span::styled("┄ ±μN grip limit ", Style::new().fg(theme.limit())),
-        ]),
-        Line::from(Span::styled(" cart displacement X (mm) ", theme.title())),
-        Line::from(Span::styled(" ball spin ω (rad/s) ", theme.title())),
-    ];
-    if app.baseline.is_some() {
-        for title in &mut titles[1..] {
-            title.push_span(baseline::legend(theme));
-        }
-    }
     let scales: Vec<Scale> = [&force, &displacement, &spin]
         .iter()
         .zip(rows)
@@ -98,13 +118,12 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             Scale::rounded(low, high, y_budget(row.height.saturating_sub(FRAME_ROWS)))
         })
         .collect();
-    let x_title = "t (ms)";
     let label_width = scales
         .iter()
         .map(Scale::label_width)
         .max()
         .unwrap_or(0)
-        .max(x_title.len() as u16);
+        .max(X_TITLE.len() as u16);
     let (_, data_width) = Plot::data_columns(area, label_width);
     // Time runs to the end of the longer contact when a baseline is pinned.
     let end = app
@@ -112,6 +131,135 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         .as_ref()
         .map_or(duration, |b| b.bounce.setup.duration.max(duration));
     let x = Scale::exact(0.0, end * 1e3, tick_budget(data_width, 6));
+    ContactLayout {
+        cursor_row,
+        band_row,
+        rows,
+        marks: [force, displacement, spin],
+        scales,
+        x,
+        label_width,
+    }
+}
+
+const X_TITLE: &str = "t (ms)";
+
+/// The time, s, under column `column` and row `row` of the contact view in `area`, if that is over the
+/// timeline or a chart: a time the canvas draws in that column, so the cursor's line lands in the column
+/// clicked.
+pub fn time_at(area: Rect, app: &App, column: u16, row: u16) -> Option<f64> {
+    let layout = layout(area, app);
+    let (first, width) = Plot::data_columns(area, layout.label_width);
+    let charts_bottom = layout.rows[2].bottom();
+    if width < 2 || !(first..first + width).contains(&column) {
+        return None;
+    }
+    if !(layout.band_row.y..charts_bottom).contains(&row) {
+        return None;
+    }
+    // Column c of w holds the dots c a ..= c a + a - 1 of the w a across, and the canvas puts time t on dot
+    // round(t / T (w a - 1)); t = T c / (w - 1) is on dot c a + c (a - 1) / (w - 1), within column c, and
+    // the first and last columns give the ends of the axis (T, or a longer pinned baseline's contact).
+    let axis_end = layout.x.bounds[1] * 1e-3;
+    let fraction = f64::from(column - first) / f64::from(width - 1);
+    Some((fraction * axis_end).clamp(0.0, app.duration()))
+}
+
+/// The cursor row: `t 1.320 ms · grip, phase 2 of 3` on the left, the playback state on the right.
+fn cursor_line(app: &App, theme: &Theme, width: u16) -> (Line<'static>, Line<'static>) {
+    let now = app.cursor_sample();
+    let phases = app.bounce.phases.len();
+    let mut left = vec![
+        Span::styled(" t ", theme.dim()),
+        Span::styled(format!("{} ms", fixed(app.cursor * 1e3, 3)), theme.key()),
+        Span::styled(" · ", theme.dim()),
+    ];
+    match app.cursor_before() {
+        Some(before) => {
+            left.push(Span::styled(
+                before.kind.name(),
+                Style::new().fg(theme.phase(before.kind)),
+            ));
+            left.push(Span::raw(" → "));
+            left.push(Span::styled(
+                now.kind.name(),
+                Style::new().fg(theme.phase(now.kind)),
+            ));
+        }
+        None => {
+            left.push(Span::styled(
+                now.kind.name(),
+                Style::new().fg(theme.phase(now.kind)),
+            ));
+            if width >= 60 {
+                left.push(Span::styled(
+                    format!(", phase {} of {phases}", now.phase + 1),
+                    theme.dim(),
+                ));
+            }
+        }
+    }
+    let state = if app.playing {
+        Span::styled("▶ playing ", theme.key())
+    } else {
+        Span::styled("␣ plays ", theme.dim())
+    };
+    let right = Line::from(vec![state, Span::raw(app.speed.label()), Span::raw(" ")]);
+    (Line::from(left), right)
+}
+
+/// The values at the cursor for each chart, as they sit at the right of its title.
+fn readouts(app: &App, theme: &Theme) -> [Line<'static>; 3] {
+    let s = app.cursor_sample();
+    let dim = |text: &'static str| Span::styled(text, theme.dim());
+    let force = match app.cursor_before() {
+        Some(before) if before.friction != s.friction => {
+            format!("{}→{}", fixed(before.friction, 1), fixed(s.friction, 1))
+        }
+        _ => fixed(s.friction, 1),
+    };
+    [
+        Line::from(vec![
+            dim(" F "),
+            Span::raw(force),
+            dim(" N  "),
+            Span::styled("μN ", Style::new().fg(theme.limit())),
+            Span::raw(fixed(app.bounce.setup.mu * s.normal, 1)),
+            dim(" N "),
+        ]),
+        Line::from(vec![
+            dim(" X "),
+            Span::raw(fixed(s.x * 1e3, 3)),
+            dim(" mm  V "),
+            Span::raw(fixed(s.v, 3)),
+            dim(" m/s "),
+        ]),
+        Line::from(vec![
+            dim(" ω "),
+            Span::raw(fixed(s.omega, 1)),
+            dim(" rad/s  slip "),
+            Span::raw(fixed(s.slip, 3)),
+            dim(" m/s "),
+        ]),
+    ]
+}
+
+pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+    let theme = &app.theme;
+    let bounce = &app.bounce;
+    let ContactLayout {
+        cursor_row,
+        band_row,
+        rows,
+        marks,
+        scales,
+        x,
+        label_width,
+    } = layout(area, app);
+
+    let (left, right) = cursor_line(app, theme, area.width);
+    frame.render_widget(Paragraph::new(left), cursor_row);
+    frame.render_widget(Paragraph::new(right).right_aligned(), cursor_row);
 
     let segments = bounce
         .phases
@@ -134,17 +282,50 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         },
         band_row,
     );
-    for (((marks, y), title), row) in [force, displacement, spin]
+
+    let titles = [
+        (
+            Line::from(vec![
+                Span::styled(" friction force F (N) ", theme.title()),
+                Span::styled("┄ ±μN grip limit ", Style::new().fg(theme.limit())),
+            ]),
+            Line::from(vec![
+                Span::styled(" F (N) ", theme.title()),
+                Span::styled("┄ ±μN ", Style::new().fg(theme.limit())),
+            ]),
+        ),
+        (
+            Line::from(Span::styled(" cart displacement X (mm) ", theme.title())),
+            Line::from(Span::styled(" X (mm) ", theme.title())),
+        ),
+        (
+            Line::from(Span::styled(" ball spin ω (rad/s) ", theme.title())),
+            Line::from(Span::styled(" ω (rad/s) ", theme.title())),
+        ),
+    ];
+    for ((((marks, y), (long, short)), readout), row) in marks
         .into_iter()
         .zip(scales)
         .zip(titles)
+        .zip(readouts(app, theme))
         .zip(rows)
     {
+        // The long title if it fits beside the readout, else the short one; the readout always. The
+        // baseline's legend follows the title where there is room.
+        let room = usize::from(row.width).saturating_sub(readout.width() + 1);
+        let mut title = if long.width() <= room { long } else { short };
+        if app.baseline.is_some() {
+            let legend = baseline::legend(theme);
+            if title.width() + legend.width() <= room {
+                title.push_span(legend);
+            }
+        }
         let plot = Plot {
             title,
+            readout: Some(readout),
             x: x.clone(),
             y,
-            x_title,
+            x_title: X_TITLE,
             marks,
             label_width,
             marker: theme.marker,

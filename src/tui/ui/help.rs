@@ -11,28 +11,30 @@ use crate::tui::keys::{self, Binding};
 use crate::tui::ui::theme::Theme;
 
 fn rows<'a>(bindings: &[Binding], theme: &Theme, key_width: usize) -> Vec<Line<'a>> {
-    bindings
-        .iter()
-        .map(|b| {
+    keys::help_rows(bindings)
+        .into_iter()
+        .map(|(label, help)| {
             Line::from(vec![
-                Span::styled(
-                    format!(" {:<key_width$} ", keys::keys_label(b)),
-                    theme.key(),
-                ),
-                Span::raw(b.help),
+                Span::styled(format!(" {label:<key_width$} "), theme.key()),
+                Span::raw(help),
             ])
         })
         .collect()
 }
 
+/// The widest key column of the overlay.
+fn key_width() -> usize {
+    keys::help_rows(keys::EXPLORER)
+        .iter()
+        .chain(&keys::help_rows(keys::PROMPT))
+        .map(|(label, _)| label.chars().count())
+        .max()
+        .unwrap_or(0)
+}
+
 pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let theme = &app.theme;
-    let key_width = keys::EXPLORER
-        .iter()
-        .chain(keys::PROMPT)
-        .map(|b| keys::keys_label(b).chars().count())
-        .max()
-        .unwrap_or(0);
+    let key_width = key_width();
     let spec = app.selected_spec();
     let units: Vec<&str> = spec
         .dimension

@@ -1,15 +1,21 @@
 //! Drawing: one frame from an [`App`], reading only. The screen at 80 x 24 and up:
 //!
 //! ```text
-//! ┌ parameters ─────────────────┐ phases  0 slide 1.32 grip 4.39 slide 5     (timeline, contact view)
-//! │▸θ1  incidence angle 60.0 deg│─ friction force F (N) ┄ ±μN ───────────────
-//! │ v1  incident speed  10.0 m/s│ 100┤    ⣀⡠⠤⠒⠉
-//! │ …   (every parameter)       │   0┤⠤⠒⠉         charts.rs: F, X and ω
-//! └─────────────────────────────┘    └┬────┬────┬───   over the contact, or
-//! ┌ outcome ────────────────────┐ t (ms)   1    2      sweep.rs: ω2 against θ1
-//! │ ω2, v_x2, θ2, e_x, phases,  │─ cart displacement X (mm) ─────────────────
-//! │ energy lost to friction     │ …
-//! └─────────────────────────────┘─ ball spin ω (rad/s) ───────────────────────
+//! ┌ parameters ─────────────────┐ t 1.320 ms · grip          ␣ plays 1 ms / 2 s  (cursor, contact view)
+//! │▸θ1  incidence angle 60.0 deg│ phases  0 slide 1.32 grip 4.39 slide 5     (timeline, contact view)
+//! │ v1  incident speed  10.0 m/s│─ F (N) ┄ ±μN ─────────────── F 95.3 N  μN 120.4 N
+//! │ …   (every parameter)       │ 100┤    ⣀⡠⠤⠒⠉ ┃
+//! └─────────────────────────────┘   0┤⠤⠒⠉      ┃   charts.rs: F, X and ω over the
+//! ┌ outcome ────────────────────┐    └┬────┬────┬───   contact with the time cursor, or
+//! │ ω2, v_x2, θ2, e_x, phases,  │ t (ms)   1    2      sweep.rs: ω2 against θ1, or
+//! │                             │                      heatmap.rs: ω2 over M and k
+//! │ energy lost to friction     │─ X (mm) ──────────────────── X 4.213 mm  V 1.234 m/s
+//! └─────────────────────────────┘ …
+//! ┌ t 1.320 ms · grip ──────────┐
+//! │ schematic.rs: the bounce at │─ ω (rad/s) ──────────── ω 12.3 rad/s  slip 0.000 m/s
+//! │ the time cursor (when the   │ …
+//! │ left column has room)       │
+//! └─────────────────────────────┘
 //!  status.rs: message, value prompt or key hints
 //! ```
 //!
@@ -17,11 +23,13 @@
 
 mod baseline;
 mod charts;
+mod heatmap;
 mod help;
 mod outcome;
 mod params;
 pub mod picker;
 pub mod plot;
+pub mod schematic;
 mod status;
 mod sweep;
 pub mod theme;
@@ -31,6 +39,8 @@ use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::text::Line;
 use ratatui::widgets::Paragraph;
 
+pub use charts::fixed;
+
 use super::app::{App, Mode, View};
 use crate::model::PARAMS;
 
@@ -38,29 +48,88 @@ use crate::model::PARAMS;
 pub const MIN_WIDTH: u16 = 80;
 pub const MIN_HEIGHT: u16 = 24;
 
+/// Where each part of the screen goes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Regions {
+    pub params: Rect,
+    pub outcome: Rect,
+    /// The schematic, when the left column has room for it under the outcome.
+    pub schematic: Option<Rect>,
+    /// The contact charts or the sweep.
+    pub view: Rect,
+    pub status: Rect,
+}
+
+/// The layout of a screen of `area`; `None` below the smallest size.
+pub fn regions(area: Rect, app: &App) -> Option<Regions> {
+    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+        return None;
+    }
+    let status_height = status::height(app, area.width);
+    let [main, status] =
+        Layout::vertical([Constraint::Min(0), Constraint::Length(status_height)]).areas(area);
+    let left_width = (area.width * 27 / 100).clamp(35, 44);
+    let [left, view] =
+        Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
+    let params_height = PARAMS.len() as u16 + 2;
+    let [params, rest] =
+        Layout::vertical([Constraint::Length(params_height), Constraint::Min(0)]).areas(left);
+    let outcome_height = outcome::height(app, left_width);
+    let (outcome, schematic) = if rest.height >= outcome_height + schematic::MIN_HEIGHT
+        && left_width >= schematic::MIN_WIDTH
+    {
+        let [outcome, schematic] =
+            Layout::vertical([Constraint::Length(outcome_height), Constraint::Min(0)]).areas(rest);
+        (outcome, Some(schematic))
+    } else {
+        (rest, None)
+    };
+    Some(Regions {
+        params,
+        outcome,
+        schematic,
+        view,
+        status,
+    })
+}
+
+/// True when the schematic is drawn on a screen of `area`.
+pub fn schematic_shown(area: Rect, app: &App) -> bool {
+    regions(area, app).is_some_and(|r| r.schematic.is_some())
+}
+
+/// The time, s, under the cell (`column`, `row`) of a screen of `area`, if that is on the contact charts.
+pub fn time_at(area: Rect, app: &App, column: u16, row: u16) -> Option<f64> {
+    let regions = regions(area, app)?;
+    if app.view != View::Contact || app.mode == Mode::Help {
+        return None;
+    }
+    charts::time_at(regions.view, app, column, row)
+}
+
 /// Draws the whole screen.
 pub fn draw(frame: &mut Frame, app: &App) {
     let area = frame.area();
-    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+    let Some(regions) = regions(area, app) else {
         too_small(frame, area);
         return;
+    };
+    params::render(frame, regions.params, app);
+    outcome::render(frame, regions.outcome, app);
+    if let Some(schematic) = regions.schematic {
+        schematic::render(frame, schematic, app);
     }
-    let status_height = status::height(app, area.width);
-    let [main, status_row] =
-        Layout::vertical([Constraint::Min(0), Constraint::Length(status_height)]).areas(area);
-    let left_width = (area.width * 27 / 100).clamp(35, 44);
-    let [left, right] =
-        Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
-    let params_height = PARAMS.len() as u16 + 2;
-    let [params_area, outcome_area] =
-        Layout::vertical([Constraint::Length(params_height), Constraint::Min(0)]).areas(left);
-    params::render(frame, params_area, app);
-    outcome::render(frame, outcome_area, app);
     match app.view {
-        View::Contact => charts::render(frame, right, app),
-        View::Sweep => sweep::render(frame, right, app),
+        View::Contact => charts::render(frame, regions.view, app),
+        View::Sweep => sweep::render(frame, regions.view, app),
+        View::Heatmap => heatmap::render(frame, regions.view, app),
     }
-    status::render(frame, status_row, app);
+    status::render(frame, regions.status, app, regions.schematic.is_some());
+    // Overlays cover everything above the status line.
+    let main = Rect {
+        height: regions.status.y - area.y,
+        ..area
+    };
     if app.mode == Mode::Help {
         help::render(frame, main, app);
     }

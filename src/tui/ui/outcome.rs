@@ -56,14 +56,57 @@ pub fn timeline(bounce: &Bounce, theme: &Theme) -> Vec<Span<'static>> {
     spans
 }
 
+/// Rows a line of text takes when wrapped at word boundaries into `width` columns.
+fn wrapped_rows(line: &Line, width: usize) -> usize {
+    let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
+    let mut rows = 1;
+    let mut used = 0;
+    for word in text.split(' ') {
+        let len = word.chars().count();
+        let needed = if used == 0 { len } else { used + 1 + len };
+        if needed <= width || used == 0 {
+            used = needed;
+        } else {
+            rows += 1;
+            used = len;
+        }
+        while used > width {
+            rows += 1;
+            used -= width;
+        }
+    }
+    rows
+}
+
+/// Rows the panel needs, borders included, when it is `width` columns wide.
+pub fn height(app: &App, width: u16) -> u16 {
+    let inner = usize::from(width.saturating_sub(2)).max(1);
+    let rows: usize = lines(app, inner >= 40)
+        .iter()
+        .map(|l| wrapped_rows(l, inner))
+        .sum();
+    rows as u16 + 2
+}
+
 pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+    let theme = &app.theme;
+    let block = Block::bordered().title(Span::styled(" outcome ", theme.title()));
+    let inner = block.inner(area);
+    let wide = inner.width >= 40;
+    frame.render_widget(
+        Paragraph::new(lines(app, wide))
+            .block(block)
+            .wrap(Wrap { trim: false }),
+        area,
+    );
+}
+
+/// The panel's lines: long labels and the extra numbers when `wide`.
+fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
     let theme = &app.theme;
     let b = &app.bounce;
     let o = &b.outcome;
     let e = b.energy();
-    let block = Block::bordered().title(Span::styled(" outcome ", theme.title()));
-    let inner = block.inner(area);
-    let wide = inner.width >= 40;
     let label = |short: &'static str, long: &'static str| {
         let text = if wide { long } else { short };
         Span::styled(
@@ -160,10 +203,5 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             Span::raw(share(e.normal_loss)),
         ]));
     }
-    frame.render_widget(
-        Paragraph::new(lines)
-            .block(block)
-            .wrap(Wrap { trim: false }),
-        area,
-    );
+    lines
 }

@@ -154,6 +154,8 @@ pub enum Mark {
     Horizontal(f64, Color),
     /// A dot at one point.
     Dot(f64, f64, Color),
+    /// A solid vertical line over everything else: the time cursor.
+    Cursor(f64, Color),
 }
 
 impl Mark {
@@ -163,7 +165,7 @@ impl Mark {
             Mark::Path(points) => points.iter().map(|p| p.1).collect(),
             Mark::Dashed(points, _) => points.iter().map(|p| p.1).collect(),
             Mark::Dot(_, y, _) => vec![*y],
-            Mark::Vertical(..) | Mark::Horizontal(..) => Vec::new(),
+            Mark::Vertical(..) | Mark::Horizontal(..) | Mark::Cursor(..) => Vec::new(),
         }
     }
 }
@@ -184,6 +186,8 @@ pub const FRAME_ROWS: u16 = 3;
 /// width line up.
 pub struct Plot<'a> {
     pub title: Line<'a>,
+    /// Written at the right of the title row: e.g. the values at the time cursor.
+    pub readout: Option<Line<'a>>,
     pub x: Scale,
     pub y: Scale,
     /// Written under the y labels, at the end of the x axis: e.g. `t (ms)`.
@@ -251,7 +255,13 @@ impl Plot<'_> {
                     }
                 }
                 Mark::Dot(x, y, color) => ctx.draw(&Points::new(&[(*x, *y)], *color)),
-                Mark::Vertical(..) | Mark::Horizontal(..) => {}
+                Mark::Vertical(..) | Mark::Horizontal(..) | Mark::Cursor(..) => {}
+            }
+        }
+        ctx.layer();
+        for mark in &self.marks {
+            if let Mark::Cursor(x, color) = mark {
+                ctx.draw(&canvas::Line::new(*x, y0, *x, y1, *color));
             }
         }
     }
@@ -368,7 +378,10 @@ fn interpolate(points: &[(f64, f64)], x: f64) -> Option<f64> {
 
 impl Widget for Plot<'_> {
     fn render(self, area: Rect, buf: &mut Buffer) {
-        let block = Block::new().borders(Borders::TOP).title(self.title.clone());
+        let mut block = Block::new().borders(Borders::TOP).title(self.title.clone());
+        if let Some(readout) = &self.readout {
+            block = block.title(readout.clone().right_aligned());
+        }
         let inner = block.inner(area);
         block.render(area, buf);
         let (first, width) = Self::data_columns(inner, self.label_width);

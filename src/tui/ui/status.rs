@@ -1,5 +1,6 @@
-//! The status line: the value prompt while typing, else the last message (errors in red), then as many
-//! key hints as fit the width, from the key table.
+//! The status line: the value prompt while typing, else the last message (errors in red) or a note that the
+//! schematic is hidden, then as many key hints from the key table as fit the width: the essential ones
+//! first, the others where there is room, all in the table's order.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -43,7 +44,10 @@ pub fn height(app: &App, width: u16) -> u16 {
     }
 }
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+/// The note shown while the screen is too small for the schematic.
+pub const SCHEMATIC_HIDDEN: &str = "schematic hidden";
+
+pub fn render(frame: &mut Frame, area: Rect, app: &App, schematic_shown: bool) {
     let theme = &app.theme;
     let mut spans: Vec<Span> = Vec::new();
     let prompt = match &app.mode {
@@ -63,24 +67,41 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         };
         spans.push(Span::styled(message.text.clone(), style));
         spans.push(Span::raw("   "));
-    } else if area.width >= 100 {
-        spans.push(Span::styled(
-            format!("[{}]  ", app.view.name()),
-            theme.dim(),
-        ));
-    }
-    let mut used: usize = spans.iter().map(Span::width).sum();
-    let hints = keys::bindings(&app.mode).iter().filter_map(|b| b.hint);
-    for (i, (key, word)) in hints.enumerate() {
-        let gap = if i == 0 { "" } else { "  " };
-        let width = gap.len() + key.chars().count() + 1 + word.chars().count();
-        if used + width > usize::from(area.width) {
-            break;
+    } else {
+        if area.width >= 100 {
+            spans.push(Span::styled(
+                format!("[{}]  ", app.view.name()),
+                theme.dim(),
+            ));
         }
-        spans.push(Span::raw(gap));
-        spans.push(Span::styled(key, theme.key()));
-        spans.push(Span::styled(format!(" {word}"), theme.dim()));
-        used += width;
+        if !schematic_shown {
+            spans.push(Span::styled(format!("{SCHEMATIC_HIDDEN}   "), theme.dim()));
+        }
+    }
+    let used: usize = spans.iter().map(Span::width).sum();
+    let hints: Vec<keys::Hint> = keys::bindings(&app.mode)
+        .iter()
+        .filter_map(|b| b.hint)
+        .collect();
+    // Each hint after the first takes two spaces before it.
+    let width = |h: &keys::Hint| 2 + h.keys.chars().count() + 1 + h.word.chars().count();
+    let mut room = (usize::from(area.width) + 2).saturating_sub(used);
+    let mut chosen = vec![false; hints.len()];
+    for essential in [true, false] {
+        for (i, h) in hints.iter().enumerate() {
+            if h.essential == essential && width(h) <= room {
+                chosen[i] = true;
+                room -= width(h);
+            }
+        }
+    }
+    let shown = hints.iter().zip(chosen).filter(|(_, c)| *c).map(|(h, _)| h);
+    for (i, h) in shown.enumerate() {
+        if i > 0 {
+            spans.push(Span::raw("  "));
+        }
+        spans.push(Span::styled(h.keys, theme.key()));
+        spans.push(Span::styled(format!(" {}", h.word), theme.dim()));
     }
     frame.render_widget(
         Paragraph::new(Line::from(spans)).wrap(Wrap { trim: true }),

@@ -1,6 +1,8 @@
 //! The sweep view (the paper's Fig. 2): rebound spin omega2 against incidence angle theta1 from 0 to 90
 //! degrees for the current parameters, the angles where the ball slides throughout labelled above the
-//! chart, and the current theta1 marked.
+//! chart, and the current theta1 marked. A dashed curve gives omega2 for the comparison incident spin
+//! (omega1 = 0, or -100 rad/s when the current spin is 0), and the title's right end the angles where the
+//! two curves cross: the paper's backspin crossover.
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -11,6 +13,7 @@ use super::baseline;
 use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_extent};
 use crate::model::PhaseKind;
 use crate::tui::app::App;
+use crate::tui::sweep::Sweep;
 
 /// Half the angle step of the sweep: a range's edge lies between its last angle and the next one.
 const HALF_STEP: f64 = 45.0 / crate::tui::sweep::Sweep::ANGLES as f64;
@@ -37,9 +40,16 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             (p.angle_deg, p.omega2, color)
         })
         .collect();
+    let comparison = app
+        .sweep_comparison
+        .points
+        .iter()
+        .map(|p| (p.angle_deg, p.omega2))
+        .collect();
     let mut marks = vec![
         Mark::Horizontal(0.0, theme.guide()),
         Mark::Vertical(angle, theme.current()),
+        Mark::Dashed(comparison, theme.comparison()),
     ];
     if let Some(b) = &app.baseline {
         let points: Vec<(f64, f64)> = b
@@ -96,23 +106,63 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         band_row,
     );
 
-    let name = if area.width >= 100 {
-        " rebound spin ω2 (rad/s) against incidence angle θ1 "
+    // The title and the comparison legend, the longest forms that fit side by side.
+    let current = Style::new().fg(theme.current());
+    let titles = [
+        Line::from(vec![
+            Span::styled(
+                " rebound spin ω2 (rad/s) against incidence angle θ1 ",
+                theme.title(),
+            ),
+            Span::styled(format!("┆ θ1 {angle:.1}°: ω2 {omega2:.1} "), current),
+        ]),
+        Line::from(vec![
+            Span::styled(" ω2 (rad/s) ", theme.title()),
+            Span::styled(format!("┆ θ1 {angle:.1}°: ω2 {omega2:.1} "), current),
+        ]),
+        Line::from(vec![
+            Span::styled(" ω2 ", theme.title()),
+            Span::styled(format!("┆ θ1 {angle:.1}°: {omega2:.1} "), current),
+        ]),
+    ];
+    let crossings: Vec<String> = app
+        .sweep
+        .crossings(&app.sweep_comparison)
+        .iter()
+        .map(|a| format!("{a:.1}°"))
+        .collect();
+    let other = Sweep::comparison_spin(app.params.spin);
+    let legends = if crossings.is_empty() {
+        [
+            format!(" ┄ ω1 = {other:.0} rad/s: no crossing "),
+            format!(" ┄ ω1={other:.0}: no crossing "),
+            format!(" ┄ ω1={other:.0} "),
+        ]
     } else {
-        " ω2 (rad/s) against θ1 "
+        let at = crossings.join(", ");
+        [
+            format!(" ┄ ω1 = {other:.0} rad/s: crosses at {at} "),
+            format!(" ┄ ω1={other:.0} crosses {at} "),
+            format!(" ┄ ω1={other:.0} "),
+        ]
     };
-    let mut title = Line::from(vec![
-        Span::styled(name, theme.title()),
-        Span::styled(
-            format!("┆ θ1 {angle:.1}°: ω2 {omega2:.1} "),
-            Style::new().fg(theme.current()),
-        ),
-    ]);
+    let room = usize::from(chart.width).saturating_sub(1);
+    let (title, legend) = [(0, 0), (1, 0), (1, 1), (2, 1), (2, 2)]
+        .into_iter()
+        .map(|(t, l)| (&titles[t], &legends[l]))
+        .find(|(t, l)| t.width() + l.chars().count() <= room)
+        .unwrap_or((&titles[2], &legends[2]));
+    let mut title = title.clone();
     if app.baseline.is_some() && area.width >= 100 {
         title.push_span(baseline::legend(theme));
     }
+    let readout = Line::from(Span::styled(
+        legend.clone(),
+        Style::new().fg(theme.comparison()),
+    ));
     let plot = Plot {
         title,
+        readout: Some(readout),
         x,
         y,
         x_title,

@@ -49,6 +49,26 @@ impl Theme {
         self.pick(Color::DarkGray)
     }
 
+    /// The time cursor on the charts, and the rotation mark on the ball in the schematic.
+    pub fn cursor(&self) -> Color {
+        self.pick(Color::Magenta)
+    }
+
+    /// The comparison curve (the other incident spin) in the sweep view.
+    pub fn comparison(&self) -> Color {
+        self.pick(Color::Magenta)
+    }
+
+    /// The ball and the cart in the schematic: the terminal's own colour.
+    pub fn body(&self) -> Color {
+        Color::Reset
+    }
+
+    /// The spring in the schematic.
+    pub fn spring(&self) -> Color {
+        self.pick(Color::Gray)
+    }
+
     /// The current incidence angle in the sweep view.
     pub fn current(&self) -> Color {
         self.pick(Color::Green)

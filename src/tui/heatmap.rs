@@ -1,0 +1,281 @@
+//! The heatmap view's data: the rebound spin omega2 over a grid of cart masses and spring stiffnesses
+//! (log-spaced, [`MASSES`] x [`STIFFNESSES`] cells), every other parameter as it is now.
+//!
+//! The grid is solved on a worker thread, a row of stiffness at a time, so the explorer keeps answering
+//! keys while it fills in. Each request carries a generation number; a request supersedes any older one
+//! still running (the worker checks between rows), and rows that arrive from an older generation are
+//! dropped, so a map never mixes two sets of parameters.
+
+use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
+use std::thread;
+
+use rayon::prelude::*;
+
+use crate::model::{ParamId, Params, solve};
+
+/// Cells across: cart masses.
+pub const MASSES: usize = 60;
+/// Cells up: spring stiffnesses.
+pub const STIFFNESSES: usize = 30;
+/// Cart mass range, kg: 0.1 g to 100 g.
+pub const MASS_RANGE: [f64; 2] = [1e-4, 0.1];
+/// Stiffness range, N/m: 1 kN/m to 100 kN/m.
+pub const STIFFNESS_RANGE: [f64; 2] = [1e3, 1e5];
+
+/// The `i`-th of `n` values spaced evenly in log over `range`.
+fn log_grid(range: [f64; 2], i: usize, n: usize) -> f64 {
+    let [low, high] = range;
+    low * (high / low).powf(i as f64 / (n - 1) as f64)
+}
+
+/// The cart mass of column `i`, kg.
+pub fn mass(i: usize) -> f64 {
+    log_grid(MASS_RANGE, i, MASSES)
+}
+
+/// The stiffness of row `j` (0 is the softest), N/m.
+pub fn stiffness(j: usize) -> f64 {
+    log_grid(STIFFNESS_RANGE, j, STIFFNESSES)
+}
+
+/// Where `value` lies on a log axis over `range` with `n` cells: the nearest cell, or `None` outside.
+pub fn cell_of(value: f64, range: [f64; 2], n: usize) -> Option<usize> {
+    let [low, high] = range;
+    let f = (value / low).ln() / (high / low).ln();
+    (-0.5 / (n - 1) as f64..=1.0 + 0.5 / (n - 1) as f64)
+        .contains(&f)
+        .then(|| ((f * (n - 1) as f64).round() as usize).min(n - 1))
+}
+
+/// omega2 along row `j` (stiffness `stiffness(j)`), for every cart mass; `None` where the core refuses.
+pub fn compute_row(params: &Params, j: usize) -> Vec<Option<f64>> {
+    (0..MASSES)
+        .into_par_iter()
+        .map(|i| {
+            let mut p = *params;
+            p.set(ParamId::CartMass, mass(i));
+            p.set(ParamId::Stiffness, stiffness(j));
+            solve(&p).ok().map(|b| b.outcome.omega2)
+        })
+        .collect()
+}
+
+/// The map depends on every parameter but the two on its axes.
+fn key(params: &Params) -> Params {
+    Params {
+        cart_mass: 0.0,
+        stiffness: 0.0,
+        ..*params
+    }
+}
+
+/// One solved row, as the worker sends it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Row {
+    pub generation: u64,
+    pub index: usize,
+    pub omega2: Vec<Option<f64>>,
+}
+
+/// The worker thread's ends of the channels.
+#[derive(Debug)]
+struct Worker {
+    jobs: Sender<(u64, Params)>,
+    rows: Receiver<Row>,
+}
+
+impl Worker {
+    fn spawn() -> Worker {
+        let (jobs, job_rx) = mpsc::channel::<(u64, Params)>();
+        let (row_tx, rows) = mpsc::channel();
+        thread::spawn(move || {
+            // Ends when the explorer drops its end of either channel.
+            let Ok(mut job) = job_rx.recv() else { return };
+            'jobs: loop {
+                let (generation, params) = job;
+                for j in 0..STIFFNESSES {
+                    match job_rx.try_recv() {
+                        Ok(newer) => {
+                            job = newer;
+                            continue 'jobs;
+                        }
+                        Err(TryRecvError::Disconnected) => return,
+                        Err(TryRecvError::Empty) => {}
+                    }
+                    let row = Row {
+                        generation,
+                        index: j,
+                        omega2: compute_row(&params, j),
+                    };
+                    if row_tx.send(row).is_err() {
+                        return;
+                    }
+                }
+                match job_rx.recv() {
+                    Ok(next) => job = next,
+                    Err(_) => return,
+                }
+            }
+        });
+        Worker { jobs, rows }
+    }
+}
+
+/// The map as far as it has been computed.
+#[derive(Debug, Default)]
+pub struct Heatmap {
+    /// The generation of the newest request; rows of any other are dropped.
+    pub generation: u64,
+    /// The parameters (axes aside) of the newest request, if any.
+    requested: Option<Params>,
+    /// Row by row (index 0 the softest spring), once computed.
+    pub rows: Vec<Option<Vec<Option<f64>>>>,
+    /// Started on the first request.
+    worker: Option<Worker>,
+}
+
+impl Heatmap {
+    /// Asks for the map of `params`, unless it is already computed or on its way. True if a new
+    /// computation started.
+    pub fn request(&mut self, params: &Params) -> bool {
+        let key = key(params);
+        if self.requested == Some(key) {
+            return false;
+        }
+        self.generation += 1;
+        self.requested = Some(key);
+        self.rows = vec![None; STIFFNESSES];
+        let worker = self.worker.get_or_insert_with(Worker::spawn);
+        if worker.jobs.send((self.generation, key)).is_err() {
+            // The worker is gone (it cannot be, short of a panic in the core): start another.
+            let worker = self.worker.insert(Worker::spawn());
+            let _ = worker.jobs.send((self.generation, key));
+        }
+        true
+    }
+
+    /// Takes a row if it belongs to the newest request; false (and dropped) if it is stale.
+    pub fn accept(&mut self, row: Row) -> bool {
+        if row.generation != self.generation || row.index >= self.rows.len() {
+            return false;
+        }
+        self.rows[row.index] = Some(row.omega2);
+        true
+    }
+
+    /// Takes every row that has arrived; true if any was for the newest request.
+    pub fn poll(&mut self) -> bool {
+        let arrived: Vec<Row> = match &self.worker {
+            Some(worker) => worker.rows.try_iter().collect(),
+            None => return false,
+        };
+        let mut changed = false;
+        for row in arrived {
+            changed |= self.accept(row);
+        }
+        changed
+    }
+
+    /// True while a requested map is not complete.
+    pub fn pending(&self) -> bool {
+        self.requested.is_some() && self.rows.iter().any(Option::is_none)
+    }
+
+    /// How many rows are in.
+    pub fn done(&self) -> usize {
+        self.rows.iter().filter(|r| r.is_some()).count()
+    }
+
+    /// omega2 at column `i`, row `j`, if computed and solved.
+    pub fn at(&self, i: usize, j: usize) -> Option<f64> {
+        self.rows.get(j)?.as_ref()?.get(i).copied().flatten()
+    }
+
+    /// The cell with the largest omega2 so far: (column, row, omega2).
+    pub fn best(&self) -> Option<(usize, usize, f64)> {
+        (0..STIFFNESSES)
+            .flat_map(|j| (0..MASSES).map(move |i| (i, j)))
+            .filter_map(|(i, j)| self.at(i, j).map(|w| (i, j, w)))
+            .filter(|c| c.2.is_finite())
+            .max_by(|a, b| a.2.total_cmp(&b.2))
+    }
+
+    /// The smallest and largest omega2 so far.
+    pub fn range(&self) -> Option<(f64, f64)> {
+        self.rows
+            .iter()
+            .flatten()
+            .flatten()
+            .flatten()
+            .filter(|w| w.is_finite())
+            .fold(None, |acc: Option<(f64, f64)>, &w| {
+                Some(acc.map_or((w, w), |(lo, hi)| (lo.min(w), hi.max(w))))
+            })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::time::{Duration, Instant};
+
+    #[test]
+    fn grids_span_the_ranges_in_log() {
+        assert_eq!(mass(0), 1e-4);
+        assert!((mass(MASSES - 1) - 0.1).abs() < 1e-15);
+        assert!((stiffness(STIFFNESSES - 1) - 1e5).abs() < 1e-9);
+        // The default 10 g cart and 15 kN/m spring are inside.
+        let i = cell_of(0.010, MASS_RANGE, MASSES).unwrap();
+        assert!((mass(i) / 0.010).ln().abs() < 0.07);
+        assert_eq!(cell_of(1.0, MASS_RANGE, MASSES), None);
+        assert_eq!(cell_of(1e-4, MASS_RANGE, MASSES), Some(0));
+    }
+
+    #[test]
+    fn stale_rows_are_dropped() {
+        let mut map = Heatmap {
+            generation: 3,
+            rows: vec![None; STIFFNESSES],
+            ..Heatmap::default()
+        };
+        let row = |generation| Row {
+            generation,
+            index: 2,
+            omega2: vec![Some(1.0); MASSES],
+        };
+        assert!(!map.accept(row(2)));
+        assert_eq!(map.done(), 0);
+        assert!(map.accept(row(3)));
+        assert_eq!(map.done(), 1);
+        assert_eq!(map.at(5, 2), Some(1.0));
+    }
+
+    #[test]
+    fn the_worker_fills_the_map_for_the_newest_request() {
+        let mut map = Heatmap::default();
+        let first = Params::default();
+        let second = Params { spin: 0.0, ..first };
+        assert!(map.request(&first));
+        assert!(!map.request(&first));
+        // The same map whatever the cart and spring.
+        assert!(!map.request(&Params {
+            cart_mass: 1.0,
+            ..first
+        }));
+        assert!(map.request(&second));
+        assert_eq!(map.generation, 2);
+        let start = Instant::now();
+        while map.pending() {
+            map.poll();
+            assert!(start.elapsed() < Duration::from_secs(60), "timed out");
+            std::thread::sleep(Duration::from_millis(5));
+        }
+        for j in [0, 13, STIFFNESSES - 1] {
+            assert_eq!(map.rows[j].as_ref().unwrap(), &compute_row(&second, j));
+        }
+        let (i, j, best) = map.best().unwrap();
+        assert_eq!(map.at(i, j), Some(best));
+        let (low, high) = map.range().unwrap();
+        assert!(low <= best && best == high);
+    }
+}
