@@ -10,7 +10,7 @@ use snapback::model::{ParamId, Params, solve};
 use snapback::scenario::{PRESETS, Scenario, preset};
 use snapback::tui::app::Tone;
 use snapback::tui::ui::theme::Theme;
-use snapback::tui::{App, Mode, Scripted, run};
+use snapback::tui::{App, Mode, Scripted, keys, run};
 
 fn key(code: KeyCode) -> Event {
     Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
@@ -536,17 +536,21 @@ fn the_help_lists_the_scenario_keys() {
     for (w, h) in [(80, 24), (160, 48)] {
         let mut app = app_in(Params::default(), dir.path());
         let screen = drive(&mut app, w, h, vec![char('?')]);
+        // Related keys share a row: `s / o`, `u / Ctrl-R`, `b / B`. The key column is as wide as the widest.
+        let width = [keys::EXPLORER, keys::PROMPT]
+            .into_iter()
+            .flat_map(keys::help_rows)
+            .map(|(label, _)| label.chars().count())
+            .max()
+            .unwrap();
         for (keys, words) in [
             ("p", "pick a preset"),
-            ("s", "save the parameters as a scenario file"),
-            ("o", "open a scenario file"),
-            ("u", "undo the last parameter change"),
-            ("Ctrl-R", "redo what u undid"),
-            ("b", "pin this bounce as the dimmer baseline"),
-            ("B", "clear the baseline"),
+            ("s / o", "save the parameters as a scenario file / open one"),
+            ("u / Ctrl-R", "undo / redo a parameter change"),
+            ("b / B", "pin this bounce as a dim baseline / clear it"),
             ("x", "export the series (CSV) and outcome (JSON)"),
         ] {
-            let row = format!(" {keys:<14} {words}");
+            let row = format!(" {keys:<width$} {words}");
             assert!(
                 screen.contains(&row),
                 "{row:?} missing at {w}x{h}:\n{screen}"
