@@ -19,10 +19,13 @@ pub use params_args::{InputError, ParamArgs};
 
 /// Explore a ball bouncing obliquely off a surface that can move sideways (Cross, Am. J. Phys. 78, 2010).
 #[derive(Debug, Parser)]
-#[command(name = "snapback", version, about, long_about = None)]
+#[command(name = "snapback", version, about, long_about = None, args_conflicts_with_subcommands = true)]
 pub struct Cli {
     #[command(subcommand)]
     pub command: Option<Commands>,
+    /// Without a command: the explorer, started from these flags (`snapback --preset light-1g`).
+    #[command(flatten)]
+    pub explorer: tui::TuiArgs,
 }
 
 #[derive(Debug, Subcommand)]
@@ -73,7 +76,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Optimize(args)) => optimize::run(&args),
         Some(Commands::Reproduce(args)) => reproduce::run(&args),
         Some(Commands::Figure(args)) => figure::run(&args),
-        None => tui::run(&tui::TuiArgs::default()),
+        None => tui::run(&cli.explorer),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

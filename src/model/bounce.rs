@@ -79,6 +79,18 @@ impl Phase {
     }
 }
 
+/// A phase of the ball, whatever the cart does meanwhile.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BallPhase {
+    pub kind: PhaseKind,
+    /// +1 or -1 while sliding, 0 while gripping.
+    pub slip_sign: i8,
+    /// s
+    pub start: f64,
+    /// s
+    pub end: f64,
+}
+
 /// The ball as it leaves.
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct Outcome {
@@ -516,21 +528,33 @@ impl Bounce {
         out
     }
 
-    /// The phase kinds joined, e.g. `slide-grip-slide`.
-    ///
-    /// The ball's phases: a change in the cart alone (sticking, starting, turning) does not split them.
-    pub fn phase_summary(&self) -> String {
-        let mut names: Vec<&str> = Vec::with_capacity(self.phases.len());
-        for (i, p) in self.phases.iter().enumerate() {
-            let same_as_before = i > 0 && {
-                let before = &self.phases[i - 1];
-                before.kind == p.kind && before.slip_sign == p.slip_sign
-            };
-            if !same_as_before {
-                names.push(p.kind.name());
+    /// The ball's phases: consecutive phases that differ only in what the cart does (it sticks, starts
+    /// or turns) are one phase of the ball.
+    pub fn ball_phases(&self) -> Vec<BallPhase> {
+        let mut merged: Vec<BallPhase> = Vec::with_capacity(self.phases.len());
+        for p in &self.phases {
+            match merged.last_mut() {
+                Some(last) if last.kind == p.kind && last.slip_sign == p.slip_sign => {
+                    last.end = p.end
+                }
+                _ => merged.push(BallPhase {
+                    kind: p.kind,
+                    slip_sign: p.slip_sign,
+                    start: p.start,
+                    end: p.end,
+                }),
             }
         }
-        names.join("-")
+        merged
+    }
+
+    /// The ball's phase kinds joined, e.g. `slide-grip-slide`.
+    pub fn phase_summary(&self) -> String {
+        self.ball_phases()
+            .iter()
+            .map(|p| p.kind.name())
+            .collect::<Vec<_>>()
+            .join("-")
     }
 
     /// True when the ball slides for the whole contact.

@@ -190,10 +190,29 @@ impl Step {
     }
 }
 
+/// Which part of the system a parameter describes; the explorer lists the groups apart.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Group {
+    /// The ball, how it arrives and how it meets the surface.
+    Ball,
+    /// The surface that moves sideways: the cart, its spring and its string friction.
+    Surface,
+}
+
+impl Group {
+    pub fn name(self) -> &'static str {
+        match self {
+            Group::Ball => "ball and impact",
+            Group::Surface => "surface",
+        }
+    }
+}
+
 /// Everything the program knows about one parameter.
 #[derive(Clone, Copy, Debug)]
 pub struct ParamSpec {
     pub id: ParamId,
+    pub group: Group,
     /// Command-line flag without dashes, e.g. `cart-mass`.
     pub flag: &'static str,
     /// Key in scenario files, e.g. `cart_mass`.
@@ -303,6 +322,7 @@ const NON_NEGATIVE: Range = Range {
 pub const PARAMS: &[ParamSpec] = &[
     ParamSpec {
         id: ParamId::Angle,
+        group: Group::Ball,
         flag: "angle",
         key: "angle",
         symbol: "θ1",
@@ -321,6 +341,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Speed,
+        group: Group::Ball,
         flag: "speed",
         key: "speed",
         symbol: "v1",
@@ -336,6 +357,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Spin,
+        group: Group::Ball,
         flag: "spin",
         key: "spin",
         symbol: "ω1",
@@ -354,6 +376,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Mu,
+        group: Group::Ball,
         flag: "mu",
         key: "mu",
         symbol: "μ",
@@ -369,6 +392,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Duration,
+        group: Group::Ball,
         flag: "duration",
         key: "duration",
         symbol: "T",
@@ -384,6 +408,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Ey,
+        group: Group::Ball,
         flag: "ey",
         key: "ey",
         symbol: "e_y",
@@ -402,6 +427,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Mass,
+        group: Group::Ball,
         flag: "mass",
         key: "mass",
         symbol: "m",
@@ -417,6 +443,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Radius,
+        group: Group::Ball,
         flag: "radius",
         key: "radius",
         symbol: "r",
@@ -432,6 +459,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Alpha,
+        group: Group::Ball,
         flag: "alpha",
         key: "alpha",
         symbol: "α",
@@ -447,6 +475,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::CartMass,
+        group: Group::Surface,
         flag: "cart-mass",
         key: "cart_mass",
         symbol: "M",
@@ -462,6 +491,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::Stiffness,
+        group: Group::Surface,
         flag: "stiffness",
         key: "stiffness",
         symbol: "k",
@@ -477,6 +507,7 @@ pub const PARAMS: &[ParamSpec] = &[
     },
     ParamSpec {
         id: ParamId::CartFriction,
+        group: Group::Surface,
         flag: "cart-friction",
         key: "cart_friction",
         symbol: "F_c",

@@ -16,7 +16,7 @@ use ratatui::widgets::Paragraph;
 
 use super::baseline;
 use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_extent};
-use crate::model::Sample;
+use crate::model::{Cart, Sample};
 use crate::tui::app::App;
 use crate::tui::ui::theme::Theme;
 
@@ -101,7 +101,20 @@ fn layout(area: Rect, app: &App) -> ContactLayout {
     force.push(path(|s| s.friction));
     let mut displacement = vec![zero.clone()];
     displacement.extend(faint(|s| s.x * 1e3));
-    displacement.push(path(|s| s.x * 1e3));
+    // The cart's curve shows where string friction holds it still.
+    displacement.push(Mark::Path(
+        app.series
+            .iter()
+            .map(|s| {
+                let color = if s.cart_stuck {
+                    theme.stuck()
+                } else {
+                    theme.phase(s.kind)
+                };
+                (ms(s), s.x * 1e3, color)
+            })
+            .collect(),
+    ));
     let mut spin = vec![zero];
     spin.extend(faint(|s| s.omega));
     spin.push(path(|s| s.omega));
@@ -199,6 +212,9 @@ fn cursor_line(app: &App, theme: &Theme, width: u16) -> (Line<'static>, Line<'st
             }
         }
     }
+    if now.cart_stuck {
+        left.push(Span::styled(", cart stuck", Style::new().fg(theme.stuck())));
+    }
     let state = if app.playing {
         Span::styled("▶ playing ", theme.key())
     } else {
@@ -267,7 +283,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         .map(|p| Segment {
             from: p.start * 1e3,
             to: p.end * 1e3,
-            label: p.kind.name().to_string(),
+            label: if p.cart == Cart::Stuck {
+                format!("{}, cart stuck", p.kind.name())
+            } else {
+                p.kind.name().to_string()
+            },
             color: theme.phase(p.kind),
         })
         .collect();

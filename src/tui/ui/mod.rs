@@ -42,7 +42,6 @@ use ratatui::widgets::Paragraph;
 pub use charts::fixed;
 
 use super::app::{App, Mode, View};
-use crate::model::PARAMS;
 
 /// The smallest terminal the layout is drawn in.
 pub const MIN_WIDTH: u16 = 80;
@@ -71,7 +70,7 @@ pub fn regions(area: Rect, app: &App) -> Option<Regions> {
     let left_width = (area.width * 27 / 100).clamp(35, 44);
     let [left, view] =
         Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
-    let params_height = PARAMS.len() as u16 + 2;
+    let params_height = params::height();
     let [params, rest] =
         Layout::vertical([Constraint::Length(params_height), Constraint::Min(0)]).areas(left);
     let outcome_height = outcome::height(app, left_width);

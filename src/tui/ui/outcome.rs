@@ -7,7 +7,7 @@ use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph, Wrap};
 
-use crate::model::Bounce;
+use crate::model::{BallPhase, Bounce};
 use crate::tui::app::App;
 use crate::tui::baseline::signed;
 use crate::tui::ui::theme::Theme;
@@ -25,17 +25,18 @@ fn ms(t: f64, decimals: usize) -> String {
 }
 
 /// Two decimals, or up to four when fewer would show a phase as starting where it ends.
-fn timeline_decimals(bounce: &Bounce) -> usize {
+fn timeline_decimals(phases: &[BallPhase]) -> usize {
     (2..=4)
-        .find(|&d| bounce.phases.iter().all(|p| ms(p.start, d) != ms(p.end, d)))
+        .find(|&d| phases.iter().all(|p| ms(p.start, d) != ms(p.end, d)))
         .unwrap_or(4)
 }
 
-/// The phases as `slide 0-1.32, grip 1.32-4.39, ...`, each in its phase's colour.
+/// The ball's phases as `slide 0-1.32, grip 1.32-4.39, ...`, each in its phase's colour.
 pub fn timeline(bounce: &Bounce, theme: &Theme) -> Vec<Span<'static>> {
-    let decimals = timeline_decimals(bounce);
+    let phases = bounce.ball_phases();
+    let decimals = timeline_decimals(&phases);
     let mut spans = Vec::new();
-    for (i, p) in bounce.phases.iter().take(LISTED_PHASES).enumerate() {
+    for (i, p) in phases.iter().take(LISTED_PHASES).enumerate() {
         if i > 0 {
             spans.push(Span::raw(", "));
         }
@@ -49,7 +50,7 @@ pub fn timeline(bounce: &Bounce, theme: &Theme) -> Vec<Span<'static>> {
             Style::new().fg(theme.phase(p.kind)),
         ));
     }
-    let more = bounce.phases.len().saturating_sub(LISTED_PHASES);
+    let more = phases.len().saturating_sub(LISTED_PHASES);
     if more > 0 {
         spans.push(Span::raw(format!(", … {more} more")));
     }
@@ -118,38 +119,50 @@ fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
     let ex =
         o.ex.map_or("none (no slip in)".to_string(), |ex| format!("{ex:.3}"));
     let friction_share = 100.0 * e.friction_loss / e.initial;
-    let mut lines = vec![
-        Line::from(vec![
-            label("ω2", "rebound spin ω2"),
-            Span::styled(format!("{:.1} rad/s", o.omega2), theme.emphasis()),
-            Span::raw(format!(" ({rpm:.0} rpm)")),
-        ]),
-        Line::from(vec![
-            label("v_x2", "rebound v_x2"),
-            Span::raw(format!("{:.3} m/s", o.vx2)),
-        ]),
-        Line::from(vec![
-            label("θ2", "rebound angle θ2"),
-            Span::raw(format!("{:.1} deg", o.theta2_deg)),
-        ]),
-        Line::from(vec![label("e_x", "tangential e_x"), Span::raw(ex)]),
-        Line::from(vec![
-            label("friction", "lost to friction"),
-            Span::raw(format!("{friction_share:.1} % of energy in")),
-        ]),
-        Line::from(vec![
-            label("phases", "phases (ms)"),
-            Span::styled(
-                if wide {
-                    b.phase_summary()
-                } else {
-                    "(ms)".into()
-                },
-                theme.dim(),
-            ),
-        ]),
-        Line::from(timeline(b, theme)),
+    let spin = Line::from(vec![
+        label("ω2", "rebound spin ω2"),
+        Span::styled(format!("{:.1} rad/s", o.omega2), theme.emphasis()),
+        Span::raw(format!(" ({rpm:.0} rpm)")),
+    ]);
+    let vx2 = vec![
+        label("v_x2", "rebound v_x2"),
+        Span::raw(format!("{:.3} m/s", o.vx2)),
     ];
+    let theta2 = format!("{:.1} deg", o.theta2_deg);
+    let ex = Line::from(vec![label("e_x", "tangential e_x"), Span::raw(ex)]);
+    let friction = Line::from(vec![
+        label("friction", "lost to friction"),
+        Span::raw(format!("{friction_share:.1} % of energy in")),
+    ]);
+    // Narrow, v_x2 and θ2 share a line and the timeline follows its label, to fit 80 x 24.
+    let mut lines = if wide {
+        vec![
+            spin,
+            Line::from(vx2),
+            Line::from(vec![label("θ2", "rebound angle θ2"), Span::raw(theta2)]),
+            ex,
+            friction,
+            Line::from(vec![
+                label("phases", "phases (ms)"),
+                Span::styled(b.phase_summary(), theme.dim()),
+            ]),
+            Line::from(timeline(b, theme)),
+        ]
+    } else {
+        let mut vx2_theta2 = vx2;
+        vx2_theta2.push(Span::styled("  θ2 ", theme.dim()));
+        vx2_theta2.push(Span::raw(theta2));
+        let mut phases = vec![label("phase ms", "")];
+        phases.extend(timeline(b, theme));
+        vec![
+            spin,
+            Line::from(vx2_theta2),
+            ex,
+            friction,
+            Line::from(phases),
+        ]
+    };
+    let ex_line = if wide { 3 } else { 2 };
     // Against a pinned baseline: current minus baseline, on lines of their own when there is room, else
     // in place of the rpm and after e_x.
     if let Some(base) = &app.baseline {
@@ -179,7 +192,7 @@ fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
             );
         } else {
             lines[0].spans[2] = Span::raw(format!(" Δ{d_omega2}"));
-            lines[3].spans.push(Span::raw(format!(" Δ{d_ex}")));
+            lines[ex_line].spans.push(Span::raw(format!(" Δ{d_ex}")));
         }
     }
     if wide {
@@ -202,6 +215,12 @@ fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
             label("", "lost to e_y < 1"),
             Span::raw(share(e.normal_loss)),
         ]));
+        if b.params.cart_friction > 0.0 {
+            lines.push(Line::from(vec![
+                label("", "lost at the cart"),
+                Span::raw(share(e.cart_friction_loss)),
+            ]));
+        }
     }
     lines
 }

@@ -1,5 +1,6 @@
 //! The parameter panel: every parameter of the table in `model::params::PARAMS`, its value in the unit
-//! people think in, the selected one highlighted, a dot beside any value that differs from the default.
+//! people think in, the selected one highlighted, a dot beside any value that differs from the default,
+//! and a heading where a new group begins (the surface: cart, spring, string friction).
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -14,10 +15,18 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let block = Block::bordered().title(Span::styled(" parameters ", theme.title()));
     let inner = block.inner(area);
     let width = usize::from(inner.width);
-    let lines: Vec<Line> = PARAMS
-        .iter()
-        .enumerate()
-        .map(|(i, spec)| {
+    let mut lines: Vec<Line> = Vec::with_capacity(PARAMS.len() + group_headings());
+    for (i, spec) in PARAMS.iter().enumerate() {
+        if i > 0 && PARAMS[i - 1].group != spec.group {
+            let name = format!(" {} ", spec.group.name());
+            let rule = "─".repeat(width.saturating_sub(name.chars().count() + 2));
+            lines.push(Line::from(vec![
+                Span::styled("──", theme.dim()),
+                Span::styled(name, theme.title()),
+                Span::styled(rule, theme.dim()),
+            ]));
+        }
+        lines.push({
             let value = app.params.get(spec.id);
             let shown = spec.show(value).to_string();
             let changed = if value == spec.default { ' ' } else { '•' };
@@ -38,7 +47,20 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             } else {
                 line
             }
-        })
-        .collect();
+        });
+    }
     frame.render_widget(Paragraph::new(lines).block(block), area);
+}
+
+/// The headings between groups of parameters.
+pub fn group_headings() -> usize {
+    PARAMS
+        .windows(2)
+        .filter(|pair| pair[0].group != pair[1].group)
+        .count()
+}
+
+/// Rows the panel takes, borders included.
+pub fn height() -> u16 {
+    (PARAMS.len() + group_headings()) as u16 + 2
 }

@@ -40,6 +40,11 @@ impl Theme {
     }
 
     /// The grip limit +/- mu N.
+    /// The cart's displacement while string friction holds it still.
+    pub fn stuck(&self) -> Color {
+        self.pick(Color::Blue)
+    }
+
     pub fn limit(&self) -> Color {
         self.pick(Color::Red)
     }
