@@ -10,6 +10,9 @@
 /// The smallest interval the search splits, relative to the time: below it, a rise is taken as found.
 const FINEST: f64 = 1e-14;
 
+/// A Newton step this small relative to the time means the iteration has converged.
+const CONVERGED: f64 = 1e-11;
+
 /// The event: `K` branches, each a value and its time derivative at `t`. The phase ends when any
 /// branch rises (a grip, for example, breaks when F_s reaches +mu N or -mu N).
 pub trait Event<const K: usize>: Fn(f64) -> [(f64, f64); K] {}
@@ -123,12 +126,12 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
     /// little above zero at `a`; the crossing then lies before `a`, and is bracketed by stepping back.
     fn crossing(&self, i: usize, a: &Point<K>, b: &Point<K>) -> f64 {
         let branch = |t: f64| (self.f)(t)[i];
-        let (mut low, mut high, mut value) = (a.t, b.t, a.branches[i].0);
+        let (mut low, mut high) = ((a.t, a.branches[i].0), (b.t, b.branches[i].0));
         let mut step = b.t - a.t;
-        while value > 0.0 && low > self.start {
+        while low.1 > 0.0 && low.0 > self.start {
             high = low;
-            low = (low - step).max(self.start);
-            value = branch(low).0;
+            let t = (low.0 - step).max(self.start);
+            low = (t, branch(t).0);
             step *= 2.0;
         }
         refine(branch, low, high)
@@ -155,11 +158,17 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
     }
 }
 
-/// The crossing of zero in `[a, b]`, where `f(a) <= 0 < f(b)` (up to noise), by Newton iteration kept
-/// inside a shrinking bracket, to a few units in the last place of `t`.
-fn refine(f: impl Fn(f64) -> (f64, f64), mut a: f64, mut b: f64) -> f64 {
+/// The crossing of zero in `[a, b]`, given as (time, value) with `f(a) <= 0 < f(b)` (up to noise), by
+/// Newton iteration from the secant point, kept inside a shrinking bracket, to a few units in the last
+/// place of `t`.
+fn refine(f: impl Fn(f64) -> (f64, f64), (mut a, fa): (f64, f64), (mut b, fb): (f64, f64)) -> f64 {
     let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
-    let mut t = 0.5 * (a + b);
+    let secant = a + (b - a) * (-fa / (fb - fa));
+    let mut t = if secant > a && secant < b {
+        secant
+    } else {
+        0.5 * (a + b)
+    };
     for _ in 0..100 {
         let (value, rate) = f(t);
         if value > 0.0 {
@@ -171,7 +180,9 @@ fn refine(f: impl Fn(f64) -> (f64, f64), mut a: f64, mut b: f64) -> f64 {
             break;
         }
         let newton = t - value / rate;
-        if rate != 0.0 && (newton - t).abs() <= resolution(t) {
+        // Newton converges quadratically: once a step is this small, the next would move t by about
+        // C step² (C = f''/2f'), far below the resolution asked of transition times (1e-12 s).
+        if rate != 0.0 && (newton - t).abs() <= CONVERGED * t.abs() {
             return newton.clamp(a, b);
         }
         t = if rate != 0.0 && newton > a && newton < b {

@@ -112,9 +112,9 @@ impl Setup {
         0.5 * self.cart_mass * s.v * s.v + 0.5 * self.k * s.x * s.x
     }
 
-    /// The coarse step of the event search: a quarter of the fastest period present. Any step is
+    /// The coarse step of the event search: half the fastest period present. Any step is
     /// correct (intervals are proved empty or split); this one lets most be proved empty at once.
     pub fn event_step(&self, omega_cart: f64) -> f64 {
-        std::f64::consts::FRAC_PI_2 / omega_cart.max(self.w)
+        std::f64::consts::PI / omega_cart.max(self.w)
     }
 }
