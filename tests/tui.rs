@@ -11,6 +11,10 @@ use snapback::tui::keys::{self, keys_label};
 use snapback::tui::ui::theme::Theme;
 use snapback::tui::{App, Mode, Scripted, View, run};
 
+#[path = "support/screen.rs"]
+mod screen;
+use screen::{line_with, text};
+
 fn key(code: KeyCode) -> Event {
     Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
 }
@@ -44,27 +48,6 @@ fn explore_with(
 fn explore(width: u16, height: u16, events: Vec<Event>) -> (App, String) {
     let (app, terminal) = explore_with(Theme::default(), width, height, events);
     (app, text(&terminal))
-}
-
-fn text(terminal: &Terminal<TestBackend>) -> String {
-    let buffer = terminal.backend().buffer();
-    let area = buffer.area;
-    (area.top()..area.bottom())
-        .map(|y| {
-            (area.left()..area.right())
-                .map(|x| buffer[(x, y)].symbol())
-                .collect::<String>()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-/// The screen line that contains `needle`.
-fn line_with<'a>(screen: &'a str, needle: &str) -> &'a str {
-    screen
-        .lines()
-        .find(|l| l.contains(needle))
-        .unwrap_or_else(|| panic!("no line with {needle:?} in\n{screen}"))
 }
 
 const SIZES: [(u16, u16); 2] = [(80, 24), (160, 48)];

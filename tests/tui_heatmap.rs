@@ -14,6 +14,10 @@ use snapback::tui::heatmap::{self, MASSES, STIFFNESSES};
 use snapback::tui::ui::theme::Theme;
 use snapback::tui::{App, EventSource, Input, View, run};
 
+#[path = "support/screen.rs"]
+mod screen;
+use screen::text;
+
 fn key(code: KeyCode) -> Input {
     Input::Event(Event::Key(KeyEvent::new(code, KeyModifiers::NONE)))
 }
@@ -42,19 +46,6 @@ impl EventSource for RealTime {
         self.ticks += 1;
         Ok(Some(Input::Tick(frame)))
     }
-}
-
-fn text(terminal: &Terminal<TestBackend>) -> String {
-    let buffer = terminal.backend().buffer();
-    let area = buffer.area;
-    (area.top()..area.bottom())
-        .map(|y| {
-            (area.left()..area.right())
-                .map(|x| buffer[(x, y)].symbol())
-                .collect::<String>()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
 }
 
 fn fill(

@@ -19,6 +19,10 @@ use snapback::tui::ui::theme::Theme;
 use snapback::tui::ui::{self, time_at};
 use snapback::tui::{Action, App, EventSource, Input, Scripted, playback, run};
 
+#[path = "support/screen.rs"]
+mod screen;
+use screen::{line_with, text};
+
 fn key(c: char) -> Input {
     Input::Event(Event::Key(KeyEvent::new(
         KeyCode::Char(c),
@@ -32,26 +36,6 @@ fn code(code: KeyCode) -> Input {
 
 fn tick(ms: u64) -> Input {
     Input::Tick(Duration::from_millis(ms))
-}
-
-fn text(terminal: &Terminal<TestBackend>) -> String {
-    let buffer = terminal.backend().buffer();
-    let area = buffer.area;
-    (area.top()..area.bottom())
-        .map(|y| {
-            (area.left()..area.right())
-                .map(|x| buffer[(x, y)].symbol())
-                .collect::<String>()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-fn line_with<'a>(screen: &'a str, needle: &str) -> &'a str {
-    screen
-        .lines()
-        .find(|l| l.contains(needle))
-        .unwrap_or_else(|| panic!("no line with {needle:?} in\n{screen}"))
 }
 
 /// The explorer after `inputs` on a `width` x `height` screen, and how many frames were drawn.

@@ -12,6 +12,10 @@ use snapback::tui::app::Tone;
 use snapback::tui::ui::theme::Theme;
 use snapback::tui::{App, Mode, Scripted, keys, run};
 
+#[path = "support/screen.rs"]
+mod screen;
+use screen::{line_with, text};
+
 fn key(code: KeyCode) -> Event {
     Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
 }
@@ -64,16 +68,7 @@ fn app_in(params: Params, dir: &Path) -> App {
 fn drive(app: &mut App, width: u16, height: u16, events: Vec<Event>) -> String {
     let mut terminal = Terminal::new(TestBackend::new(width, height)).unwrap();
     run(&mut terminal, app, &mut Scripted::from(events)).unwrap();
-    let buffer = terminal.backend().buffer();
-    let area = buffer.area;
-    (area.top()..area.bottom())
-        .map(|y| {
-            (area.left()..area.right())
-                .map(|x| buffer[(x, y)].symbol())
-                .collect::<String>()
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
+    text(&terminal)
 }
 
 fn message(app: &App) -> String {
@@ -81,14 +76,6 @@ fn message(app: &App) -> String {
         .as_ref()
         .map(|m| m.text.clone())
         .unwrap_or_default()
-}
-
-/// The screen line that contains `needle`.
-fn line_with<'a>(screen: &'a str, needle: &str) -> &'a str {
-    screen
-        .lines()
-        .find(|l| l.contains(needle))
-        .unwrap_or_else(|| panic!("no line with {needle:?} in\n{screen}"))
 }
 
 fn omega2(params: &Params) -> f64 {
