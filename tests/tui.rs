@@ -83,7 +83,10 @@ fn opens_on_fig3c_with_the_angle_selected() {
             "{screen}"
         );
         assert!(line_with(&screen, "ω2 ").contains(&omega2), "{screen}");
-        assert!(screen.contains("slide 0-1.32, grip 1.32-4.39"), "{screen}");
+        // At 80x24 the chain row pushes the outcome panel's phase line off the screen.
+        if h >= 48 {
+            assert!(screen.contains("slide 0-1.32, grip 1.32-4.39"), "{screen}");
+        }
         // Narrow charts are titled by their symbols, to leave room for the time cursor's readouts.
         let titles = if w >= 120 {
             [
@@ -166,8 +169,8 @@ fn coarse_steps_selection_and_resets() {
 
 #[test]
 fn a_typed_value_takes_units_like_the_command_line() {
-    // Wraps round to the last parameter (string friction), then up to the stiffness.
-    let mut events = vec![key(KeyCode::Char('k')), key(KeyCode::Char('k'))];
+    // Wraps round to the last parameter (the chain), then up past string friction to the stiffness.
+    let mut events = vec![key(KeyCode::Char('k')); 3];
     events.push(key(KeyCode::Enter));
     events.extend(typed("2.2kN/m"));
     events.push(key(KeyCode::Enter));
@@ -231,7 +234,7 @@ fn a_rejected_edit_shows_why_and_keeps_the_value() {
 #[test]
 fn a_value_the_solver_refuses_is_not_applied() {
     // A 1 mg cart on a 1 MN/m spring oscillates too fast to resolve.
-    let mut events = vec![key(KeyCode::Char('k')), key(KeyCode::Char('k'))];
+    let mut events = vec![key(KeyCode::Char('k')); 3];
     events.push(key(KeyCode::Enter));
     events.extend(typed("1e9"));
     events.push(key(KeyCode::Enter));
