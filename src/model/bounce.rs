@@ -151,9 +151,9 @@ pub struct Sample {
     pub normal: f64,
     /// Friction force on the ball F, N (positive backward, as in the paper's Fig. 3).
     pub friction: f64,
-    /// Cart displacement X, m.
+    /// Cart displacement X (on a chain, its first mass's), m.
     pub x: f64,
-    /// Cart velocity V, m/s.
+    /// Cart velocity V (on a chain, its first mass's), m/s.
     pub v: f64,
     /// Ball velocity along the surface v_x, m/s.
     pub vx: f64,
