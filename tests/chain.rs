@@ -276,7 +276,7 @@ fn string_friction_on_a_chain_is_refused() {
 #[test]
 fn the_chain_agrees_with_numerical_integration() {
     let mut rng = Rng(0x5eed_c4a1_0000_0042);
-    let cases = 60;
+    let cases = 100;
     let mut multi_grip = 0;
     let mut worst: f64 = 0.0;
     for case in 0..cases {
@@ -447,4 +447,29 @@ proptest! {
             }
         }
     }
+}
+
+#[test]
+fn scenario_files_set_the_chain() {
+    use snapback::scenario::Scenario;
+    let s = Scenario::parse(
+        "description = \"chain\"\n[params]\nchain = 4\n",
+        "chain.toml",
+    )
+    .unwrap();
+    let p = s.apply(Params::default());
+    assert_eq!(p.chain, 4.0);
+    assert!(solve(&p).is_ok());
+    // Saved and loaded back, the chain survives.
+    let again = Scenario::parse(&Scenario::from_params("c", "", &p).to_toml(), "c.toml").unwrap();
+    assert_eq!(again.apply(Params::default()), p);
+    let err = Scenario::parse("[params]\nchain = 2.5\n", "bad.toml").unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("chain must be in {1, 2, ..., 16}; got 2.5"),
+        "{err}"
+    );
+    // Files written before the chain existed are single carts.
+    let old = Scenario::parse("[params]\nangle = 45\n", "old.toml").unwrap();
+    assert_eq!(old.apply(Params::default()).chain, 1.0);
 }
