@@ -1,5 +1,6 @@
 //! One whole bounce, solved exactly: the paper's Fig. 3(c) case (slide-grip-slide), a 3-phase case
 //! (Fig. 3(b)) and a 5-phase case (a 1 g cart: slide-grip-slide-grip-slide). Target: median <= 2 µs.
+//! And the Fig. 3(c) case on a chain of 8 masses (`chain_8`, 5 phases).
 
 use std::hint::black_box;
 
@@ -30,6 +31,14 @@ fn bench(c: &mut Criterion) {
         assert!(phases >= 3, "{name} has {phases} phases");
         group.bench_function(name, |b| b.iter(|| solve(black_box(&params)).unwrap()));
     }
+    // A chain of 8 masses sharing the 10 g cart (slide-grip-slide-grip-slide), solved in its modes.
+    let chain8 = Params {
+        chain: 8.0,
+        ..Params::default()
+    };
+    let phases = solve(&chain8).expect("chain case solves").phases.len();
+    assert!(phases >= 3, "chain_8 has {phases} phases");
+    group.bench_function("chain_8", |b| b.iter(|| solve(black_box(&chain8)).unwrap()));
     group.finish();
     let fig3c = Params::default();
     let bounce = solve(&fig3c).unwrap();

@@ -47,6 +47,7 @@ fn random_params(rng: &mut Rng) -> Params {
             rng.log_uniform(1e3, 1e5)
         },
         cart_friction: 0.0,
+        chain: 1.0,
     }
 }
 

@@ -43,6 +43,7 @@ fn params() -> impl Strategy<Value = Params> {
             cart_mass,
             stiffness,
             cart_friction: string * peak_friction,
+            chain: 1.0,
         }
     })
 }

@@ -157,8 +157,8 @@ fn coarse_steps_selection_and_resets() {
 
 #[test]
 fn a_typed_value_takes_units_like_the_command_line() {
-    // Wraps round to the last parameter (string friction), then up to the stiffness.
-    let mut events = vec![key(KeyCode::Char('k')), key(KeyCode::Char('k'))];
+    // Wraps round to the last parameter (the chain), then up past string friction to the stiffness.
+    let mut events = vec![key(KeyCode::Char('k')); 3];
     events.push(key(KeyCode::Enter));
     events.extend(typed("2.2kN/m"));
     events.push(key(KeyCode::Enter));
@@ -222,7 +222,7 @@ fn a_rejected_edit_shows_why_and_keeps_the_value() {
 #[test]
 fn a_value_the_solver_refuses_is_not_applied() {
     // A 1 mg cart on a 1 MN/m spring oscillates too fast to resolve.
-    let mut events = vec![key(KeyCode::Char('k')), key(KeyCode::Char('k'))];
+    let mut events = vec![key(KeyCode::Char('k')); 3];
     events.push(key(KeyCode::Enter));
     events.extend(typed("1e9"));
     events.push(key(KeyCode::Enter));

@@ -36,10 +36,18 @@ pub fn summary(b: &Bounce) -> String {
     if let Some(ratio) = o.roll_ratio {
         let _ = writeln!(out, "  {:<24}{ratio:.4}", "r ω2 / v_x2");
     }
+    // On a chain the ball touches its first mass; the energy left behind is in all its masses and springs.
+    let chain = b.params.chain > 1.0;
+    let (cart, cart_energy) = if chain {
+        ("first mass", "chain + springs")
+    } else {
+        ("cart", "cart + spring")
+    };
     let _ = writeln!(out, "\nPhases ({})", b.phase_summary());
     for p in &b.phases {
         let slip = match (p.kind, p.slip_sign, p.cart) {
             (PhaseKind::Grip, _, Cart::Stuck) => "rolling on the stuck cart",
+            (PhaseKind::Grip, _, _) if chain => "contact point moves with the first mass",
             (PhaseKind::Grip, _, _) => "contact point moves with the cart",
             (_, s, Cart::Stuck) if s > 0 => "slipping forward, F = +μN; cart stuck",
             (_, _, Cart::Stuck) => "slipping backward, F = -μN; cart stuck",
@@ -56,7 +64,7 @@ pub fn summary(b: &Bounce) -> String {
     }
     let _ = writeln!(
         out,
-        "  cart at release: X = {}, V = {:.3} m/s",
+        "  {cart} at release: X = {}, V = {:.3} m/s",
         show(b.final_state.x, Dimension::Length, "mm", 3),
         b.final_state.v
     );
@@ -65,7 +73,7 @@ pub fn summary(b: &Bounce) -> String {
     let rows = [
         ("incoming ball", e.initial),
         ("outgoing ball", e.final_ball),
-        ("cart + spring", e.final_cart),
+        (cart_energy, e.final_cart),
         ("lost to friction", e.friction_loss),
         ("lost normally (e_y)", e.normal_loss),
         ("lost at the cart (F_c)", e.cart_friction_loss),

@@ -3,6 +3,7 @@
 use serde::Serialize;
 
 use super::cart::Cart;
+use super::chain::{ChainMotion, solve_chain};
 use super::events::first_rise;
 use super::grip::Grip;
 use super::params::{ParamError, Params};
@@ -28,14 +29,16 @@ impl PhaseKind {
     }
 }
 
-#[derive(Clone, Copy, Debug)]
-enum Motion {
+#[derive(Clone, Debug)]
+pub(super) enum Motion {
     Slide(Slide),
     Grip(Grip),
+    /// A phase on a chain of masses (sliding or gripping).
+    Chain(ChainMotion),
 }
 
 /// One phase of the bounce.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Phase {
     pub kind: PhaseKind,
     /// The sign of the slip (and of the friction F) while sliding, +1 or -1; 0 while gripping.
@@ -46,7 +49,7 @@ pub struct Phase {
     pub start: f64,
     /// End time, s.
     pub end: f64,
-    motion: Motion,
+    pub(super) motion: Motion,
 }
 
 impl Phase {
@@ -55,6 +58,7 @@ impl Phase {
         match &self.motion {
             Motion::Slide(slide) => slide.at(setup, t),
             Motion::Grip(grip) => grip.at(setup, t),
+            Motion::Chain(chain) => chain.contact(setup, t).state,
         }
     }
 
@@ -63,6 +67,7 @@ impl Phase {
         match &self.motion {
             Motion::Slide(slide) => slide.friction(setup, state.t),
             Motion::Grip(grip) => grip.friction(setup, state.x),
+            Motion::Chain(chain) => chain.contact(setup, state.t).friction,
         }
     }
 
@@ -71,6 +76,23 @@ impl Phase {
         match &self.motion {
             Motion::Slide(slide) => slide.start,
             Motion::Grip(grip) => grip.start,
+            Motion::Chain(chain) => chain.start.contact(),
+        }
+    }
+
+    /// Kinetic plus spring energy of the cart, or of the whole chain, at `t`.
+    pub fn cart_energy_at(&self, setup: &Setup, t: f64) -> f64 {
+        match &self.motion {
+            Motion::Chain(chain) => chain.chain().energy(&chain.full(setup, t)),
+            _ => setup.cart_energy(&self.state_at(setup, t)),
+        }
+    }
+
+    /// The fastest frequency of the cart (or the chain) while the ball slides, rad/s.
+    fn fastest(&self, setup: &Setup) -> f64 {
+        match &self.motion {
+            Motion::Chain(chain) => chain.chain().slide.fastest,
+            _ => setup.omega_slide,
         }
     }
 
@@ -119,7 +141,8 @@ pub struct Energy {
     pub initial: f64,
     /// Ball kinetic energy after.
     pub final_ball: f64,
-    /// Cart kinetic plus spring energy after.
+    /// Cart kinetic plus spring energy after (on a chain, the kinetic and spring energy of all its masses
+    /// and springs: the energy left in the chain).
     pub final_cart: f64,
     /// ∫ F · slip dt, integrated over the sliding phases of the exact solution.
     pub friction_loss: f64,
@@ -140,9 +163,9 @@ pub struct Sample {
     pub normal: f64,
     /// Friction force on the ball F, N (positive backward, as in the paper's Fig. 3).
     pub friction: f64,
-    /// Cart displacement X, m.
+    /// Cart displacement X (on a chain, its first mass's), m.
     pub x: f64,
-    /// Cart velocity V, m/s.
+    /// Cart velocity V (on a chain, its first mass's), m/s.
     pub v: f64,
     /// Ball velocity along the surface v_x, m/s.
     pub vx: f64,
@@ -180,6 +203,11 @@ pub enum SolveError {
     TooFast { radians: f64 },
     #[error("the bounce switched between sliding and gripping more than {MAX_TRANSITIONS} times")]
     TooManyPhases,
+    #[error(
+        "string friction on the cart (--cart-friction) is modelled for the single cart only, not for a \
+         chain of {chain} masses: set --cart-friction 0 or --chain 1"
+    )]
+    ChainStringFriction { chain: usize },
 }
 
 /// The largest number of cart radians per contact the solver accepts (about 16 000 oscillations).
@@ -187,15 +215,18 @@ pub const MAX_RADIANS: f64 = 1e5;
 /// The largest number of slide/grip transitions in one bounce.
 pub const MAX_TRANSITIONS: usize = 10_000;
 /// An arriving slip below this fraction of |v_x1| + r |omega1| counts as rolling.
-const ROLLING: f64 = 1e-12;
+pub(super) const ROLLING: f64 = 1e-12;
 /// Event functions are differences of terms this many times their size apart from rounding; a rise
 /// smaller than that is noise (it matters near t = T, where N and with it F and F_s vanish).
-const ROUNDING: f64 = 1e-12;
+pub(super) const ROUNDING: f64 = 1e-12;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
 /// located by root finding on the exact expressions.
 pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
     params.validate()?;
+    if params.chain > 1.0 {
+        return solve_chain(params);
+    }
     let setup = Setup::new(params);
     let radians = setup.omega_slide.max(setup.omega_grip) * setup.duration;
     if radians > MAX_RADIANS {
@@ -350,6 +381,7 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
             }
             // Rolling on a still cart: nothing changes until the ball leaves.
             (Motion::Grip(_), Cart::Stuck) => None,
+            (Motion::Chain(_), _) => unreachable!("the single-cart loop builds no chain phase"),
         }
         // A transition within rounding of the end changes nothing.
         .filter(|&(t, _)| t < end * (1.0 - 1e-13));
@@ -386,7 +418,7 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
     Err(SolveError::TooManyPhases)
 }
 
-fn finish(params: &Params, setup: Setup, phases: Vec<Phase>, last: State) -> Bounce {
+pub(super) fn finish(params: &Params, setup: Setup, phases: Vec<Phase>, last: State) -> Bounce {
     let vy2 = params.ey * setup.vy1;
     let r = setup.r;
     let incoming_slip = setup.vx1 - r * params.spin;
@@ -418,7 +450,15 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
     let vy2 = params.ey * setup.vy1;
     let initial = setup.ball_tangential_energy(&first) + 0.5 * setup.m * setup.vy1 * setup.vy1;
     let final_ball = setup.ball_tangential_energy(last) + 0.5 * setup.m * vy2 * vy2;
-    let final_cart = setup.cart_energy(last);
+    let final_cart = match phases.last() {
+        Some(
+            p @ Phase {
+                motion: Motion::Chain(_),
+                ..
+            },
+        ) => p.cart_energy_at(setup, p.end),
+        _ => setup.cart_energy(last),
+    };
     let normal_loss = 0.5 * setup.m * (setup.vy1 * setup.vy1 - vy2 * vy2);
     // The cart never reverses within a phase (its stopping ends the phase), so the distance it
     // travels in a phase is |X(end) - X(start)|.
@@ -428,11 +468,11 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
             .filter(|p| p.cart != Cart::Stuck)
             .map(|p| (p.state_at(setup, p.end).x - p.initial().x).abs())
             .sum::<f64>();
-    let panel = 2.0 / setup.omega_slide.max(setup.w);
     let friction_loss = phases
         .iter()
         .filter(|p| p.kind == PhaseKind::Slide)
         .map(|p| {
+            let panel = 2.0 / p.fastest(setup).max(setup.w);
             let power = |t: f64| {
                 let s = p.state_at(setup, t);
                 p.friction(setup, &s) * setup.slip(&s)

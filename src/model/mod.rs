@@ -3,6 +3,7 @@
 
 pub mod bounce;
 pub mod cart;
+pub mod chain;
 pub mod events;
 pub mod grip;
 pub mod oscillator;

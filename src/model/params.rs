@@ -36,6 +36,15 @@ pub struct Params {
     /// Coulomb friction on the cart, N (string-on-string friction; 0 is the paper's model).
     #[serde(default)]
     pub cart_friction: f64,
+    /// Number N of equal masses the cart is split into, a whole number 1..=16 (1 is the paper's single
+    /// cart): a chain of masses M/N and springs N k, touched by the ball at its first mass.
+    #[serde(default = "single_cart")]
+    pub chain: f64,
+}
+
+/// The default chain length for inputs written before the chain existed: the single cart.
+fn single_cart() -> f64 {
+    1.0
 }
 
 impl Default for Params {
@@ -53,6 +62,7 @@ impl Default for Params {
             cart_mass: 0.0,
             stiffness: 0.0,
             cart_friction: 0.0,
+            chain: 0.0,
         };
         for spec in PARAMS {
             params.set(spec.id, spec.default);
@@ -76,6 +86,7 @@ pub enum ParamId {
     CartMass,
     Stiffness,
     CartFriction,
+    Chain,
 }
 
 /// One end of an allowed range.
@@ -230,6 +241,8 @@ pub struct ParamSpec {
     pub fine: Step,
     pub coarse: Step,
     pub default: f64,
+    /// True for a count: only whole numbers in the range are allowed.
+    pub integer: bool,
     pub help: &'static str,
 }
 
@@ -241,6 +254,11 @@ impl ParamSpec {
 
     /// The allowed range in the base unit, e.g. `(0, 90] deg`.
     pub fn range_text(&self) -> String {
+        if let (true, Bound::Closed(low), Bound::Closed(high)) =
+            (self.integer, self.range.low, self.range.high)
+        {
+            return format!("{{{low}, {}, ..., {high}}}", low + 1.0);
+        }
         let unit = self.dimension.base_symbol();
         if unit.is_empty() {
             self.range.to_string()
@@ -266,9 +284,14 @@ impl ParamSpec {
         Ok(value)
     }
 
+    /// True when `value` is in the range (and whole, for a count).
+    pub fn allows(&self, value: f64) -> bool {
+        self.range.contains(value) && (!self.integer || value.fract() == 0.0)
+    }
+
     /// Checks a base-unit value against the range; the message shows it in the base unit.
     pub fn check_value(&self, value: f64) -> Result<(), ParamError> {
-        if self.range.contains(value) {
+        if self.allows(value) {
             return Ok(());
         }
         let unit = self.dimension.base_symbol();
@@ -280,7 +303,7 @@ impl ParamSpec {
 
     /// Checks a base-unit value against the range; `given` is what the user typed, for the message.
     pub fn check(&self, value: f64, given: &str) -> Result<(), ParamError> {
-        if self.range.contains(value) {
+        if self.allows(value) {
             Ok(())
         } else {
             Err(ParamError::OutOfRange {
@@ -337,6 +360,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(1.0),
         coarse: Step::Add(10.0),
         default: 60.0,
+        integer: false,
         help: "incidence angle theta1, measured from the surface (90 = normal incidence)",
     },
     ParamSpec {
@@ -353,6 +377,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(0.5),
         coarse: Step::Add(5.0),
         default: 10.0,
+        integer: false,
         help: "incident speed v1 of the ball's centre",
     },
     ParamSpec {
@@ -372,6 +397,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(10.0),
         coarse: Step::Add(100.0),
         default: -100.0,
+        integer: false,
         help: "incident spin omega1; positive = topspin (the sense sliding friction drives), negative = backspin",
     },
     ParamSpec {
@@ -388,6 +414,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(0.01),
         coarse: Step::Add(0.1),
         default: 0.4,
+        integer: false,
         help: "coefficient of sliding friction mu between ball and surface",
     },
     ParamSpec {
@@ -404,6 +431,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(0.1e-3),
         coarse: Step::Add(1e-3),
         default: 5e-3,
+        integer: false,
         help: "impact duration T; the normal force is N0 sin(pi t / T)",
     },
     ParamSpec {
@@ -423,6 +451,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(0.01),
         coarse: Step::Add(0.1),
         default: 1.0,
+        integer: false,
         help: "normal coefficient of restitution e_y = v_y2 / v_y1",
     },
     ParamSpec {
@@ -439,6 +468,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Times(1.02),
         coarse: Step::Times(1.25),
         default: 0.057,
+        integer: false,
         help: "ball mass m",
     },
     ParamSpec {
@@ -455,6 +485,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(0.5e-3),
         coarse: Step::Add(5e-3),
         default: 0.033,
+        integer: false,
         help: "ball radius r",
     },
     ParamSpec {
@@ -471,6 +502,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(0.005),
         coarse: Step::Add(0.05),
         default: 0.55,
+        integer: false,
         help: "moment of inertia factor: I = alpha m r^2 (0.4 solid sphere, 2/3 thin shell, 0.55 tennis ball)",
     },
     ParamSpec {
@@ -487,6 +519,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Times(1.1),
         coarse: Step::Times(2.0),
         default: 0.010,
+        integer: false,
         help: "mass M of the surface that moves sideways (the cart; the moving part of the strings)",
     },
     ParamSpec {
@@ -503,6 +536,7 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Times(1.05),
         coarse: Step::Times(1.5),
         default: 15000.0,
+        integer: false,
         help: "stiffness k of the spring that pulls the cart back (0 = a free cart)",
     },
     ParamSpec {
@@ -519,8 +553,30 @@ pub const PARAMS: &[ParamSpec] = &[
         fine: Step::Add(1.0),
         coarse: Step::Add(10.0),
         default: 0.0,
+        integer: false,
         help: "Coulomb friction on the cart (string-on-string friction): the cart sticks while the spring \
                and the ball push it with less than this; 0 = the paper's model",
+    },
+    ParamSpec {
+        id: ParamId::Chain,
+        group: Group::Surface,
+        flag: "chain",
+        key: "chain",
+        symbol: "N",
+        label: "chain masses",
+        dimension: Dimension::Dimensionless,
+        display_unit: "",
+        decimals: 0,
+        range: Range {
+            low: Bound::Closed(1.0),
+            high: Bound::Closed(16.0),
+        },
+        fine: Step::Add(1.0),
+        coarse: Step::Add(5.0),
+        default: 1.0,
+        integer: true,
+        help: "number N of equal masses the cart is split into: a chain of masses M/N joined by springs N k, \
+               the last tied to the wall (static stiffness k at the ball); 1 = the paper's single cart",
     },
 ];
 
@@ -552,6 +608,7 @@ impl Params {
             ParamId::CartMass => self.cart_mass,
             ParamId::Stiffness => self.stiffness,
             ParamId::CartFriction => self.cart_friction,
+            ParamId::Chain => self.chain,
         }
     }
 
@@ -570,6 +627,7 @@ impl Params {
             ParamId::CartMass => &mut self.cart_mass,
             ParamId::Stiffness => &mut self.stiffness,
             ParamId::CartFriction => &mut self.cart_friction,
+            ParamId::Chain => &mut self.chain,
         };
         *slot = value;
     }
@@ -607,6 +665,7 @@ mod tests {
         assert_eq!(p.ey, 1.0);
         assert_eq!(p.cart_mass, 0.010);
         assert_eq!(p.stiffness, 15000.0);
+        assert_eq!(p.chain, 1.0);
         assert!(p.validate().is_ok());
     }
 
@@ -636,6 +695,34 @@ mod tests {
                 .starts_with("--stiffness: unit 'kg' is a mass"),
             "{err}"
         );
+    }
+
+    #[test]
+    fn the_chain_takes_whole_numbers_only() {
+        let chain = spec(ParamId::Chain);
+        assert_eq!(chain.parse("8"), Ok(8.0));
+        let err = chain.parse("2.5").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "--chain must be in {1, 2, ..., 16}; got 2.5"
+        );
+        let err = chain.parse("17").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "--chain must be in {1, 2, ..., 16}; got 17"
+        );
+        let err = Params::default().with(ParamId::Chain, 3.5).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "--chain must be in {1, 2, ..., 16}; got 3.5"
+        );
+        assert_eq!(chain.fine.apply(16.0, true, &chain.range), 16.0);
+        assert_eq!(chain.coarse.apply(1.0, true, &chain.range), 6.0);
+        // Inputs written before the chain existed are single carts.
+        let old = r#"{"angle_deg":60.0,"speed":10.0,"spin":0.0,"mu":0.4,"duration":0.005,"ey":1.0,
+            "mass":0.057,"radius":0.033,"alpha":0.55,"cart_mass":0.01,"stiffness":15000.0}"#;
+        let p: Params = serde_json::from_str(old).unwrap();
+        assert_eq!(p.chain, 1.0);
     }
 
     #[test]

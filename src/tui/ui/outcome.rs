@@ -130,10 +130,6 @@ fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
     ];
     let theta2 = format!("{:.1} deg", o.theta2_deg);
     let ex = Line::from(vec![label("e_x", "tangential e_x"), Span::raw(ex)]);
-    let friction = Line::from(vec![
-        label("friction", "lost to friction"),
-        Span::raw(format!("{friction_share:.1} % of energy in")),
-    ]);
     // Narrow, v_x2 and θ2 share a line and the timeline follows its label, to fit 80 x 24.
     let mut lines = if wide {
         vec![
@@ -141,7 +137,10 @@ fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
             Line::from(vx2),
             Line::from(vec![label("θ2", "rebound angle θ2"), Span::raw(theta2)]),
             ex,
-            friction,
+            Line::from(vec![
+                label("friction", "lost to friction"),
+                Span::raw(format!("{friction_share:.1} % of energy in")),
+            ]),
             Line::from(vec![
                 label("phases", "phases (ms)"),
                 Span::styled(b.phase_summary(), theme.dim()),
@@ -152,13 +151,16 @@ fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
         let mut vx2_theta2 = vx2;
         vx2_theta2.push(Span::styled("  θ2 ", theme.dim()));
         vx2_theta2.push(Span::raw(theta2));
+        // e_x and the share lost to friction share a line too.
+        let mut ex_friction = ex;
+        ex_friction.push_span(Span::styled("  lost ", theme.dim()));
+        ex_friction.push_span(Span::raw(format!("{friction_share:.1} %")));
         let mut phases = vec![label("phase ms", "")];
         phases.extend(timeline(b, theme));
         vec![
             spin,
             Line::from(vx2_theta2),
-            ex,
-            friction,
+            ex_friction,
             Line::from(phases),
         ]
     };
@@ -192,6 +194,8 @@ fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
             );
         } else {
             lines[0].spans[2] = Span::raw(format!(" Δ{d_omega2}"));
+            // Δe_x takes the place of the friction share on the narrow e_x line.
+            lines[ex_line].spans.truncate(2);
             lines[ex_line].spans.push(Span::raw(format!(" Δ{d_ex}")));
         }
     }

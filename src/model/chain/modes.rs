@@ -1,0 +1,176 @@
+//! The chain of masses and springs and its normal modes, sliding (the masses alone) and gripping (the
+//! ball's effective mass m_eff added to the first mass).
+
+use nalgebra::{DMatrix, SymmetricEigen};
+
+/// The longest chain.
+pub const MAX: usize = 16;
+
+/// The normal modes of one configuration of the chain: masses `mass` on the springs, mass-normalised
+/// shapes Φ (Φᵀ D Φ = I with D = diag(mass), Φᵀ K Φ = diag(Ω²)), so that with x = Φ q each modal
+/// coordinate obeys q_j'' + Ω_j² q_j = Φ_1j F for a force F on the first mass.
+#[derive(Clone, Debug)]
+pub struct Modes {
+    pub n: usize,
+    /// The masses, kg (the first carries the ball's m_eff while it grips).
+    pub mass: [f64; MAX],
+    /// Ω_j, rad/s.
+    pub omega: [f64; MAX],
+    /// shape[i][j] = Φ_ij, the displacement of mass i in mode j.
+    pub shape: [[f64; MAX]; MAX],
+    /// Φ_1j Ω_j², for the first mass's acceleration -Σ Φ_1j Ω_j² q_j (less its forcing).
+    pub first_stiff: [f64; MAX],
+    /// The largest |Φ_ij| over i, per mode.
+    pub largest: [f64; MAX],
+    /// The fastest Ω_j.
+    pub fastest: f64,
+}
+
+impl Modes {
+    /// `n` links of mass `link_mass` joined by springs `link_stiffness` (the last to the wall), with
+    /// `extra` added to the first mass.
+    ///
+    /// The eigenproblem is solved in dimensionless form, A = S^(-1/2) T S^(-1/2) with T the spring
+    /// pattern (tridiagonal 1, 2, ..., 2 on the diagonal, -1 beside it) and S = diag(1 + extra/link_mass,
+    /// 1, ..., 1), so Ω_j² = (link_stiffness / link_mass) λ_j. Each λ_j is then recomputed as the
+    /// Rayleigh quotient |B z|² / zᵀ S z of its vector z = S^(-1/2) u, with B the spring extensions
+    /// (T = BᵀB): a sum of squares, accurate relative to λ_j even for a slow mode that QR resolves only to
+    /// rounding of the largest eigenvalue.
+    pub fn new(n: usize, link_mass: f64, link_stiffness: f64, extra: f64) -> Modes {
+        assert!((1..=MAX).contains(&n), "chain of {n} masses");
+        let mut scale = [1.0; MAX];
+        scale[0] = (1.0 + extra / link_mass).sqrt().recip();
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        for i in 0..n {
+            let diagonal = if i == 0 { 1.0 } else { 2.0 };
+            a[(i, i)] = diagonal * scale[i] * scale[i];
+            if i + 1 < n {
+                let off = -scale[i] * scale[i + 1];
+                a[(i, i + 1)] = off;
+                a[(i + 1, i)] = off;
+            }
+        }
+        let eigen = SymmetricEigen::new(a);
+        let frequency = (link_stiffness / link_mass).sqrt();
+        let mut mass = [0.0; MAX];
+        for (i, m) in mass.iter_mut().enumerate().take(n) {
+            *m = if i == 0 { link_mass + extra } else { link_mass };
+        }
+        let mut modes = Modes {
+            n,
+            mass,
+            omega: [0.0; MAX],
+            shape: [[0.0; MAX]; MAX],
+            first_stiff: [0.0; MAX],
+            largest: [0.0; MAX],
+            fastest: 0.0,
+        };
+        let root_mass = link_mass.sqrt();
+        for j in 0..n {
+            let u = eigen.eigenvectors.column(j);
+            let z: Vec<f64> = (0..n).map(|i| scale[i] * u[i]).collect();
+            let stretch: f64 = (0..n)
+                .map(|i| {
+                    let e = if i + 1 < n { z[i] - z[i + 1] } else { z[i] };
+                    e * e
+                })
+                .sum();
+            let norm: f64 = (0..n).map(|i| u[i] * u[i]).sum();
+            let lambda = (stretch / norm).max(0.0);
+            let omega = frequency * lambda.sqrt();
+            modes.omega[j] = omega;
+            let mut largest: f64 = 0.0;
+            for (i, zi) in z.iter().enumerate() {
+                // Φ = D^(-1/2) u with D = link_mass S.
+                let phi = zi / (root_mass * norm.sqrt());
+                modes.shape[i][j] = phi;
+                largest = largest.max(phi.abs());
+            }
+            modes.largest[j] = largest;
+            modes.first_stiff[j] = modes.shape[0][j] * omega * omega;
+            modes.fastest = modes.fastest.max(omega);
+        }
+        modes
+    }
+
+    /// The modal coordinates q = Φᵀ D x of displacements (or velocities) `x`.
+    pub fn project(&self, x: &[f64; MAX]) -> [f64; MAX] {
+        let mut q = [0.0; MAX];
+        for (j, qj) in q.iter_mut().enumerate().take(self.n) {
+            *qj = (0..self.n)
+                .map(|i| self.shape[i][j] * self.mass[i] * x[i])
+                .sum();
+        }
+        q
+    }
+
+    /// The displacements (or velocities) x = Φ q of modal coordinates `q`.
+    pub fn expand(&self, q: &[f64; MAX]) -> [f64; MAX] {
+        let mut x = [0.0; MAX];
+        for (i, xi) in x.iter_mut().enumerate().take(self.n) {
+            *xi = (0..self.n).map(|j| self.shape[i][j] * q[j]).sum();
+        }
+        x
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// K of `n` springs `kappa` in a line from mass 1 to the wall.
+    fn stiffness(n: usize, kappa: f64) -> DMatrix<f64> {
+        let mut k = DMatrix::<f64>::zeros(n, n);
+        for i in 0..n {
+            k[(i, i)] = if i == 0 { kappa } else { 2.0 * kappa };
+            if i + 1 < n {
+                k[(i, i + 1)] = -kappa;
+                k[(i + 1, i)] = -kappa;
+            }
+        }
+        k
+    }
+
+    #[test]
+    fn modes_diagonalise_mass_and_stiffness() {
+        for n in [1, 2, 5, 16] {
+            for extra in [0.0, 0.03, 30.0] {
+                let (m, kappa) = (0.01 / n as f64, 15000.0 * n as f64);
+                let modes = Modes::new(n, m, kappa, extra);
+                let phi = DMatrix::from_fn(n, n, |i, j| modes.shape[i][j]);
+                let d = DMatrix::from_fn(n, n, |i, j| if i == j { modes.mass[i] } else { 0.0 });
+                let identity = phi.transpose() * &d * &phi;
+                let spectral = phi.transpose() * stiffness(n, kappa) * &phi;
+                for i in 0..n {
+                    for j in 0..n {
+                        let want = if i == j { 1.0 } else { 0.0 };
+                        assert!((identity[(i, j)] - want).abs() < 1e-12, "n {n} I {i} {j}");
+                        let want = if i == j { modes.omega[i].powi(2) } else { 0.0 };
+                        let scale = modes.fastest.powi(2);
+                        assert!((spectral[(i, j)] - want).abs() < 1e-12 * scale, "n {n} K");
+                    }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn one_link_is_the_single_cart() {
+        let modes = Modes::new(1, 0.01, 15000.0, 0.0);
+        assert_eq!(modes.omega[0], (15000.0f64 / 0.01).sqrt());
+        assert!((modes.shape[0][0].abs() - 10.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn static_stiffness_at_the_first_mass_is_k() {
+        // (K^-1)_11 = sum_j Φ_1j² / Ω_j² = 1/k.
+        for n in [1, 3, 16] {
+            let k = 15000.0;
+            let modes = Modes::new(n, 0.01 / n as f64, n as f64 * k, 0.0);
+            let compliance: f64 = (0..n)
+                .map(|j| modes.shape[0][j].powi(2) / modes.omega[j].powi(2))
+                .sum();
+            assert!((compliance * k - 1.0).abs() < 1e-12, "n {n}: {compliance}");
+        }
+    }
+}
