@@ -245,7 +245,7 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
     let (mut ball, mut cart) =
         transition::next(&setup, &state, arriving, Cart::Moving(1), Cause::Start);
     let mut cause = Cause::Start;
-    let mut phases = Vec::with_capacity(4);
+    let mut phases = Vec::with_capacity(8);
     for _ in 0..MAX_TRANSITIONS {
         let t0 = state.t;
         let motion = match ball {
@@ -267,12 +267,15 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
         };
         let speeds = incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
         let forces = setup.mu * setup.n0 + setup.k * state.x.abs() + setup.cart_friction;
+        // The state at the last time an event function was evaluated.
+        let last = std::cell::Cell::new(state);
         let event = match (&motion, cart) {
             (Motion::Slide(slide), Cart::Moving(cart_dir)) => {
                 let cart_dir = f64::from(cart_dir);
                 let string = setup.cart_friction > 0.0;
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(&setup, t);
+                    last.set(s);
                     let slip = (
                         -slide.dir * (setup.slip(&s) - slip_offset),
                         -slide.dir * slide.slip_rate(&setup, &s, friction),
@@ -309,6 +312,7 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
             (Motion::Slide(slide), Cart::Stuck) => {
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(&setup, t);
+                    last.set(s);
                     let slip = (
                         -slide.dir * (setup.slip(&s) - slip_offset),
                         -slide.dir * slide.slip_rate(&setup, &s, friction),
@@ -346,6 +350,7 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
                 let string = setup.cart_friction > 0.0;
                 let f = |t: f64| {
                     let s = grip.at(&setup, t);
+                    last.set(s);
                     let [forward, backward] = grip.margins(&setup, &s);
                     let stop = if string {
                         (
@@ -402,7 +407,12 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
             end: t1,
             motion,
         };
-        state = phase.state_at(&setup, t1);
+        // The event search's last evaluation is usually at the transition itself.
+        state = if last.get().t == t1 {
+            last.get()
+        } else {
+            phase.state_at(&setup, t1)
+        };
         if t1 > t0 {
             phases.push(phase);
         }

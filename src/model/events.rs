@@ -10,8 +10,9 @@
 /// The smallest interval the search splits, relative to the time: below it, a rise is taken as found.
 const FINEST: f64 = 1e-14;
 
-/// A Newton step this small relative to the time means the iteration has converged.
-const CONVERGED: f64 = 1e-11;
+/// A Newton step this small relative to the time (a few units in the last place) means the iteration
+/// has converged.
+const CONVERGED: f64 = 4.0 * f64::EPSILON;
 
 /// The event: `K` branches, each a value and its time derivative at `t`. The phase ends when any
 /// branch rises (a grip, for example, breaks when F_s reaches +mu N or -mu N).
@@ -180,10 +181,11 @@ fn refine(f: impl Fn(f64) -> (f64, f64), (mut a, fa): (f64, f64), (mut b, fb): (
             break;
         }
         let newton = t - value / rate;
-        // Newton converges quadratically: once a step is this small, the next would move t by about
-        // C step² (C = f''/2f'), far below the resolution asked of transition times (1e-12 s).
+        // Newton converges quadratically: once a step is this small, t is within it of the crossing,
+        // far below the resolution asked of transition times (1e-12 s). t is returned rather than the
+        // step's end, so that the last evaluation is the one at the returned time (the solver keeps it).
         if rate != 0.0 && (newton - t).abs() <= CONVERGED * t.abs() {
-            return newton.clamp(a, b);
+            return t;
         }
         t = if rate != 0.0 && newton > a && newton < b {
             newton
