@@ -379,3 +379,37 @@ proptest! {
         }
     }
 }
+
+#[test]
+fn scenario_files_set_the_compliant_ball() {
+    use snapback::scenario::Scenario;
+    let s = Scenario::parse(
+        "description = \"soft ball\"\n[params]\nball_stiffness = \"1 MN/m\"\nball_damping = 0.5\n",
+        "ball.toml",
+    )
+    .unwrap();
+    let p = s.apply(Params::default());
+    assert_eq!((p.ball_stiffness, p.ball_damping), (1e6, 0.5));
+    assert!(solve(&p).is_ok());
+    let again = Scenario::parse(&Scenario::from_params("b", "", &p).to_toml(), "b.toml").unwrap();
+    assert_eq!(again.apply(Params::default()), p);
+    let err = Scenario::parse("[params]\nball_stiffness = -1\n", "bad.toml").unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("ball_stiffness must be in [0, inf) N/m"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_help_text_explains_rigid_and_chatter() {
+    use snapback::model::params::{ParamId, spec};
+    let stiffness = spec(ParamId::BallStiffness).help;
+    assert!(stiffness.contains("0 = a rigid ball"), "{stiffness}");
+    assert!(stiffness.contains("chatters"), "{stiffness}");
+    assert!(
+        spec(ParamId::BallDamping)
+            .help
+            .contains("critically damped")
+    );
+}
