@@ -37,7 +37,7 @@ pub(super) enum Motion {
     /// A phase on a chain of masses (sliding or gripping).
     Chain(ChainMotion),
     /// A phase of a compliant ball on the single cart.
-    Compliant(CompliantMotion),
+    Compliant(Box<CompliantMotion>),
 }
 
 /// One phase of the bounce.
@@ -529,10 +529,12 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
             integrate(|t| p.friction_power(setup, t), p.start, p.end, panel)
         })
         .sum();
-    let compliant = |p: &Phase| match &p.motion {
-        Motion::Compliant(c) => Some(*c),
-        _ => None,
-    };
+    fn compliant(p: &Phase) -> Option<&CompliantMotion> {
+        match &p.motion {
+            Motion::Compliant(c) => Some(c.as_ref()),
+            _ => None,
+        }
+    }
     let dashpot_loss = phases
         .iter()
         .filter_map(|p| compliant(p).map(|c| (p, c)))

@@ -11,14 +11,16 @@
 //!   that slip reaches zero, and the patch then always grips (a reversed slide would need the opposite
 //!   force, which the continuous stretch and the slip's sign exclude).
 //! - Grip: the patch moves with the cart. The cart (X, V) and the stretch (e, e') form a linear system
-//!   z' = A z without forcing; z(t) = exp(A (t - t0)) z0 (the matrix exponential, exact to rounding; the
-//!   system is not proportionally damped). The grip breaks when |F| reaches mu N, into a slide the
+//!   z' = A z without forcing, not proportionally damped; z(t) = exp(A (t - t0)) z0, evaluated as a sum of
+//!   its complex modes (eigenvalues polished on the characteristic polynomial) where they reproduce the
+//!   matrix exponential, and as the matrix exponential itself where they do not (near-double roots, a
+//!   free cart's double zero). The grip breaks when |F| reaches mu N, into a slide the
 //!   way F points.
 //!
 //! Chatter: an undamped stiff ball may switch many times; every phase advances time and the solver stops
 //! after [`MAX_TRANSITIONS`] with [`SolveError::TooManyPhases`].
 
-use nalgebra::{Matrix4, RowVector4, Vector4};
+use nalgebra::{Complex, Matrix4, RowVector4, Vector4};
 
 use super::bounce::{
     MAX_RADIANS, MAX_TRANSITIONS, Motion, Phase, PhaseKind, ROLLING, ROUNDING, SolveError, finish,
@@ -35,6 +37,10 @@ use crate::model::Bounce;
 /// bound on the terms F is summed from).
 const EXP_ROUNDING: f64 = 1.0;
 
+/// How closely (relative, in the energy norm) the grip's modes must reproduce the matrix exponential to
+/// be used in its place.
+const MODAL_CHECK: f64 = 1e-10;
+
 /// The constants of the compliant ball.
 #[derive(Clone, Copy, Debug)]
 pub struct Compliance {
@@ -46,6 +52,82 @@ pub struct Compliance {
     a: Matrix4<f64>,
     /// An upper bound on the fastest frequency in the grip, rad/s.
     pub fastest: f64,
+    /// The grip's modes, when they are distinct: a sum of exponentials is much cheaper than the matrix
+    /// exponential. Each grip phase checks them against the matrix exponential before using them.
+    modes: Option<Modes>,
+}
+
+/// The eigenvalues s_i of the grip's matrix, its eigenvectors (columns), and their inverse.
+#[derive(Clone, Copy, Debug)]
+struct Modes {
+    s: Vector4<Complex<f64>>,
+    v: Matrix4<Complex<f64>>,
+    v_inv: Matrix4<Complex<f64>>,
+}
+
+impl Modes {
+    /// For an eigenvalue s, z = (X, s X, e, s e) with (M s² + k) X = (k_b + c_b s) e.
+    fn new(a: &Matrix4<f64>, kb: f64, cb: f64, big_m: f64, k: f64, me: f64) -> Option<Self> {
+        // The eigenvalues from the Schur form are accurate to rounding of |A| (~ s²); Newton's method
+        // on the characteristic polynomial
+        // p(s) = (M s² + k)(m_eff M s² + (k_b + c_b s)(M + m_eff)) - m_eff k (k_b + c_b s)
+        // brings them to rounding of s.
+        let mut s = a.complex_eigenvalues();
+        let total = big_m + me;
+        for si in s.iter_mut() {
+            for _ in 0..3 {
+                let x = *si;
+                let spring = x * x * big_m + k;
+                let contact = x * x * (me * big_m) + (x * cb + kb) * total;
+                let p = spring * contact - (x * cb + kb) * (me * k);
+                let dp = x * (2.0 * big_m) * contact
+                    + spring * (x * (2.0 * me * big_m) + cb * total)
+                    - cb * me * k;
+                if dp.norm() == 0.0 {
+                    break;
+                }
+                let step = p / dp;
+                if !(step.re.is_finite() && step.im.is_finite()) {
+                    break;
+                }
+                *si = x - step;
+            }
+        }
+        let mut v = Matrix4::<Complex<f64>>::zeros();
+        for (i, &si) in s.iter().enumerate() {
+            let x = Complex::new(kb, 0.0) + si * cb;
+            let e = si * si * big_m + k;
+            let norm =
+                (x.norm_sqr() + (si * x).norm_sqr() + e.norm_sqr() + (si * e).norm_sqr()).sqrt();
+            if norm == 0.0 || !norm.is_finite() {
+                return None;
+            }
+            let column = Vector4::new(x, si * x, e, si * e) / Complex::new(norm, 0.0);
+            v.set_column(i, &column);
+        }
+        let v_inv = v.try_inverse()?;
+        v_inv
+            .iter()
+            .all(|c| c.re.is_finite() && c.im.is_finite())
+            .then_some(Modes { s, v, v_inv })
+    }
+
+    /// z and z' after `tau` from the modal coefficients `c`.
+    #[inline]
+    fn at(&self, c: &Vector4<Complex<f64>>, tau: f64) -> (Vector4<f64>, Vector4<f64>) {
+        let mut z = Vector4::zeros();
+        let mut dz = Vector4::zeros();
+        for i in 0..4 {
+            let w = c[i] * (self.s[i] * tau).exp();
+            let dw = w * self.s[i];
+            for j in 0..4 {
+                let vj = self.v[(j, i)];
+                z[j] += (vj * w).re;
+                dz[j] += (vj * dw).re;
+            }
+        }
+        (z, dz)
+    }
 }
 
 impl Compliance {
@@ -62,7 +144,14 @@ impl Compliance {
             k / big_m, 0.0, -kb * both, -cb * both,
         );
         let fastest = (kb * both + k / big_m).sqrt() + cb * both;
-        Compliance { kb, cb, a, fastest }
+        let modes = Modes::new(&a, kb, cb, big_m, k, me);
+        Compliance {
+            kb,
+            cb,
+            a,
+            fastest,
+            modes,
+        }
     }
 
     /// The decay rate k_b / c_b of the stretch while sliding (infinite without damping).
@@ -164,6 +253,8 @@ pub struct CompliantGrip {
     /// (X, V, e, e') at the start.
     z0: Vector4<f64>,
     pub compliance: Compliance,
+    /// The modal coefficients of z0, when the modes reproduce the matrix exponential.
+    coefficients: Option<Vector4<Complex<f64>>>,
 }
 
 /// A phase of the compliant ball.
@@ -190,19 +281,63 @@ pub struct Point {
 impl CompliantGrip {
     fn new(compliance: Compliance, start: State, e: f64, setup: &Setup) -> Self {
         let de = setup.slip(&start);
-        CompliantGrip {
+        let mut grip = CompliantGrip {
             start,
             z0: Vector4::new(start.x, start.v, e, de),
             compliance,
+            coefficients: None,
+        };
+        // The modes are used only where they reproduce the matrix exponential, in the energy norm, to
+        // MODAL_CHECK at the middle and the end of the rest of the contact (near-double roots, as for a
+        // critically damped ball on a very heavy cart, or a free cart's double zero, fail it).
+        if let Some(modes) = &compliance.modes {
+            let z0 = grip.z0.map(|x| Complex::new(x, 0.0));
+            let c = modes.v_inv * z0;
+            let size = grip.size(setup);
+            let remaining = setup.duration - start.t;
+            let agrees = [0.0, 0.5 * remaining, remaining].iter().all(|&tau| {
+                let exact = if tau == 0.0 {
+                    grip.z0
+                } else {
+                    (compliance.a * tau).exp() * grip.z0
+                };
+                let (modal, _) = modes.at(&c, tau);
+                grip.energy_norm(setup, &(modal - exact)) <= MODAL_CHECK * size
+            });
+            if agrees && size > 0.0 {
+                grip.coefficients = Some(c);
+            }
         }
+        grip
+    }
+
+    /// z and z' at `t`.
+    #[inline]
+    fn propagate(&self, t: f64) -> (Vector4<f64>, Vector4<f64>) {
+        let tau = t - self.start.t;
+        match (&self.compliance.modes, &self.coefficients) {
+            (Some(modes), Some(c)) => modes.at(c, tau),
+            _ => {
+                let z = (self.compliance.a * tau).exp() * self.z0;
+                (z, self.compliance.a * z)
+            }
+        }
+    }
+
+    /// sqrt(2 E) of a state z.
+    fn energy_norm(&self, setup: &Setup, z: &Vector4<f64>) -> f64 {
+        (setup.k * z[0] * z[0]
+            + setup.cart_mass * z[1] * z[1]
+            + self.compliance.kb * z[2] * z[2]
+            + setup.m_eff * (z[3] + z[1]).powi(2))
+        .sqrt()
     }
 
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> Point {
         let c = &self.compliance;
         let s0 = &self.start;
-        let z = (c.a * (t - s0.t)).exp() * self.z0;
-        let dz = c.a * z;
+        let (z, dz) = self.propagate(t);
         let (x, v, e, de) = (z[0], z[1], z[2], z[3]);
         // m_eff (u' - u0') = -∫F dt, u' = e' + V.
         let impulse = -setup.m_eff * ((de + v) - (self.z0[3] + self.z0[1]));
@@ -226,12 +361,7 @@ impl CompliantGrip {
     /// The energy-norm size of the start state, sqrt(2 E) with E = k X²/2 + M V²/2 + k_b e²/2 +
     /// m_eff u'²/2, which the dashpot can only lower.
     fn size(&self, setup: &Setup) -> f64 {
-        let z = &self.z0;
-        (setup.k * z[0] * z[0]
-            + setup.cart_mass * z[1] * z[1]
-            + self.compliance.kb * z[2] * z[2]
-            + setup.m_eff * (z[3] + z[1]).powi(2))
-        .sqrt()
+        self.energy_norm(setup, &self.z0)
     }
 
     /// |g · z| <= |g T⁻¹| sqrt(2E) for a row g in z-coordinates (Cauchy-Schwarz in the energy norm).
@@ -454,7 +584,7 @@ pub fn solve_compliant(params: &Params) -> Result<Bounce, SolveError> {
                 cart: Cart::Moving(1),
                 start: t0,
                 end: t1,
-                motion: Motion::Compliant(motion),
+                motion: Motion::Compliant(Box::new(motion)),
             });
         }
         let Some((_, next)) = event else {
