@@ -236,6 +236,26 @@ fn an_undamped_stiff_ball_chatters_but_does_not_stall() {
 }
 
 #[test]
+fn a_lightly_damped_ball_is_quick_and_tends_to_the_undamped_one() {
+    // zeta -> 0 makes the stretch's decay rate sqrt(k_b/m_eff)/(2 zeta) huge while sliding.
+    let undamped = solve(&compliant(1e6, 0.0)).unwrap().outcome;
+    for zeta in [1e-4, 1e-7, 1e-10, 1e-13] {
+        let started = std::time::Instant::now();
+        let b = solve(&compliant(1e6, zeta)).unwrap();
+        assert!(started.elapsed().as_secs_f64() < 1.0, "zeta = {zeta}");
+        let e = b.energy();
+        assert!(e.residual.abs() < 1e-10, "zeta = {zeta}: {e:?}");
+        let o = b.outcome;
+        assert!(
+            (o.omega2 - undamped.omega2).abs() < 1e-2 * undamped.omega2.abs(),
+            "zeta = {zeta}: {} vs {}",
+            o.omega2,
+            undamped.omega2
+        );
+    }
+}
+
+#[test]
 fn the_friction_is_continuous_when_the_ball_grips() {
     let b = solve(&compliant(1e6, 0.5)).unwrap();
     assert!(b.phases.iter().any(|p| p.kind == PhaseKind::Grip));
@@ -311,7 +331,7 @@ fn params() -> impl Strategy<Value = Params> {
     );
     let compliance = (
         log_range(1e3, 1e8),
-        prop_oneof![Just(0.0), Just(1.0), 0.0f64..3.0],
+        prop_oneof![Just(0.0), Just(1.0), 0.0f64..3.0, log_range(1e-12, 1e-2)],
     );
     (ball, throw, contact, cart, compliance).prop_map(
         |(

@@ -524,9 +524,14 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
     let friction_loss = phases
         .iter()
         .filter(|p| p.kind == PhaseKind::Slide)
-        .map(|p| {
-            let panel = 2.0 / p.fastest(setup).max(setup.w);
-            integrate(|t| p.friction_power(setup, t), p.start, p.end, panel)
+        .map(|p| match &p.motion {
+            Motion::Compliant(c) => {
+                c.integrate(setup, |t| p.friction_power(setup, t), p.start, p.end)
+            }
+            _ => {
+                let panel = 2.0 / p.fastest(setup).max(setup.w);
+                integrate(|t| p.friction_power(setup, t), p.start, p.end, panel)
+            }
         })
         .sum();
     fn compliant(p: &Phase) -> Option<&CompliantMotion> {
@@ -540,16 +545,15 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
         .filter_map(|p| compliant(p).map(|c| (p, c)))
         .filter(|(_, c)| c.compliance().cb > 0.0)
         .map(|(p, c)| {
-            let panel = 2.0 / p.fastest(setup).max(setup.w);
             let cb = c.compliance().cb;
-            integrate(
+            c.integrate(
+                setup,
                 |t| {
                     let de = c.at(setup, t).de;
                     cb * de * de
                 },
                 p.start,
                 p.end,
-                panel,
             )
         })
         .sum();

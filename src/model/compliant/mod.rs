@@ -28,6 +28,7 @@ use super::bounce::{
 use super::cart::Cart;
 use super::events::first_rise;
 use super::params::Params;
+use super::quadrature::integrate;
 use super::setup::{Setup, State};
 use super::slide::Slide;
 use crate::model::Bounce;
@@ -36,6 +37,12 @@ use crate::model::Bounce;
 /// many times [`ROUNDING`] times the bound on the force from the phase's energy (itself a generous
 /// bound on the terms F is summed from).
 const EXP_ROUNDING: f64 = 1.0;
+
+/// After this many decay times 1/lambda the stretch's transient has fallen by e^-40 (4e-18): the slide's
+/// event search and quadrature use steps and panels on the transient's scale before, and on the cart's
+/// after (a lightly damped ball has lambda = sqrt(k_b/m_eff)/(2 zeta) huge, and a whole phase on its
+/// scale would never end).
+const SETTLED: f64 = 40.0;
 
 /// How closely (relative, in the energy norm) the grip's modes must reproduce the matrix exponential to
 /// be used in its place.
@@ -218,11 +225,21 @@ impl Stretch {
         }
     }
 
-    /// A bound on |e'''| from t0 on.
-    fn third(&self, w: f64) -> f64 {
+    /// Where the transient has died out (t0 without damping).
+    fn settled(&self) -> f64 {
+        if self.damped {
+            self.t0 + SETTLED / self.lambda
+        } else {
+            self.t0
+        }
+    }
+
+    /// A bound on |e'''| from `from` (at or after t0) on.
+    fn third(&self, w: f64, from: f64) -> f64 {
         if self.damped {
             let l = self.lambda;
-            l * l * l * self.transient.abs() + self.amplitude.abs() * w.powi(3) * l.hypot(w)
+            let decay = (-l * (from - self.t0)).exp();
+            l * l * l * self.transient.abs() * decay + self.amplitude.abs() * w.powi(3) * l.hypot(w)
         } else {
             self.amplitude.abs() * w.powi(3)
         }
@@ -462,6 +479,23 @@ impl CompliantMotion {
             CompliantMotion::Grip(g) => g.compliance.fastest,
         }
     }
+
+    /// ∫ f over [start, end] by Gauss-Legendre, on panels of the transient's scale until it has died
+    /// out and of the cart's after.
+    pub fn integrate(&self, setup: &Setup, f: impl Fn(f64) -> f64, start: f64, end: f64) -> f64 {
+        let w = setup.w;
+        match self {
+            CompliantMotion::Slide(s) => {
+                let split = s.stretch.settled().clamp(start, end);
+                let fine = 2.0 / self.fastest(setup).max(w);
+                let coarse = 2.0 / setup.omega_slide.max(w);
+                integrate(&f, start, split, fine) + integrate(&f, split, end, coarse)
+            }
+            CompliantMotion::Grip(g) => {
+                integrate(&f, start, end, 2.0 / g.compliance.fastest.max(w))
+            }
+        }
+    }
 }
 
 /// Solves one bounce of a compliant ball on the single cart (no string friction).
@@ -530,16 +564,23 @@ pub fn solve_compliant(params: &Params) -> Result<Bounce, SolveError> {
                     [(-dir * (slip - offset), -dir * rate)]
                 };
                 let (slip_curvature, _) = slide.slide.curvature(&setup);
-                let curvature = slip_curvature + slide.stretch.third(w);
                 let noise = ROUNDING * (speeds + slide.stretch.speed(w));
-                let omega = setup.omega_slide.max(if slide.stretch.damped {
-                    slide.stretch.lambda
+                // While the stretch's transient lasts, on its scale; after, on the cart's.
+                let split = slide.stretch.settled().clamp(t0, end);
+                let early = if slide.stretch.damped {
+                    let curvature = slip_curvature + slide.stretch.third(w, t0);
+                    let step = setup.event_step(setup.omega_slide.max(slide.stretch.lambda));
+                    first_rise(f, t0, split, step, [curvature], [noise])
                 } else {
-                    0.0
-                });
-                let step = setup.event_step(omega);
-                let event =
-                    first_rise(f, t0, end, step, [curvature], [noise]).map(|(t, _)| (t, 0.0));
+                    None
+                };
+                let event = early
+                    .or_else(|| {
+                        let curvature = slip_curvature + slide.stretch.third(w, split);
+                        let step = setup.event_step(setup.omega_slide);
+                        first_rise(f, split, end, step, [curvature], [noise])
+                    })
+                    .map(|(t, _)| (t, 0.0));
                 (CompliantMotion::Slide(slide), event)
             }
             None => {
