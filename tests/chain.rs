@@ -54,6 +54,8 @@ fn random_params(rng: &mut Rng, chain: f64) -> Params {
         },
         cart_friction: 0.0,
         chain,
+        ball_stiffness: 0.0,
+        ball_damping: 0.0,
     }
 }
 
@@ -173,6 +175,8 @@ fn every_chain_length_balances_energy() {
         // And the paper's case on a chain.
         let p = Params {
             chain: n as f64,
+            ball_stiffness: 0.0,
+            ball_damping: 0.0,
             ..Params::default()
         };
         let e = solve(&p).unwrap().energy();
@@ -229,6 +233,8 @@ fn a_free_chain_moves_only_its_first_mass() {
     let alone = Params {
         stiffness: 0.0,
         chain: 1.0,
+        ball_stiffness: 0.0,
+        ball_damping: 0.0,
         cart_mass: p.cart_mass / 4.0,
         ..p
     };
@@ -404,6 +410,8 @@ fn chains() -> impl Strategy<Value = Params> {
             stiffness,
             cart_friction: 0.0,
             chain: n as f64,
+            ball_stiffness: 0.0,
+            ball_damping: 0.0,
         }
     })
 }

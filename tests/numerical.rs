@@ -48,6 +48,8 @@ fn random_params(rng: &mut Rng) -> Params {
         },
         cart_friction: 0.0,
         chain: 1.0,
+        ball_stiffness: 0.0,
+        ball_damping: 0.0,
     }
 }
 

@@ -44,6 +44,8 @@ fn params() -> impl Strategy<Value = Params> {
             stiffness,
             cart_friction: string * peak_friction,
             chain: 1.0,
+            ball_stiffness: 0.0,
+            ball_damping: 0.0,
         }
     })
 }

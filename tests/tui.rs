@@ -128,8 +128,9 @@ fn coarse_steps_selection_and_resets() {
     assert_eq!(app.params.angle_deg, 40.0);
     assert!(screen.contains("40.0 deg"));
 
-    // Down to the cart mass (index 9), halve it, then reset it and everything.
-    let mut events = vec![key(KeyCode::Char('j')); 9];
+    // Down to the cart mass (index 11, after the ball's stiffness and damping), halve it, then reset
+    // it and everything.
+    let mut events = vec![key(KeyCode::Char('j')); 11];
     events.push(shift(KeyCode::Left));
     let (app, screen) = explore(160, 48, events.clone());
     assert_eq!(app.selected_spec().id, ParamId::CartMass);
@@ -152,7 +153,7 @@ fn coarse_steps_selection_and_resets() {
     ]);
     let (app, _) = explore(160, 48, events);
     assert_eq!(app.params, Params::default());
-    assert_eq!(app.selected_spec().id, ParamId::Alpha);
+    assert_eq!(app.selected_spec().id, ParamId::BallDamping);
 }
 
 #[test]
@@ -174,7 +175,7 @@ fn a_typed_value_takes_units_like_the_command_line() {
 
 #[test]
 fn the_prompt_names_the_unit_of_a_bare_number() {
-    let mut events = vec![key(KeyCode::Char('j')); 9];
+    let mut events = vec![key(KeyCode::Char('j')); 11];
     events.extend([key(KeyCode::Char('e'))]);
     events.extend(typed("12"));
     let (app, screen) = explore(80, 24, events);

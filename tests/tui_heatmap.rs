@@ -125,7 +125,8 @@ fn a_new_parameter_restarts_the_map_and_no_rows_of_the_old_one_remain() {
     // Stepping the cart mass moves the mark but needs no new map.
     let mut app = app;
     let generation = app.heatmap.generation;
-    for _ in 0..7 {
+    // From the spin (row 2) to the cart mass (row 11, after the ball's stiffness and damping).
+    for _ in 0..9 {
         app.update(snapback::tui::Action::SelectNext);
     }
     app.update(snapback::tui::Action::Step {

@@ -405,7 +405,8 @@ fn the_baseline_gives_the_cores_differences() {
     let mut app = app_in(Params::default(), dir.path());
     // Pin, then halve the cart mass and raise the angle.
     let mut events = vec![char('b'), char('l'), char('l')];
-    events.extend(std::iter::repeat_n(char('j'), 9));
+    // The cart mass is row 11, after the ball's stiffness and damping.
+    events.extend(std::iter::repeat_n(char('j'), 11));
     events.push(char('H'));
     let screen = drive(&mut app, 160, 48, events);
     let base = solve(&Params::default()).unwrap().outcome;

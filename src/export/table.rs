@@ -70,7 +70,7 @@ pub fn summary(b: &Bounce) -> String {
     );
     let _ = writeln!(out, "\nEnergy");
     let share = |j: f64| 100.0 * j / e.initial;
-    let rows = [
+    let mut rows = vec![
         ("incoming ball", e.initial),
         ("outgoing ball", e.final_ball),
         (cart_energy, e.final_cart),
@@ -78,6 +78,11 @@ pub fn summary(b: &Bounce) -> String {
         ("lost normally (e_y)", e.normal_loss),
         ("lost at the cart (F_c)", e.cart_friction_loss),
     ];
+    // A compliant ball leaves energy in its spring and loses some in its dashpot.
+    if b.params.ball_stiffness > 0.0 {
+        rows.push(("ball's spring (k_b)", e.ball_spring));
+        rows.push(("lost in dashpot (c_b)", e.dashpot_loss));
+    }
     for (name, joules) in rows {
         let _ = writeln!(
             out,

@@ -4,6 +4,7 @@ use serde::Serialize;
 
 use super::cart::Cart;
 use super::chain::{ChainMotion, solve_chain};
+use super::compliant::{CompliantMotion, solve_compliant};
 use super::events::first_rise;
 use super::grip::Grip;
 use super::params::{ParamError, Params};
@@ -35,6 +36,8 @@ pub(super) enum Motion {
     Grip(Grip),
     /// A phase on a chain of masses (sliding or gripping).
     Chain(ChainMotion),
+    /// A phase of a compliant ball on the single cart.
+    Compliant(Box<CompliantMotion>),
 }
 
 /// One phase of the bounce.
@@ -59,6 +62,7 @@ impl Phase {
             Motion::Slide(slide) => slide.at(setup, t),
             Motion::Grip(grip) => grip.at(setup, t),
             Motion::Chain(chain) => chain.contact(setup, t).state,
+            Motion::Compliant(c) => c.at(setup, t).state,
         }
     }
 
@@ -68,6 +72,7 @@ impl Phase {
             Motion::Slide(slide) => slide.friction(setup, state.t),
             Motion::Grip(grip) => grip.friction(setup, state.x),
             Motion::Chain(chain) => chain.contact(setup, state.t).friction,
+            Motion::Compliant(c) => c.at(setup, state.t).friction,
         }
     }
 
@@ -77,6 +82,7 @@ impl Phase {
             Motion::Slide(slide) => slide.start,
             Motion::Grip(grip) => grip.start,
             Motion::Chain(chain) => chain.start.contact(),
+            Motion::Compliant(c) => c.initial(),
         }
     }
 
@@ -92,8 +98,20 @@ impl Phase {
     fn fastest(&self, setup: &Setup) -> f64 {
         match &self.motion {
             Motion::Chain(chain) => chain.chain().slide.fastest,
+            Motion::Compliant(c) => c.fastest(setup),
             _ => setup.omega_slide,
         }
+    }
+
+    /// The power lost to sliding friction at `t`: F times the slip at the contact (for a compliant ball,
+    /// the slip of its contact patch on the cart).
+    fn friction_power(&self, setup: &Setup, t: f64) -> f64 {
+        let s = self.state_at(setup, t);
+        let slip = match &self.motion {
+            Motion::Compliant(c) => c.patch_slip(setup, t),
+            _ => setup.slip(&s),
+        };
+        self.friction(setup, &s) * slip
     }
 
     pub fn duration(&self) -> f64 {
@@ -150,7 +168,12 @@ pub struct Energy {
     pub normal_loss: f64,
     /// Work against the string friction on the cart: F_c times the distance the cart travelled.
     pub cart_friction_loss: f64,
-    /// (initial - final_ball - final_cart - friction_loss - normal_loss - cart_friction_loss) / initial.
+    /// Energy left in the compliant ball's tangential spring as it leaves, k_b e(T)²/2 (0 for a rigid ball).
+    pub ball_spring: f64,
+    /// Lost in the compliant ball's dashpot, ∫ c_b e'² dt over the contact (0 for a rigid ball).
+    pub dashpot_loss: f64,
+    /// (initial - final_ball - final_cart - friction_loss - normal_loss - cart_friction_loss - ball_spring
+    /// - dashpot_loss) / initial.
     pub residual: f64,
 }
 
@@ -208,6 +231,21 @@ pub enum SolveError {
          chain of {chain} masses: set --cart-friction 0 or --chain 1"
     )]
     ChainStringFriction { chain: usize },
+    #[error(
+        "a compliant ball (--ball-stiffness > 0) is modelled on the single cart only, not on a chain of \
+         {chain} masses: set --ball-stiffness 0 (a rigid ball) or --chain 1"
+    )]
+    ChainCompliantBall { chain: usize },
+    #[error(
+        "a compliant ball (--ball-stiffness > 0) is not modelled together with string friction on the \
+         cart: set --ball-stiffness 0 (a rigid ball) or --cart-friction 0"
+    )]
+    StringFrictionCompliantBall,
+    #[error(
+        "the ball's contact spring is too stiff to resolve: its fastest rate times T = {radians:.3e} rad \
+         exceeds {MAX_RADIANS:e} (lower --ball-stiffness or --ball-damping)"
+    )]
+    BallTooFast { radians: f64 },
 }
 
 /// The largest number of cart radians per contact the solver accepts (about 16 000 oscillations).
@@ -224,6 +262,9 @@ pub(super) const ROUNDING: f64 = 1e-12;
 /// located by root finding on the exact expressions.
 pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
     params.validate()?;
+    if params.ball_stiffness > 0.0 {
+        return solve_compliant(params);
+    }
     if params.chain > 1.0 {
         return solve_chain(params);
     }
@@ -386,7 +427,9 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
             }
             // Rolling on a still cart: nothing changes until the ball leaves.
             (Motion::Grip(_), Cart::Stuck) => None,
-            (Motion::Chain(_), _) => unreachable!("the single-cart loop builds no chain phase"),
+            (Motion::Chain(_) | Motion::Compliant(_), _) => {
+                unreachable!("the rigid single-cart loop builds no chain or compliant phase")
+            }
         }
         // A transition within rounding of the end changes nothing.
         .filter(|&(t, _)| t < end * (1.0 - 1e-13));
@@ -481,15 +524,46 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
     let friction_loss = phases
         .iter()
         .filter(|p| p.kind == PhaseKind::Slide)
-        .map(|p| {
-            let panel = 2.0 / p.fastest(setup).max(setup.w);
-            let power = |t: f64| {
-                let s = p.state_at(setup, t);
-                p.friction(setup, &s) * setup.slip(&s)
-            };
-            integrate(power, p.start, p.end, panel)
+        .map(|p| match &p.motion {
+            Motion::Compliant(c) => {
+                c.integrate(setup, |t| p.friction_power(setup, t), p.start, p.end)
+            }
+            _ => {
+                let panel = 2.0 / p.fastest(setup).max(setup.w);
+                integrate(|t| p.friction_power(setup, t), p.start, p.end, panel)
+            }
         })
         .sum();
+    fn compliant(p: &Phase) -> Option<&CompliantMotion> {
+        match &p.motion {
+            Motion::Compliant(c) => Some(c.as_ref()),
+            _ => None,
+        }
+    }
+    let dashpot_loss = phases
+        .iter()
+        .filter_map(|p| compliant(p).map(|c| (p, c)))
+        .filter(|(_, c)| c.compliance().cb > 0.0)
+        .map(|(p, c)| {
+            let cb = c.compliance().cb;
+            c.integrate(
+                setup,
+                |t| {
+                    let de = c.at(setup, t).de;
+                    cb * de * de
+                },
+                p.start,
+                p.end,
+            )
+        })
+        .sum();
+    let ball_spring = phases
+        .last()
+        .and_then(|p| compliant(p).map(|c| (p, c)))
+        .map_or(0.0, |(p, c)| {
+            let e = c.at(setup, p.end).e;
+            0.5 * c.compliance().kb * e * e
+        });
     Energy {
         initial,
         final_ball,
@@ -497,12 +571,16 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
         friction_loss,
         normal_loss,
         cart_friction_loss,
+        ball_spring,
+        dashpot_loss,
         residual: (initial
             - final_ball
             - final_cart
             - friction_loss
             - normal_loss
-            - cart_friction_loss)
+            - cart_friction_loss
+            - ball_spring
+            - dashpot_loss)
             / initial,
     }
 }

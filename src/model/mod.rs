@@ -4,6 +4,7 @@
 pub mod bounce;
 pub mod cart;
 pub mod chain;
+pub mod compliant;
 pub mod events;
 pub mod grip;
 pub mod oscillator;

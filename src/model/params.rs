@@ -40,6 +40,13 @@ pub struct Params {
     /// cart): a chain of masses M/N and springs N k, touched by the ball at its first mass.
     #[serde(default = "single_cart")]
     pub chain: f64,
+    /// Tangential stiffness k_b of the ball's contact region, N/m; 0 = a rigid ball (the paper's model).
+    #[serde(default)]
+    pub ball_stiffness: f64,
+    /// Damping ratio zeta of the ball's contact spring, relative to its mode sqrt(k_b/m_eff):
+    /// c_b = 2 zeta sqrt(k_b m_eff).
+    #[serde(default)]
+    pub ball_damping: f64,
 }
 
 /// The default chain length for inputs written before the chain existed: the single cart.
@@ -63,6 +70,8 @@ impl Default for Params {
             stiffness: 0.0,
             cart_friction: 0.0,
             chain: 0.0,
+            ball_stiffness: 0.0,
+            ball_damping: 0.0,
         };
         for spec in PARAMS {
             params.set(spec.id, spec.default);
@@ -87,6 +96,8 @@ pub enum ParamId {
     Stiffness,
     CartFriction,
     Chain,
+    BallStiffness,
+    BallDamping,
 }
 
 /// One end of an allowed range.
@@ -506,6 +517,48 @@ pub const PARAMS: &[ParamSpec] = &[
         help: "moment of inertia factor: I = alpha m r^2 (0.4 solid sphere, 2/3 thin shell, 0.55 tennis ball)",
     },
     ParamSpec {
+        id: ParamId::BallStiffness,
+        group: Group::Ball,
+        flag: "ball-stiffness",
+        key: "ball_stiffness",
+        symbol: "k_b",
+        label: "ball stiffness",
+        dimension: Dimension::Stiffness,
+        display_unit: "kN/m",
+        decimals: 1,
+        range: NON_NEGATIVE,
+        fine: Step::Times(1.1),
+        coarse: Step::Times(2.0),
+        default: 0.0,
+        integer: false,
+        help: "tangential stiffness k_b of the ball's contact region (a massless spring and dashpot between \
+               the ball and its contact patch); 0 = a rigid ball, the paper's model. Single cart only, without \
+               string friction. A stiff undamped ball does not approach the rigid ball: its force keeps \
+               swinging and the grip chatters (up to 10 000 phases, then the bounce is refused)",
+    },
+    ParamSpec {
+        id: ParamId::BallDamping,
+        group: Group::Ball,
+        flag: "ball-damping",
+        key: "ball_damping",
+        symbol: "ζ_b",
+        label: "ball damping",
+        dimension: Dimension::Dimensionless,
+        display_unit: "",
+        decimals: 3,
+        range: Range {
+            low: Bound::Closed(0.0),
+            high: Bound::Closed(10.0),
+        },
+        fine: Step::Add(0.05),
+        coarse: Step::Add(0.5),
+        default: 0.0,
+        integer: false,
+        help: "damping ratio of the ball's contact spring, relative to sqrt(k_b/m_eff) (1 = critical); \
+               ignored for a rigid ball. A stiff, critically damped ball approaches the rigid ball; an \
+               undamped one chatters between grip and slide",
+    },
+    ParamSpec {
         id: ParamId::CartMass,
         group: Group::Surface,
         flag: "cart-mass",
@@ -609,6 +662,8 @@ impl Params {
             ParamId::Stiffness => self.stiffness,
             ParamId::CartFriction => self.cart_friction,
             ParamId::Chain => self.chain,
+            ParamId::BallStiffness => self.ball_stiffness,
+            ParamId::BallDamping => self.ball_damping,
         }
     }
 
@@ -628,6 +683,8 @@ impl Params {
             ParamId::Stiffness => &mut self.stiffness,
             ParamId::CartFriction => &mut self.cart_friction,
             ParamId::Chain => &mut self.chain,
+            ParamId::BallStiffness => &mut self.ball_stiffness,
+            ParamId::BallDamping => &mut self.ball_damping,
         };
         *slot = value;
     }

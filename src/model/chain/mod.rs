@@ -108,6 +108,11 @@ pub type ChainMotion = Arc<Motion>;
 /// single-cart solver to rounding; [`super::solve`] sends N = 1 to the single cart's own path).
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     params.validate()?;
+    if params.ball_stiffness > 0.0 {
+        return Err(SolveError::ChainCompliantBall {
+            chain: params.chain as usize,
+        });
+    }
     if params.cart_friction > 0.0 {
         return Err(SolveError::ChainStringFriction {
             chain: params.chain as usize,

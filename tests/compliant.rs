@@ -1,0 +1,446 @@
+//! The tangentially compliant ball (`--ball-stiffness`, `--ball-damping`): k_b = 0 is the rigid ball bit
+//! for bit, the combinations not modelled are refused, energy balances with the spring and the dashpot,
+//! a stiff critically damped ball approaches the rigid ball, an undamped one leaves a rigid surface with
+//! e_x > 0, an independent numerical integration agrees, and properties hold over random inputs.
+
+#[path = "common/compliant_integrator.rs"]
+mod compliant_integrator;
+
+use proptest::prelude::*;
+use snapback::model::{Params, PhaseKind, SolveError, solve};
+
+/// A small deterministic generator, so the cases are the same on every run.
+struct Rng(u64);
+
+impl Rng {
+    fn unit(&mut self) -> f64 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+    fn log_uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        (lo.ln() + (hi.ln() - lo.ln()) * self.unit()).exp()
+    }
+}
+
+/// Random bounces with a moderately stiff ball (its contact mode at most about 35 radians per contact
+/// times a few).
+fn random_params(rng: &mut Rng) -> Params {
+    Params {
+        angle_deg: rng.uniform(5.0, 90.0),
+        speed: rng.uniform(2.0, 30.0),
+        spin: rng.uniform(-300.0, 300.0),
+        mu: rng.uniform(0.1, 0.8),
+        duration: rng.uniform(2e-3, 8e-3),
+        ey: rng.uniform(0.3, 1.0),
+        mass: rng.uniform(0.04, 0.2),
+        radius: rng.uniform(0.02, 0.05),
+        alpha: rng.uniform(0.4, 0.67),
+        cart_mass: rng.log_uniform(3e-3, 1.0),
+        stiffness: if rng.unit() < 0.1 {
+            0.0
+        } else {
+            rng.log_uniform(1e3, 1e5)
+        },
+        cart_friction: 0.0,
+        chain: 1.0,
+        ball_stiffness: rng.log_uniform(1e4, 1e6),
+        ball_damping: if rng.unit() < 0.2 {
+            0.0
+        } else {
+            rng.uniform(0.05, 1.5)
+        },
+    }
+}
+
+fn compliant(ball_stiffness: f64, ball_damping: f64) -> Params {
+    Params {
+        ball_stiffness,
+        ball_damping,
+        ..Params::default()
+    }
+}
+
+#[test]
+fn a_zero_stiffness_is_the_rigid_ball_bit_for_bit() {
+    let mut rng = Rng(7);
+    for _ in 0..50 {
+        let p = Params {
+            ball_stiffness: 0.0,
+            ball_damping: 0.0,
+            ..random_params(&mut rng)
+        };
+        let rigid = solve(&p).unwrap();
+        // The damping of a rigid ball is ignored.
+        let damped = solve(&Params {
+            ball_damping: 0.8,
+            ..p
+        })
+        .unwrap();
+        assert_eq!(rigid.outcome, damped.outcome);
+        assert_eq!(rigid.final_state, damped.final_state);
+        let e = rigid.energy();
+        assert_eq!((e.ball_spring, e.dashpot_loss), (0.0, 0.0));
+    }
+    // Inputs written before the compliant ball existed are rigid balls.
+    let old: Params = serde_json::from_str(
+        &serde_json::to_string(&Params::default())
+            .unwrap()
+            .replace(",\"ball_stiffness\":0.0,\"ball_damping\":0.0", ""),
+    )
+    .unwrap();
+    assert_eq!(old, Params::default());
+}
+
+#[test]
+fn combinations_not_modelled_are_refused() {
+    let chain = Params {
+        chain: 4.0,
+        ..compliant(1e6, 0.5)
+    };
+    let err = solve(&chain).unwrap_err();
+    assert_eq!(err, SolveError::ChainCompliantBall { chain: 4 });
+    assert!(err.to_string().contains("single cart only"), "{err}");
+    let string = Params {
+        cart_friction: 2.0,
+        ..compliant(1e6, 0.5)
+    };
+    let err = solve(&string).unwrap_err();
+    assert_eq!(err, SolveError::StringFrictionCompliantBall);
+    assert!(err.to_string().contains("string friction"), "{err}");
+    // Called directly, the chain solver refuses a compliant ball too (even for N = 1).
+    let direct = snapback::model::chain::solve_chain(&Params {
+        chain: 1.0,
+        ..compliant(1e6, 0.5)
+    });
+    assert_eq!(
+        direct.unwrap_err(),
+        SolveError::ChainCompliantBall { chain: 1 }
+    );
+    // Each alone is fine.
+    assert!(
+        solve(&Params {
+            chain: 4.0,
+            ..Params::default()
+        })
+        .is_ok()
+    );
+    assert!(solve(&compliant(1e6, 0.5)).is_ok());
+}
+
+#[test]
+fn energy_balances_with_the_spring_and_the_dashpot() {
+    let mut rng = Rng(11);
+    let mut damped = 0;
+    for i in 0..60 {
+        let p = random_params(&mut rng);
+        let b = solve(&p).unwrap_or_else(|e| panic!("case {i}: {e}"));
+        let e = b.energy();
+        assert!(e.residual.abs() < 1e-10, "case {i}: residual {e:?}");
+        assert!(e.ball_spring >= 0.0 && e.dashpot_loss >= 0.0);
+        assert!(e.friction_loss >= -1e-12 * e.initial, "case {i}: {e:?}");
+        if p.ball_damping > 0.0 {
+            assert!(e.dashpot_loss > 0.0, "case {i}");
+            damped += 1;
+        } else {
+            assert_eq!(e.dashpot_loss, 0.0);
+        }
+    }
+    assert!(damped > 30);
+    // A soft, lightly damped ball leaves with its spring stretched.
+    let e = solve(&compliant(3e4, 0.1)).unwrap().energy();
+    assert!(e.ball_spring > 0.0 && e.dashpot_loss > 0.0, "{e:?}");
+    assert!(e.residual.abs() < 1e-10, "{e:?}");
+}
+
+#[test]
+fn a_stiff_critically_damped_ball_approaches_the_rigid_ball() {
+    for base in [
+        Params::default(),
+        Params {
+            angle_deg: 30.0,
+            cart_mass: 0.05,
+            ..Params::default()
+        },
+    ] {
+        let rigid = solve(&base).unwrap().outcome;
+        let mut errors = vec![];
+        for kb in [1e6, 1e7, 1e8, 1e9] {
+            let o = solve(&Params {
+                ball_stiffness: kb,
+                ball_damping: 1.0,
+                ..base
+            })
+            .unwrap()
+            .outcome;
+            let error = (o.omega2 - rigid.omega2).abs() / rigid.omega2.abs().max(1.0)
+                + (o.vx2 - rigid.vx2).abs() / base.speed;
+            errors.push(error);
+        }
+        for pair in errors.windows(2) {
+            assert!(pair[1] < pair[0], "{errors:?}");
+        }
+        assert!(errors[3] < 1e-3, "{errors:?}");
+    }
+}
+
+/// A rigid surface: a cart far heavier than the ball, on a stiff spring.
+fn rigid_surface(ball_stiffness: f64, ball_damping: f64) -> Params {
+    Params {
+        angle_deg: 45.0,
+        spin: 0.0,
+        cart_mass: 1e3,
+        stiffness: 1e6,
+        ..compliant(ball_stiffness, ball_damping)
+    }
+}
+
+#[test]
+fn an_undamped_ball_leaves_a_rigid_surface_with_positive_ex() {
+    let rigid = solve(&rigid_surface(0.0, 0.0)).unwrap();
+    let ex_rigid = rigid.outcome.ex.unwrap();
+    assert!(ex_rigid.abs() < 1e-4, "rigid ball: e_x = {ex_rigid}");
+    let undamped = solve(&rigid_surface(3e5, 0.0)).unwrap();
+    let ex = undamped.outcome.ex.unwrap();
+    assert!(ex > 0.01, "undamped ball: e_x = {ex}");
+    // Damping takes the tangential rebound out again; critical damping near stiff is close to rigid.
+    let damped = solve(&rigid_surface(1e8, 1.0)).unwrap().outcome.ex.unwrap();
+    assert!(
+        damped.abs() < 0.02,
+        "critically damped stiff ball: e_x = {damped}"
+    );
+    let e = undamped.energy();
+    assert!(e.residual.abs() < 1e-10, "{e:?}");
+}
+
+#[test]
+fn an_undamped_stiff_ball_chatters_but_does_not_stall() {
+    for kb in [1e7, 1e8, 1e9] {
+        let started = std::time::Instant::now();
+        match solve(&compliant(kb, 0.0)) {
+            Ok(b) => {
+                assert!(b.phases.iter().all(|p| p.end > p.start));
+                // The grip chatters: many more phases than the rigid ball's three.
+                assert!(b.phases.len() > 30, "k_b = {kb}: {}", b.phases.len());
+                let e = b.energy();
+                assert!(e.residual.abs() < 1e-10, "k_b = {kb}: {e:?}");
+            }
+            Err(e) => assert_eq!(e, SolveError::TooManyPhases),
+        }
+        assert!(started.elapsed().as_secs_f64() < 20.0);
+    }
+}
+
+#[test]
+fn a_lightly_damped_ball_is_quick_and_tends_to_the_undamped_one() {
+    // zeta -> 0 makes the stretch's decay rate sqrt(k_b/m_eff)/(2 zeta) huge while sliding.
+    let undamped = solve(&compliant(1e6, 0.0)).unwrap().outcome;
+    for zeta in [1e-4, 1e-7, 1e-10, 1e-13] {
+        let started = std::time::Instant::now();
+        let b = solve(&compliant(1e6, zeta)).unwrap();
+        assert!(started.elapsed().as_secs_f64() < 1.0, "zeta = {zeta}");
+        let e = b.energy();
+        assert!(e.residual.abs() < 1e-10, "zeta = {zeta}: {e:?}");
+        let o = b.outcome;
+        assert!(
+            (o.omega2 - undamped.omega2).abs() < 1e-2 * undamped.omega2.abs(),
+            "zeta = {zeta}: {} vs {}",
+            o.omega2,
+            undamped.omega2
+        );
+    }
+}
+
+#[test]
+fn the_friction_is_continuous_when_the_ball_grips() {
+    let b = solve(&compliant(1e6, 0.5)).unwrap();
+    assert!(b.phases.iter().any(|p| p.kind == PhaseKind::Grip));
+    for pair in b.phases.windows(2) {
+        let t = pair[0].end;
+        let before = pair[0].friction(&b.setup, &pair[0].state_at(&b.setup, t));
+        let after = pair[1].friction(&b.setup, &pair[1].state_at(&b.setup, t));
+        assert!(
+            (before - after).abs() < 1e-6 * b.setup.mu * b.setup.n0,
+            "{before} {after}"
+        );
+    }
+}
+
+#[test]
+fn an_independent_integration_agrees() {
+    let mut rng = Rng(2024);
+    let mut worst: f64 = 0.0;
+    let mut multi = 0;
+    let mut same_phases = 0;
+    for i in 0..100 {
+        let p = random_params(&mut rng);
+        let b = solve(&p).unwrap_or_else(|e| panic!("case {i}: {e}"));
+        let reference = compliant_integrator::integrate(&p, 40_000);
+        let o = &b.outcome;
+        let speed = p.speed;
+        let d_vx = (o.vx2 - reference.vx2).abs() / speed;
+        let d_omega = (o.omega2 - reference.omega2).abs() * p.radius / speed;
+        // The cart, relative to the largest speed and the distance it covers at that speed.
+        let s = &b.final_state;
+        let d_v = (s.v - reference.v).abs() / speed;
+        let d_x = (s.x - reference.x).abs() / (speed * p.duration);
+        // The energy left in the ball's spring, relative to the incoming energy.
+        let e = b.energy();
+        let spring = 0.5 * p.ball_stiffness * reference.e * reference.e;
+        let d_spring = (e.ball_spring - spring).abs() / e.initial;
+        worst = worst.max(d_vx).max(d_omega).max(d_v).max(d_x).max(d_spring);
+        if b.phases.len() == reference.phases {
+            same_phases += 1;
+        }
+        assert!(
+            d_vx < 1e-7 && d_omega < 1e-7 && d_v < 1e-7 && d_x < 1e-7 && d_spring < 1e-7,
+            "case {i}: {p:?}\nsolver {o:?} ({} phases)\nreference {reference:?}",
+            b.phases.len()
+        );
+        if b.phases.len() > 2 {
+            multi += 1;
+        }
+    }
+    eprintln!(
+        "worst relative disagreement {worst:.2e}; {multi} cases with 3 or more phases; \
+         {same_phases} with the same number of phases"
+    );
+    assert!(multi >= 20);
+    assert!(same_phases >= 90);
+}
+
+fn log_range(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo.ln()..=hi.ln()).prop_map(f64::exp)
+}
+
+fn params() -> impl Strategy<Value = Params> {
+    let ball = (0.01f64..0.5, 0.01f64..0.1, 0.3f64..0.8);
+    let throw = (
+        prop_oneof![1.0f64..=90.0, Just(90.0)],
+        0.5f64..50.0,
+        -500.0f64..500.0,
+    );
+    let contact = (0.0f64..1.2, 1e-3f64..20e-3, 0.0f64..=1.0);
+    let cart = (
+        log_range(1e-3, 1e4),
+        prop_oneof![Just(0.0), log_range(1.0, 1e6)],
+    );
+    let compliance = (
+        log_range(1e3, 1e8),
+        prop_oneof![Just(0.0), Just(1.0), 0.0f64..3.0, log_range(1e-12, 1e-2)],
+    );
+    (ball, throw, contact, cart, compliance).prop_map(
+        |(
+            (mass, radius, alpha),
+            (angle_deg, speed, spin),
+            (mu, duration, ey),
+            (cart_mass, stiffness),
+            (kb, zeta),
+        )| {
+            Params {
+                angle_deg,
+                speed,
+                spin,
+                mu,
+                duration,
+                ey,
+                mass,
+                radius,
+                alpha,
+                cart_mass,
+                stiffness,
+                cart_friction: 0.0,
+                chain: 1.0,
+                ball_stiffness: kb,
+                ball_damping: zeta,
+            }
+        },
+    )
+}
+
+fn config() -> ProptestConfig {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(200);
+    ProptestConfig::with_cases(cases)
+}
+
+proptest! {
+    #![proptest_config(config())]
+
+    #[test]
+    fn every_compliant_bounce_is_physical(p in params()) {
+        let b = match solve(&p) {
+            Ok(b) => b,
+            // An undamped stiff ball may chatter past the cap: refused, never stalled.
+            Err(SolveError::TooManyPhases) if p.ball_damping < 0.1 => return Ok(()),
+            // A contact mode too fast to resolve is refused with a message.
+            Err(SolveError::BallTooFast { radians }) => {
+                prop_assert!(radians > snapback::model::bounce::MAX_RADIANS);
+                return Ok(());
+            }
+            Err(e) => panic!("{e}"),
+        };
+        let o = &b.outcome;
+        for value in [o.omega2, o.vx2, o.vy2, o.speed2, o.theta2_deg, b.final_state.x, b.final_state.v] {
+            prop_assert!(value.is_finite());
+        }
+        let e = b.energy();
+        for value in [e.final_ball, e.final_cart, e.ball_spring, e.dashpot_loss] {
+            prop_assert!(value.is_finite() && value >= -1e-12 * e.initial);
+        }
+        prop_assert!(e.friction_loss >= -1e-9 * e.initial, "{e:?}");
+        prop_assert!(e.residual.abs() < 1e-10, "residual {e:?}");
+        prop_assert_eq!(b.phases[0].start, 0.0);
+        prop_assert_eq!(b.phases.last().unwrap().end, p.duration);
+        for pair in b.phases.windows(2) {
+            prop_assert_eq!(pair[0].end, pair[1].start);
+        }
+        let n_peak = b.setup.n0;
+        for s in &b.series(200) {
+            prop_assert!(
+                s.friction.abs() <= p.mu * s.normal + 1e-8 * p.mu * n_peak + 1e-12,
+                "|F| = {} > mu N = {} at t = {}", s.friction.abs(), p.mu * s.normal, s.t
+            );
+        }
+    }
+}
+
+#[test]
+fn scenario_files_set_the_compliant_ball() {
+    use snapback::scenario::Scenario;
+    let s = Scenario::parse(
+        "description = \"soft ball\"\n[params]\nball_stiffness = \"1 MN/m\"\nball_damping = 0.5\n",
+        "ball.toml",
+    )
+    .unwrap();
+    let p = s.apply(Params::default());
+    assert_eq!((p.ball_stiffness, p.ball_damping), (1e6, 0.5));
+    assert!(solve(&p).is_ok());
+    let again = Scenario::parse(&Scenario::from_params("b", "", &p).to_toml(), "b.toml").unwrap();
+    assert_eq!(again.apply(Params::default()), p);
+    let err = Scenario::parse("[params]\nball_stiffness = -1\n", "bad.toml").unwrap_err();
+    assert!(
+        err.to_string()
+            .contains("ball_stiffness must be in [0, inf) N/m"),
+        "{err}"
+    );
+}
+
+#[test]
+fn the_help_text_explains_rigid_and_chatter() {
+    use snapback::model::params::{ParamId, spec};
+    let stiffness = spec(ParamId::BallStiffness).help;
+    assert!(stiffness.contains("0 = a rigid ball"), "{stiffness}");
+    assert!(stiffness.contains("chatters"), "{stiffness}");
+    assert!(
+        spec(ParamId::BallDamping)
+            .help
+            .contains("critically damped")
+    );
+}
