@@ -280,7 +280,18 @@ impl ParamSpec {
 
     /// A value in the display unit, e.g. `10.0 g`.
     pub fn show(&self, base_value: f64) -> units::Shown {
-        units::show(base_value, self.dimension, self.display_unit, self.decimals)
+        units::Shown {
+            zero_label: self.zero_means(),
+            ..units::show(base_value, self.dimension, self.display_unit, self.decimals)
+        }
+    }
+
+    /// What a value of zero stands for, where it is not just a zero.
+    pub fn zero_means(&self) -> Option<&'static str> {
+        match self.id {
+            ParamId::BallStiffness => Some("rigid"),
+            _ => None,
+        }
     }
 
     /// Parses user text (with an optional unit suffix) and checks the range.

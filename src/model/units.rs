@@ -223,10 +223,15 @@ pub struct Shown {
     pub value: f64,
     pub symbol: &'static str,
     pub decimals: usize,
+    /// What a zero means, shown instead of the number (a ball stiffness of 0 is a rigid ball).
+    pub zero_label: Option<&'static str>,
 }
 
 impl fmt::Display for Shown {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let (0.0, Some(label)) = (self.value, self.zero_label) {
+            return f.write_str(label);
+        }
         let value = if self.value == 0.0 { 0.0 } else { self.value }; // no "-0"
         if self.symbol.is_empty() {
             write!(f, "{value:.*}", self.decimals)
@@ -256,6 +261,7 @@ pub fn show(base_value: f64, dimension: Dimension, symbol: &'static str, decimal
         value: in_unit(base_value, dimension, symbol),
         symbol,
         decimals,
+        zero_label: None,
     }
 }
 

@@ -70,10 +70,15 @@ pub fn regions(area: Rect, app: &App) -> Option<Regions> {
     let left_width = (area.width * 27 / 100).clamp(35, 44);
     let [left, view] =
         Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
-    let params_height = params::height();
+    // The outcome gets the rows it needs first; on a short screen the parameter list scrolls.
+    let outcome_height = outcome::height(app, left_width);
+    let params_height = params::height().min(
+        left.height
+            .saturating_sub(outcome_height)
+            .max(params::MIN_HEIGHT),
+    );
     let [params, rest] =
         Layout::vertical([Constraint::Length(params_height), Constraint::Min(0)]).areas(left);
-    let outcome_height = outcome::height(app, left_width);
     let (outcome, schematic) = if rest.height >= outcome_height + schematic::MIN_HEIGHT
         && left_width >= schematic::MIN_WIDTH
     {

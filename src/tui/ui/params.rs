@@ -1,6 +1,7 @@
 //! The parameter panel: every parameter of the table in `model::params::PARAMS`, its value in the unit
 //! people think in, the selected one highlighted, a dot beside any value that differs from the default,
-//! and a heading where a new group begins (the surface: cart, spring, string friction).
+//! and a heading where a new group begins (the surface: cart, spring, string friction). On a short screen
+//! the list scrolls to keep the selected parameter in view, with a mark on the border where more is hidden.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -10,12 +11,16 @@ use ratatui::widgets::{Block, Paragraph};
 use crate::model::PARAMS;
 use crate::tui::app::App;
 
+/// The fewest rows the panel is given, borders included, however short the screen.
+pub const MIN_HEIGHT: u16 = 7;
+
 pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let theme = &app.theme;
     let block = Block::bordered().title(Span::styled(" parameters ", theme.title()));
     let inner = block.inner(area);
     let width = usize::from(inner.width);
     let mut lines: Vec<Line> = Vec::with_capacity(PARAMS.len() + group_headings());
+    let mut selected_line = 0;
     for (i, spec) in PARAMS.iter().enumerate() {
         if i > 0 && PARAMS[i - 1].group != spec.group {
             let name = format!(" {} ", spec.group.name());
@@ -25,6 +30,9 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
                 Span::styled(name, theme.title()),
                 Span::styled(rule, theme.dim()),
             ]));
+        }
+        if i == app.selected {
+            selected_line = lines.len();
         }
         lines.push({
             let value = app.params.get(spec.id);
@@ -49,7 +57,24 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             }
         });
     }
-    frame.render_widget(Paragraph::new(lines).block(block), area);
+    // Scroll so the selected line sits mid-panel where it can, and say where lines are hidden.
+    let visible = usize::from(inner.height);
+    let start = if lines.len() > visible {
+        selected_line
+            .saturating_sub(visible / 2)
+            .min(lines.len() - visible)
+    } else {
+        0
+    };
+    let mut block = block;
+    if start > 0 {
+        block = block.title(Line::styled(" ▲ more ", theme.dim()).right_aligned());
+    }
+    if start + visible < lines.len() {
+        block = block.title_bottom(Line::styled(" ▼ more ", theme.dim()).right_aligned());
+    }
+    let shown: Vec<Line> = lines.into_iter().skip(start).take(visible).collect();
+    frame.render_widget(Paragraph::new(shown).block(block), area);
 }
 
 /// The headings between groups of parameters.
