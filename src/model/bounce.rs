@@ -317,10 +317,7 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(&setup, t);
                     last.set(s);
-                    let slip = (
-                        -slide.dir * (setup.slip(&s) - slip_offset),
-                        -slide.dir * slide.slip_rate(&setup, &s, friction),
-                    );
+                    let slip = slide.slip_event(&setup, &s, friction, slip_offset);
                     // Without string friction the cart's stopping changes nothing.
                     let stop = if string {
                         (
@@ -354,10 +351,7 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(&setup, t);
                     last.set(s);
-                    let slip = (
-                        -slide.dir * (setup.slip(&s) - slip_offset),
-                        -slide.dir * slide.slip_rate(&setup, &s, friction),
-                    );
+                    let slip = slide.slip_event(&setup, &s, friction, slip_offset);
                     let push = friction - setup.k * s.x;
                     let push_rate = slide.dir * setup.mu * setup.n0 * setup.w * (setup.w * t).cos();
                     [

@@ -1,7 +1,7 @@
 //! The sliding phase, Eqs. (1)-(3): friction of magnitude mu N opposing the slip.
 
 use super::cart::Cart;
-use super::oscillator::{forced, free, sin_over, step};
+use super::oscillator::{detuned, forced, free, free_given, step};
 use super::setup::{Setup, State};
 
 /// A sliding phase from `start`, with the slip's sign `dir` (+1: the contact point moves forward
@@ -86,16 +86,14 @@ impl Slide {
             CartResponse::Detuned { amplitude } => {
                 // Free response from the start state, plus A (sin w t - its free continuation from t0).
                 let (s, c) = (omega * tau).sin_cos();
-                let sin_over_omega = sin_over(s, omega, tau);
-                let cos_diff = cos_w_tau - c;
-                let x_forced =
-                    self.sin_wt0 * cos_diff + self.cos_wt0 * (sin_w_tau - w * sin_over_omega);
-                let v_forced =
-                    w * self.cos_wt0 * cos_diff - self.sin_wt0 * (w * sin_w_tau - omega * s);
+                let (x_free, v_free) = free_given(s0.x, s0.v, omega, tau, s, c);
+                let phase0 = (self.sin_wt0, self.cos_wt0);
+                let (x_forced, v_forced) =
+                    detuned(omega, w, tau, phase0, (sin_w_tau, cos_w_tau), (s, c));
                 let (x_push, v_push) = self.push_response(s, c, omega, tau);
                 (
-                    s0.x * c + s0.v * sin_over_omega + amplitude * x_forced + x_push,
-                    -s0.x * omega * s + s0.v * c + amplitude * v_forced + v_push,
+                    x_free + amplitude * x_forced + x_push,
+                    v_free + amplitude * v_forced + v_push,
                 )
             }
             CartResponse::Forced => {
@@ -139,6 +137,17 @@ impl Slide {
             Cart::Stuck => 0.0,
             Cart::Moving(_) => (f - setup.k * s.x) / setup.cart_mass + self.push,
         }
+    }
+
+    /// The event that ends the slide, the slip reaching zero, as a function that rises through zero:
+    /// -dir (slip - `offset`) and its rate, given the friction `f` at `s`. The offset is the slip at the
+    /// start when the slide begins on zero slip, so rounding cannot fake a crossing there.
+    #[inline]
+    pub fn slip_event(&self, setup: &Setup, s: &State, f: f64, offset: f64) -> (f64, f64) {
+        (
+            -self.dir * (setup.slip(s) - offset),
+            -self.dir * self.slip_rate(setup, s, f),
+        )
     }
 
     /// d(slip)/dt = -F/m_eff - V', given the friction `f` at `s`.

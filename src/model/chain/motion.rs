@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use super::super::oscillator::{forced, free, sin_over};
+use super::super::oscillator::{detuned, forced, free, free_given};
 use super::super::setup::{Setup, State};
 use super::modes::{MAX, Modes};
 use super::{Chain, ChainState};
@@ -122,16 +122,11 @@ impl Motion {
                 Response::Free => free(x0, v0, omega, tau),
                 Response::Detuned { amplitude } => {
                     let (s, c) = (omega * tau).sin_cos();
-                    let sin_over_omega = sin_over(s, omega, tau);
-                    let cos_diff = cos_w_tau - c;
-                    let x_forced =
-                        self.sin_wt0 * cos_diff + self.cos_wt0 * (sin_w_tau - w * sin_over_omega);
-                    let v_forced =
-                        w * self.cos_wt0 * cos_diff - self.sin_wt0 * (w * sin_w_tau - omega * s);
-                    (
-                        x0 * c + v0 * sin_over_omega + amplitude * x_forced,
-                        -x0 * omega * s + v0 * c + amplitude * v_forced,
-                    )
+                    let (x_free, v_free) = free_given(x0, v0, omega, tau, s, c);
+                    let phase0 = (self.sin_wt0, self.cos_wt0);
+                    let (x_forced, v_forced) =
+                        detuned(omega, w, tau, phase0, (sin_w_tau, cos_w_tau), (s, c));
+                    (x_free + amplitude * x_forced, v_free + amplitude * v_forced)
                 }
                 Response::Forced { drive } => {
                     let (x_free, v_free) = free(x0, v0, omega, tau);
