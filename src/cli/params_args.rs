@@ -47,12 +47,7 @@ impl ParamArgs {
 fn help_for(spec: &crate::model::params::ParamSpec) -> String {
     let unit = spec.dimension.base_symbol();
     let default = units::brief(spec.default, 6);
-    let accepted: Vec<&str> = spec
-        .dimension
-        .units()
-        .iter()
-        .flat_map(|u| u.symbols.iter().copied())
-        .collect();
+    let accepted = spec.dimension.symbols();
     if unit.is_empty() {
         format!(
             "{} [range {}; default {default}]",

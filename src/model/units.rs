@@ -117,12 +117,16 @@ impl Dimension {
         self.units().iter().find(|u| u.symbols.contains(&symbol))
     }
 
-    fn accepted(self) -> String {
-        let symbols: Vec<&str> = self
-            .units()
+    /// Every symbol a value may carry, the base unit's first (`kg`, `g`, `mg`).
+    pub fn symbols(self) -> Vec<&'static str> {
+        self.units()
             .iter()
             .flat_map(|u| u.symbols.iter().copied())
-            .collect();
+            .collect()
+    }
+
+    fn accepted(self) -> String {
+        let symbols = self.symbols();
         if symbols.is_empty() {
             "no unit".to_string()
         } else {

@@ -2,10 +2,10 @@
 //! its range and the units it accepts.
 
 use ratatui::Frame;
-use ratatui::layout::{Constraint, Rect};
+use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
+use super::overlay;
 use crate::tui::app::App;
 use crate::tui::keys::{self, Binding};
 use crate::tui::ui::theme::Theme;
@@ -36,12 +36,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let theme = &app.theme;
     let key_width = key_width();
     let spec = app.selected_spec();
-    let units: Vec<&str> = spec
-        .dimension
-        .units()
-        .iter()
-        .flat_map(|u| u.symbols.iter().copied())
-        .collect();
+    let units = spec.dimension.symbols();
     let units = if units.is_empty() {
         "a plain number".to_string()
     } else {
@@ -71,29 +66,13 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let width = area.width.saturating_sub(2).min(100);
     // Keys come first; on a short screen the sections after them are left out whole, in this order (the
     // status line shows the prompt's keys while typing).
-    let text_width = usize::from(width.saturating_sub(2)).max(1);
-    let rows_of = |lines: &[Line]| -> usize {
-        lines
-            .iter()
-            .map(|l| l.width().max(1).div_ceil(text_width))
-            .sum()
-    };
-    let room = usize::from(area.height.saturating_sub(2));
+    let text_width = width.saturating_sub(2);
+    let room = area.height.saturating_sub(2);
     for section in [prompt, notes] {
-        if rows_of(&lines) + rows_of(&section) <= room {
+        if overlay::rows(&lines, text_width) + overlay::rows(&section, text_width) <= room {
             lines.extend(section);
         }
     }
-    let height = (rows_of(&lines) as u16 + 2).min(area.height);
-    let popup = area.centered(Constraint::Length(width), Constraint::Length(height));
-    let block = Block::bordered()
-        .title(Span::styled(" help ", theme.title()))
-        .title_bottom(Line::from(" ? or Esc closes ").right_aligned());
-    frame.render_widget(Clear, popup);
-    frame.render_widget(
-        Paragraph::new(lines)
-            .block(block)
-            .wrap(Wrap { trim: false }),
-        popup,
-    );
+    let title = Span::styled(" help ", theme.title());
+    overlay::render(frame, area, width, title, " ? or Esc closes ", lines);
 }
