@@ -26,6 +26,7 @@ mod charts;
 mod heatmap;
 mod help;
 mod outcome;
+mod overlay;
 mod params;
 pub mod picker;
 pub mod plot;

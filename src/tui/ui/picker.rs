@@ -3,10 +3,10 @@
 //! an overwrite is to be confirmed.
 
 use ratatui::Frame;
-use ratatui::layout::{Constraint, Rect};
+use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
-use ratatui::widgets::{Block, Clear, Paragraph, Wrap};
 
+use super::overlay;
 use crate::scenario::PRESETS;
 use crate::tui::app::{App, Mode};
 use crate::tui::scenarios::FileKind;
@@ -60,23 +60,9 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             ));
         }
     }
-    // Rows the wrapped lines take.
-    let rows: u16 = lines
-        .iter()
-        .map(|l| l.width().max(1).div_ceil(inner.max(1)) as u16)
-        .sum();
-    let height = (rows + 2).min(area.height);
-    let popup = area.centered(Constraint::Length(width), Constraint::Length(height));
-    let block = Block::bordered()
-        .title(Span::styled(" presets ", theme.title()))
-        .title_bottom(Line::from(" ↑↓ choose · ⏎ apply (u undoes) · Esc close ").right_aligned());
-    frame.render_widget(Clear, popup);
-    frame.render_widget(
-        Paragraph::new(lines)
-            .block(block)
-            .wrap(Wrap { trim: false }),
-        popup,
-    );
+    let title = Span::styled(" presets ", theme.title());
+    let footer = " ↑↓ choose · ⏎ apply (u undoes) · Esc close ";
+    overlay::render(frame, area, width, title, footer, lines);
 }
 
 /// What the status line asks, and the text typed so far, while a file prompt or question is open.
