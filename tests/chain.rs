@@ -13,6 +13,10 @@ use snapback::model::{Params, PhaseKind, SolveError, solve};
 mod rng;
 use rng::Rng;
 
+#[path = "support/prop.rs"]
+mod prop;
+use prop::{config, log_range};
+
 /// Random bounces, as the single cart's numerical test draws them (no string friction).
 fn random_params(rng: &mut Rng, chain: f64) -> Params {
     Params {
@@ -357,10 +361,6 @@ fn a_chain_series_is_continuous_and_gripping_holds_zero_slip() {
     assert_eq!(b.sample_at(p.duration).omega, b.outcome.omega2);
 }
 
-fn log_range(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
-    (lo.ln()..=hi.ln()).prop_map(f64::exp)
-}
-
 /// Random chains over the property tests' ranges (the cart from 0.1 g, so that even 16 masses stay
 /// resolvable: sqrt(k / (M/N)) 2N T stays below the solver's limit).
 fn chains() -> impl Strategy<Value = Params> {
@@ -399,16 +399,8 @@ fn chains() -> impl Strategy<Value = Params> {
     })
 }
 
-fn config() -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(300);
-    ProptestConfig::with_cases(cases)
-}
-
 proptest! {
-    #![proptest_config(config())]
+    #![proptest_config(config(300))]
 
     #[test]
     fn every_chain_bounce_is_physical(p in chains()) {

@@ -13,6 +13,10 @@ use snapback::model::{Params, PhaseKind, SolveError, solve};
 mod rng;
 use rng::Rng;
 
+#[path = "support/prop.rs"]
+mod prop;
+use prop::{config, log_range};
+
 /// Random bounces with a moderately stiff ball (its contact mode at most about 35 radians per contact
 /// times a few).
 fn random_params(rng: &mut Rng) -> Params {
@@ -299,10 +303,6 @@ fn an_independent_integration_agrees() {
     assert!(same_phases >= 90);
 }
 
-fn log_range(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
-    (lo.ln()..=hi.ln()).prop_map(f64::exp)
-}
-
 fn params() -> impl Strategy<Value = Params> {
     let ball = (0.01f64..0.5, 0.01f64..0.1, 0.3f64..0.8);
     let throw = (
@@ -348,16 +348,8 @@ fn params() -> impl Strategy<Value = Params> {
     )
 }
 
-fn config() -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(200);
-    ProptestConfig::with_cases(cases)
-}
-
 proptest! {
-    #![proptest_config(config())]
+    #![proptest_config(config(200))]
 
     #[test]
     fn every_compliant_bounce_is_physical(p in params()) {

@@ -5,9 +5,9 @@
 use proptest::prelude::*;
 use snapback::model::{Cart, Params, PhaseKind, solve};
 
-fn log_range(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
-    (lo.ln()..=hi.ln()).prop_map(f64::exp)
-}
+#[path = "support/prop.rs"]
+mod prop;
+use prop::{config, log_range};
 
 fn params() -> impl Strategy<Value = Params> {
     let ball = (0.005f64..0.5, 0.005f64..0.12, 0.2f64..1.0);
@@ -50,17 +50,8 @@ fn params() -> impl Strategy<Value = Params> {
     })
 }
 
-/// 400 cases by default; `PROPTEST_CASES=100000` searches deeper.
-fn config() -> ProptestConfig {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|v| v.parse().ok())
-        .unwrap_or(400);
-    ProptestConfig::with_cases(cases)
-}
-
 proptest! {
-    #![proptest_config(config())]
+    #![proptest_config(config(400))]
 
     #[test]
     fn every_valid_bounce_is_physical(p in params()) {
