@@ -70,19 +70,12 @@ impl Grip {
     /// each with its rate. The grip breaks when either rises above zero.
     #[inline]
     pub fn margins(&self, setup: &Setup, s: &State) -> [(f64, f64); 2] {
-        let (sin_wt, cos_wt) = (setup.w * s.t).sin_cos();
-        let limit = setup.mu * setup.n0 * sin_wt.max(0.0);
-        let limit_rate = setup.mu * setup.n0 * setup.w * cos_wt;
-        let force = self.friction(setup, s.x);
         let force_rate = if self.cart == Cart::Stuck {
             0.0
         } else {
             setup.grip_gain * s.v
         };
-        [
-            (force - limit, force_rate - limit_rate),
-            (-force - limit, -force_rate - limit_rate),
-        ]
+        setup.grip_margins(s.t, self.friction(setup, s.x), force_rate)
     }
 
     /// The size of the terms the cart's velocity is computed from, for the rounding floor of its event.

@@ -85,6 +85,19 @@ impl Setup {
         }
     }
 
+    /// How far a grip held by static friction `force` (with rate `rate`) is from breaking at `t`, forward
+    /// and backward: ±force - mu N(t), each with its rate. The grip breaks when either rises above zero.
+    #[inline]
+    pub fn grip_margins(&self, t: f64, force: f64, rate: f64) -> [(f64, f64); 2] {
+        let (sin_wt, cos_wt) = (self.w * t).sin_cos();
+        let limit = self.mu * self.n0 * sin_wt.max(0.0);
+        let limit_rate = self.mu * self.n0 * self.w * cos_wt;
+        [
+            (force - limit, rate - limit_rate),
+            (-force - limit, -rate - limit_rate),
+        ]
+    }
+
     /// Slip speed of the ball's contact point relative to the cart: v_x - r omega - V.
     #[inline]
     pub fn slip(&self, s: &State) -> f64 {

@@ -171,13 +171,7 @@ pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
             Ball::Grip => {
                 let f = |t: f64| {
                     let c = motion.contact(&setup, t);
-                    let (sin_wt, cos_wt) = (setup.w * t).sin_cos();
-                    let limit = setup.mu * setup.n0 * sin_wt.max(0.0);
-                    let limit_rate = setup.mu * setup.n0 * setup.w * cos_wt;
-                    [
-                        (c.friction - limit, c.friction_rate - limit_rate),
-                        (-c.friction - limit, -c.friction_rate - limit_rate),
-                    ]
+                    setup.grip_margins(t, c.friction, c.friction_rate)
                 };
                 let (curvature, terms) = motion.margin_curvature(&setup);
                 let noise = ROUNDING * terms;

@@ -588,13 +588,7 @@ pub fn solve_compliant(params: &Params) -> Result<Bounce, SolveError> {
                 let f = |t: f64| {
                     let p = grip.at(&setup, t);
                     last.set(Some(p));
-                    let (sin_wt, cos_wt) = (w * t).sin_cos();
-                    let limit = mu * n0 * sin_wt.max(0.0);
-                    let limit_rate = mu * n0 * w * cos_wt;
-                    [
-                        (p.friction - limit, p.friction_rate - limit_rate),
-                        (-p.friction - limit, -p.friction_rate - limit_rate),
-                    ]
+                    setup.grip_margins(t, p.friction, p.friction_rate)
                 };
                 let (force_curvature, force_size) = grip.force_bounds(&setup);
                 let curvature = force_curvature + mu * n0 * w * w;
