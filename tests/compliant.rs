@@ -87,14 +87,7 @@ fn a_zero_stiffness_is_the_rigid_ball_bit_for_bit() {
 }
 
 #[test]
-fn combinations_not_modelled_are_refused() {
-    let chain = Params {
-        chain: 4.0,
-        ..compliant(1e6, 0.5)
-    };
-    let err = solve(&chain).unwrap_err();
-    assert_eq!(err, SolveError::ChainCompliantBall { chain: 4 });
-    assert!(err.to_string().contains("single cart only"), "{err}");
+fn string_friction_with_a_compliant_ball_is_refused() {
     let string = Params {
         cart_friction: 2.0,
         ..compliant(1e6, 0.5)
@@ -102,24 +95,29 @@ fn combinations_not_modelled_are_refused() {
     let err = solve(&string).unwrap_err();
     assert_eq!(err, SolveError::StringFrictionCompliantBall);
     assert!(err.to_string().contains("string friction"), "{err}");
-    // Called directly, the chain solver refuses a compliant ball too (even for N = 1).
-    let direct = snapback::model::chain::solve_chain(&Params {
-        chain: 1.0,
-        ..compliant(1e6, 0.5)
-    });
-    assert_eq!(
-        direct.unwrap_err(),
-        SolveError::ChainCompliantBall { chain: 1 }
-    );
-    // Each alone is fine.
+    // On a chain too.
+    let err = solve(&Params {
+        chain: 4.0,
+        ..string
+    })
+    .unwrap_err();
+    assert_eq!(err, SolveError::StringFrictionCompliantBall);
+    // Each alone is fine, and the chain with the compliant ball.
     assert!(
         solve(&Params {
-            chain: 4.0,
+            cart_friction: 2.0,
             ..Params::default()
         })
         .is_ok()
     );
     assert!(solve(&compliant(1e6, 0.5)).is_ok());
+    assert!(
+        solve(&Params {
+            chain: 4.0,
+            ..compliant(1e6, 0.5)
+        })
+        .is_ok()
+    );
 }
 
 #[test]
@@ -421,4 +419,47 @@ fn the_help_text_explains_rigid_and_chatter() {
             .help
             .contains("critically damped")
     );
+}
+
+/// The chain's solver for a compliant ball (one damped modal system per grip), run on a chain of one
+/// mass, reproduces the single cart's compliant ball (its own 4-state modes) to rounding: the same
+/// phases, and outcomes to 1e-12 relative.
+#[test]
+fn one_link_of_the_chain_is_the_single_cart() {
+    let mut rng = Rng(23);
+    let mut compared = 0;
+    for case in 0..200 {
+        let p = random_params(&mut rng);
+        let Ok(single) = solve(&p) else { continue };
+        if p.stiffness == 0.0 {
+            continue;
+        }
+        let chain = snapback::model::chain::solve_chain(&p).expect("the chain path solves it too");
+        assert_eq!(
+            single.phase_summary(),
+            chain.phase_summary(),
+            "case {case}: {p:?}"
+        );
+        let scale = p.speed + p.radius * p.spin.abs();
+        let (a, b) = (single.final_state, chain.final_state);
+        for (name, x, y, unit) in [
+            ("vx", a.vx, b.vx, scale),
+            ("r omega", p.radius * a.omega, p.radius * b.omega, scale),
+            ("V", a.v, b.v, scale),
+            ("X", a.x, b.x, scale * p.duration),
+        ] {
+            assert!(
+                (x - y).abs() <= 1e-12 * unit,
+                "case {case} {name}: {x} vs {y}: {p:?}"
+            );
+        }
+        for (x, y) in single.phases.iter().zip(&chain.phases) {
+            assert!(
+                (x.end - y.end).abs() <= 1e-12 * p.duration,
+                "case {case}: phase ends"
+            );
+        }
+        compared += 1;
+    }
+    assert!(compared >= 150, "compared {compared}");
 }

@@ -90,7 +90,19 @@ impl Phase {
     pub fn cart_energy_at(&self, setup: &Setup, t: f64) -> f64 {
         match &self.motion {
             Motion::Chain(chain) => chain.chain().energy(&chain.full(setup, t)),
+            Motion::Compliant(c) => c
+                .chain_energy(setup, t)
+                .unwrap_or_else(|| setup.cart_energy(&c.at(setup, t).state)),
             _ => setup.cart_energy(&self.state_at(setup, t)),
+        }
+    }
+
+    /// True for a phase on a chain of masses.
+    fn on_chain(&self) -> bool {
+        match &self.motion {
+            Motion::Chain(_) => true,
+            Motion::Compliant(c) => c.chain_energy_known(),
+            _ => false,
         }
     }
 
@@ -231,11 +243,6 @@ pub enum SolveError {
          chain of {chain} masses: set --cart-friction 0 or --chain 1"
     )]
     ChainStringFriction { chain: usize },
-    #[error(
-        "a compliant ball (--ball-stiffness > 0) is modelled on the single cart only, not on a chain of \
-         {chain} masses: set --ball-stiffness 0 (a rigid ball) or --chain 1"
-    )]
-    ChainCompliantBall { chain: usize },
     #[error(
         "a compliant ball (--ball-stiffness > 0) is not modelled together with string friction on the \
          cart: set --ball-stiffness 0 (a rigid ball) or --cart-friction 0"
@@ -498,12 +505,7 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
     let initial = setup.ball_tangential_energy(&first) + 0.5 * setup.m * setup.vy1 * setup.vy1;
     let final_ball = setup.ball_tangential_energy(last) + 0.5 * setup.m * vy2 * vy2;
     let final_cart = match phases.last() {
-        Some(
-            p @ Phase {
-                motion: Motion::Chain(_),
-                ..
-            },
-        ) => p.cart_energy_at(setup, p.end),
+        Some(p) if p.on_chain() => p.cart_energy_at(setup, p.end),
         _ => setup.cart_energy(last),
     };
     let normal_loss = 0.5 * setup.m * (setup.vy1 * setup.vy1 - vy2 * vy2);
@@ -537,9 +539,9 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
     let dashpot_loss = phases
         .iter()
         .filter_map(|p| compliant(p).map(|c| (p, c)))
-        .filter(|(_, c)| c.compliance().cb > 0.0)
+        .filter(|(_, c)| c.spring().cb > 0.0)
         .map(|(p, c)| {
-            let cb = c.compliance().cb;
+            let cb = c.spring().cb;
             c.integrate(
                 setup,
                 |t| {
@@ -556,7 +558,7 @@ fn energy_budget(params: &Params, setup: &Setup, phases: &[Phase], last: &State)
         .and_then(|p| compliant(p).map(|c| (p, c)))
         .map_or(0.0, |(p, c)| {
             let e = c.at(setup, p.end).e;
-            0.5 * c.compliance().kb * e * e
+            0.5 * c.spring().kb * e * e
         });
     Energy {
         initial,

@@ -7,8 +7,9 @@
 //! gripping, the ball's effective mass m_eff rides on the first mass and the modes of that heavier chain
 //! swing freely. Transitions follow the paper's rules (grip when |F_s| <= mu N at zero slip, else the
 //! friction reverses; a broken grip slides the way F_s pulled), located by [`first_rise`] on the exact
-//! expressions with curvature bounds from the modal amplitudes. String friction on the cart is for the
-//! single cart only: a chain with it is refused.
+//! expressions with curvature bounds from the modal amplitudes. A compliant ball on the chain is solved
+//! by [`super::compliant`] (its grip is one damped modal system of ball and chain). String friction on the
+//! cart is for the single cart only: a chain with it is refused.
 
 pub mod modes;
 pub mod motion;
@@ -20,6 +21,7 @@ use super::bounce::{
     ROUNDING, SolveError, finish,
 };
 use super::cart::Cart;
+use super::compliant::solve_compliant_on_chain;
 use super::events::first_rise;
 use super::params::Params;
 use super::setup::{Setup, State};
@@ -89,6 +91,20 @@ pub struct ChainState {
 }
 
 impl ChainState {
+    /// The single cart as a chain: its only mass at the cart's displacement and velocity.
+    pub fn from_contact(s: &State) -> ChainState {
+        let mut chain = ChainState {
+            t: s.t,
+            vx: s.vx,
+            omega: s.omega,
+            x: [0.0; MAX],
+            v: [0.0; MAX],
+        };
+        chain.x[0] = s.x;
+        chain.v[0] = s.v;
+        chain
+    }
+
     /// The ball and the first mass.
     pub fn contact(&self) -> State {
         State {
@@ -109,9 +125,7 @@ pub type ChainMotion = Arc<Motion>;
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     params.validate()?;
     if params.ball_stiffness > 0.0 {
-        return Err(SolveError::ChainCompliantBall {
-            chain: params.chain as usize,
-        });
+        return solve_compliant_on_chain(params);
     }
     if params.cart_friction > 0.0 {
         return Err(SolveError::ChainStringFriction {

@@ -1,0 +1,260 @@
+//! The grip of a compliant ball on the single cart: the cart (X, V) and the stretch (e, e') form a
+//! linear system z' = A z without forcing, not proportionally damped; z(t) = exp(A (t - t0)) z0,
+//! evaluated as a sum of its complex modes (eigenvalues polished on the characteristic polynomial) where
+//! they reproduce the matrix exponential, and as the matrix exponential itself where they do not
+//! (near-double roots, a free cart's double zero).
+
+use nalgebra::{Complex, Matrix4, RowVector4, Vector4};
+
+use super::Point;
+use crate::model::params::Params;
+use crate::model::setup::{Setup, State};
+
+/// The grip's event functions are computed through a matrix exponential: their rounding floor is this
+/// many times `ROUNDING` times the bound on the force from the phase's energy (itself a generous
+/// bound on the terms F is summed from).
+pub(super) const EXP_ROUNDING: f64 = 1.0;
+
+/// How closely (relative, in the energy norm) the grip's modes must reproduce the matrix exponential to
+/// be used in its place.
+const MODAL_CHECK: f64 = 1e-10;
+
+/// The constants of the compliant ball.
+#[derive(Clone, Copy, Debug)]
+pub struct Compliance {
+    /// k_b, N/m.
+    pub kb: f64,
+    /// c_b = 2 zeta sqrt(k_b m_eff), N s/m.
+    pub cb: f64,
+    /// The grip's state matrix for z = (X, V, e, e').
+    a: Matrix4<f64>,
+    /// An upper bound on the fastest frequency in the grip, rad/s.
+    pub fastest: f64,
+    /// The grip's modes, when they are distinct: a sum of exponentials is much cheaper than the matrix
+    /// exponential. Each grip phase checks them against the matrix exponential before using them.
+    modes: Option<Modes>,
+}
+
+/// The eigenvalues s_i of the grip's matrix, its eigenvectors (columns), and their inverse.
+#[derive(Clone, Copy, Debug)]
+struct Modes {
+    s: Vector4<Complex<f64>>,
+    v: Matrix4<Complex<f64>>,
+    v_inv: Matrix4<Complex<f64>>,
+}
+
+impl Modes {
+    /// For an eigenvalue s, z = (X, s X, e, s e) with (M s² + k) X = (k_b + c_b s) e.
+    fn new(a: &Matrix4<f64>, kb: f64, cb: f64, big_m: f64, k: f64, me: f64) -> Option<Self> {
+        // The eigenvalues from the Schur form are accurate to rounding of |A| (~ s²); Newton's method
+        // on the characteristic polynomial
+        // p(s) = (M s² + k)(m_eff M s² + (k_b + c_b s)(M + m_eff)) - m_eff k (k_b + c_b s)
+        // brings them to rounding of s.
+        let mut s = a.complex_eigenvalues();
+        let total = big_m + me;
+        for si in s.iter_mut() {
+            for _ in 0..3 {
+                let x = *si;
+                let spring = x * x * big_m + k;
+                let contact = x * x * (me * big_m) + (x * cb + kb) * total;
+                let p = spring * contact - (x * cb + kb) * (me * k);
+                let dp = x * (2.0 * big_m) * contact
+                    + spring * (x * (2.0 * me * big_m) + cb * total)
+                    - cb * me * k;
+                if dp.norm() == 0.0 {
+                    break;
+                }
+                let step = p / dp;
+                if !(step.re.is_finite() && step.im.is_finite()) {
+                    break;
+                }
+                *si = x - step;
+            }
+        }
+        let mut v = Matrix4::<Complex<f64>>::zeros();
+        for (i, &si) in s.iter().enumerate() {
+            let x = Complex::new(kb, 0.0) + si * cb;
+            let e = si * si * big_m + k;
+            let norm =
+                (x.norm_sqr() + (si * x).norm_sqr() + e.norm_sqr() + (si * e).norm_sqr()).sqrt();
+            if norm == 0.0 || !norm.is_finite() {
+                return None;
+            }
+            let column = Vector4::new(x, si * x, e, si * e) / Complex::new(norm, 0.0);
+            v.set_column(i, &column);
+        }
+        let v_inv = v.try_inverse()?;
+        v_inv
+            .iter()
+            .all(|c| c.re.is_finite() && c.im.is_finite())
+            .then_some(Modes { s, v, v_inv })
+    }
+
+    /// z and z' after `tau` from the modal coefficients `c`.
+    #[inline]
+    fn at(&self, c: &Vector4<Complex<f64>>, tau: f64) -> (Vector4<f64>, Vector4<f64>) {
+        let mut z = Vector4::zeros();
+        let mut dz = Vector4::zeros();
+        for i in 0..4 {
+            let w = c[i] * (self.s[i] * tau).exp();
+            let dw = w * self.s[i];
+            for j in 0..4 {
+                let vj = self.v[(j, i)];
+                z[j] += (vj * w).re;
+                dz[j] += (vj * dw).re;
+            }
+        }
+        (z, dz)
+    }
+}
+
+impl Compliance {
+    pub fn new(params: &Params, setup: &Setup) -> Self {
+        let kb = params.ball_stiffness;
+        let cb = 2.0 * params.ball_damping * (kb * setup.m_eff).sqrt();
+        let (big_m, k, me) = (setup.cart_mass, setup.k, setup.m_eff);
+        let both = 1.0 / me + 1.0 / big_m;
+        #[rustfmt::skip]
+        let a = Matrix4::new(
+            0.0, 1.0, 0.0, 0.0,
+            -k / big_m, 0.0, kb / big_m, cb / big_m,
+            0.0, 0.0, 0.0, 1.0,
+            k / big_m, 0.0, -kb * both, -cb * both,
+        );
+        let fastest = (kb * both + k / big_m).sqrt() + cb * both;
+        let modes = Modes::new(&a, kb, cb, big_m, k, me);
+        Compliance {
+            kb,
+            cb,
+            a,
+            fastest,
+            modes,
+        }
+    }
+}
+
+/// A grip phase of the compliant ball.
+#[derive(Clone, Copy, Debug)]
+pub struct CompliantGrip {
+    pub start: State,
+    /// (X, V, e, e') at the start.
+    z0: Vector4<f64>,
+    pub compliance: Compliance,
+    /// The modal coefficients of z0, when the modes reproduce the matrix exponential.
+    coefficients: Option<Vector4<Complex<f64>>>,
+}
+
+impl CompliantGrip {
+    pub(super) fn new(compliance: Compliance, start: State, e: f64, setup: &Setup) -> Self {
+        let de = setup.slip(&start);
+        let mut grip = CompliantGrip {
+            start,
+            z0: Vector4::new(start.x, start.v, e, de),
+            compliance,
+            coefficients: None,
+        };
+        // The modes are used only where they reproduce the matrix exponential, in the energy norm, to
+        // MODAL_CHECK at the middle and the end of the rest of the contact (near-double roots, as for a
+        // critically damped ball on a very heavy cart, or a free cart's double zero, fail it).
+        if let Some(modes) = &compliance.modes {
+            let z0 = grip.z0.map(|x| Complex::new(x, 0.0));
+            let c = modes.v_inv * z0;
+            let size = grip.size(setup);
+            let remaining = setup.duration - start.t;
+            let agrees = [0.0, 0.5 * remaining, remaining].iter().all(|&tau| {
+                let exact = if tau == 0.0 {
+                    grip.z0
+                } else {
+                    (compliance.a * tau).exp() * grip.z0
+                };
+                let (modal, _) = modes.at(&c, tau);
+                grip.energy_norm(setup, &(modal - exact)) <= MODAL_CHECK * size
+            });
+            if agrees && size > 0.0 {
+                grip.coefficients = Some(c);
+            }
+        }
+        grip
+    }
+
+    /// z and z' at `t`.
+    #[inline]
+    fn propagate(&self, t: f64) -> (Vector4<f64>, Vector4<f64>) {
+        let tau = t - self.start.t;
+        match (&self.compliance.modes, &self.coefficients) {
+            (Some(modes), Some(c)) => modes.at(c, tau),
+            _ => {
+                let z = (self.compliance.a * tau).exp() * self.z0;
+                (z, self.compliance.a * z)
+            }
+        }
+    }
+
+    /// sqrt(2 E) of a state z.
+    fn energy_norm(&self, setup: &Setup, z: &Vector4<f64>) -> f64 {
+        (setup.k * z[0] * z[0]
+            + setup.cart_mass * z[1] * z[1]
+            + self.compliance.kb * z[2] * z[2]
+            + setup.m_eff * (z[3] + z[1]).powi(2))
+        .sqrt()
+    }
+
+    #[inline]
+    pub fn at(&self, setup: &Setup, t: f64) -> Point {
+        let c = &self.compliance;
+        let s0 = &self.start;
+        let (z, dz) = self.propagate(t);
+        let (x, v, e, de) = (z[0], z[1], z[2], z[3]);
+        // m_eff (u' - u0') = -∫F dt, u' = e' + V.
+        let impulse = -setup.m_eff * ((de + v) - (self.z0[3] + self.z0[1]));
+        let state = State {
+            t,
+            vx: s0.vx - impulse / setup.m,
+            omega: s0.omega + impulse * setup.r / setup.inertia,
+            x,
+            v,
+        };
+        Point {
+            state,
+            friction: c.kb * e + c.cb * de,
+            friction_rate: c.kb * de + c.cb * dz[3],
+            e,
+            de,
+            dde: dz[3],
+            slip_rate: 0.0,
+        }
+    }
+
+    /// The energy-norm size of the start state, sqrt(2 E) with E = k X²/2 + M V²/2 + k_b e²/2 +
+    /// m_eff u'²/2, which the dashpot can only lower.
+    fn size(&self, setup: &Setup) -> f64 {
+        self.energy_norm(setup, &self.z0)
+    }
+
+    /// |g · z| <= |g T⁻¹| sqrt(2E) for a row g in z-coordinates (Cauchy-Schwarz in the energy norm).
+    fn bound(&self, setup: &Setup, g: RowVector4<f64>) -> f64 {
+        let kb = self.compliance.kb;
+        let gx = if setup.k > 0.0 {
+            g[0] / setup.k.sqrt()
+        } else {
+            0.0
+        };
+        let norm = (gx * gx
+            + ((g[1] - g[3]) / setup.cart_mass.sqrt()).powi(2)
+            + (g[2] / kb.sqrt()).powi(2)
+            + (g[3] / setup.m_eff.sqrt()).powi(2))
+        .sqrt();
+        norm * self.size(setup)
+    }
+
+    /// A bound on |F''| over the phase, and the size of F (for the rounding floor).
+    pub(super) fn force_bounds(&self, setup: &Setup) -> (f64, f64) {
+        let c = &self.compliance;
+        let g = RowVector4::new(0.0, 0.0, c.kb, c.cb);
+        (
+            self.bound(setup, g * c.a * c.a),
+            self.bound(setup, RowVector4::new(0.0, 0.0, c.kb, 0.0))
+                + self.bound(setup, RowVector4::new(0.0, 0.0, 0.0, c.cb)),
+        )
+    }
+}

@@ -1,0 +1,98 @@
+//! The stretch of the compliant ball's spring while it slides, in closed form.
+
+use super::BallSpring;
+use crate::model::setup::Setup;
+
+/// After this many decay times 1/lambda the stretch's transient has fallen by e^-40 (4e-18): the slide's
+/// event search and quadrature use steps and panels on the transient's scale before, and on the cart's
+/// after (a lightly damped ball has lambda = sqrt(k_b/m_eff)/(2 zeta) huge, and a whole phase on its
+/// scale would never end).
+pub(super) const SETTLED: f64 = 40.0;
+
+/// The stretch of the ball's spring during a slide: e = C e^{-lambda tau} + P(t), with the particular
+/// response P(t) = a (lambda sin wt - w cos wt), a = dir mu N0 / (c_b (lambda² + w²)); without damping
+/// e = F/k_b.
+#[derive(Clone, Copy, Debug)]
+pub struct Stretch {
+    t0: f64,
+    /// C, m (0 without damping).
+    transient: f64,
+    /// a, m (dir mu N0 / k_b without damping).
+    amplitude: f64,
+    pub(super) lambda: f64,
+    pub(super) damped: bool,
+}
+
+impl Stretch {
+    pub(super) fn new(c: &BallSpring, setup: &Setup, dir: f64, t0: f64, e0: f64) -> Self {
+        let force = dir * setup.mu * setup.n0;
+        if c.cb > 0.0 {
+            let lambda = c.kb / c.cb;
+            let w = setup.w;
+            let amplitude = force / (c.cb * (lambda * lambda + w * w));
+            let (s, co) = (w * t0).sin_cos();
+            let p0 = amplitude * (lambda * s - w * co);
+            Stretch {
+                t0,
+                transient: e0 - p0,
+                amplitude,
+                lambda,
+                damped: true,
+            }
+        } else {
+            Stretch {
+                t0,
+                transient: 0.0,
+                amplitude: force / c.kb,
+                lambda: f64::INFINITY,
+                damped: false,
+            }
+        }
+    }
+
+    /// (e, e', e'') at `t`.
+    #[inline]
+    pub(super) fn at(&self, w: f64, t: f64) -> (f64, f64, f64) {
+        let (s, co) = (w * t).sin_cos();
+        if self.damped {
+            let l = self.lambda;
+            let decay = self.transient * (-l * (t - self.t0)).exp();
+            let p = self.amplitude * (l * s - w * co);
+            let dp = self.amplitude * w * (l * co + w * s);
+            (decay + p, -l * decay + dp, l * l * decay - w * w * p)
+        } else {
+            let s = s.max(0.0);
+            let e = self.amplitude * s;
+            (e, self.amplitude * w * co, -w * w * e)
+        }
+    }
+
+    /// Where the transient has died out (t0 without damping).
+    pub(super) fn settled(&self) -> f64 {
+        if self.damped {
+            self.t0 + SETTLED / self.lambda
+        } else {
+            self.t0
+        }
+    }
+
+    /// A bound on |e'''| from `from` (at or after t0) on.
+    pub(super) fn third(&self, w: f64, from: f64) -> f64 {
+        if self.damped {
+            let l = self.lambda;
+            let decay = (-l * (from - self.t0)).exp();
+            l * l * l * self.transient.abs() * decay + self.amplitude.abs() * w.powi(3) * l.hypot(w)
+        } else {
+            self.amplitude.abs() * w.powi(3)
+        }
+    }
+
+    /// A bound on |e'| from t0 on.
+    pub(super) fn speed(&self, w: f64) -> f64 {
+        if self.damped {
+            self.lambda * self.transient.abs() + self.amplitude.abs() * w * self.lambda.hypot(w)
+        } else {
+            self.amplitude.abs() * w
+        }
+    }
+}
