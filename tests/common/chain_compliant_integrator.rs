@@ -1,0 +1,367 @@
+//! An independent numerical solution of the compliant ball on a chain of masses: classical RK4 on the
+//! 2N + 3 equations of motion, with every transition located by bisection of the step. It shares nothing
+//! with the solver but the parameters.
+//!
+//! The chain: N equal masses M/N at X_1..X_N (velocities V_i), springs of stiffness kappa = N k between
+//! neighbours and from the last mass to the wall; the ball touches the first mass. The ball: v_x and
+//! omega, and the stretch e of its tangential contact spring k_b (dashpot c_b = 2 zeta sqrt(k_b m_eff),
+//! m_eff = m alpha/(1 + alpha)). The force on the ball, positive backward, is F: m v_x' = -F,
+//! I omega' = r F, and the first mass feels +F besides its springs.
+//! - slide (dir = ±1): the patch slides on the first mass, F = dir mu N(t); the stretch follows
+//!   c_b e' = F - k_b e (e' = F'/k_b without a dashpot); the patch slips on the first mass at
+//!   (v_x - r omega - V_1) - e';
+//! - grip: the patch moves with the first mass, e' = v_x - r omega - V_1, and F = k_b e + c_b e'.
+//!
+//! A slide ends when the patch's slip reaches zero (then grip); a grip ends when |F| reaches mu N (then
+//! slide the way F points). The contact starts gripping when the ball arrives rolling, or, without a
+//! dashpot, when the spring's initial rate k_b |slip0| does not beat the friction limit's mu N0 w;
+//! otherwise it slides the way the arriving slip points.
+//!
+//! Two more components ride along as quadratures of the energy budget: the friction loss
+//! ∫ F (patch slip) dt over the slides and the dashpot loss ∫ c_b e'² dt.
+
+use snapback::model::Params;
+use std::f64::consts::PI;
+
+/// The longest chain.
+const MAX_LINKS: usize = 16;
+/// v_x, omega, X_1..X_N, V_1..V_N, e, friction loss, dashpot loss (the first 2N + 5 are used).
+const DIM: usize = 2 * MAX_LINKS + 5;
+type Y = [f64; DIM];
+
+/// At most this many phases; a chattering bounce stops there (and says so in `capped`).
+const MAX_PHASES: usize = 20_000;
+
+/// Where the incoming tangential energy went, J.
+#[derive(Clone, Copy, Debug)]
+pub struct Budget {
+    /// The ball's tangential kinetic energy on arrival, m v_x1²/2 + I omega1²/2.
+    pub initial: f64,
+    /// The ball's tangential kinetic energy at T.
+    pub ball: f64,
+    /// Kinetic plus spring energy of the whole chain at T.
+    pub chain: f64,
+    /// k_b e(T)²/2.
+    pub ball_spring: f64,
+    /// ∫ F (patch slip) dt over the slides.
+    pub friction_loss: f64,
+    /// ∫ c_b e'² dt.
+    pub dashpot_loss: f64,
+}
+
+impl Budget {
+    /// (initial - everything accounted for) / initial.
+    #[allow(dead_code)] // not every test file checks the budget
+    pub fn residual(&self) -> f64 {
+        (self.initial
+            - self.ball
+            - self.chain
+            - self.ball_spring
+            - self.friction_loss
+            - self.dashpot_loss)
+            / self.initial
+    }
+}
+
+#[derive(Clone, Debug)]
+#[allow(dead_code)] // not every test file reads every field
+pub struct Reference {
+    pub vx2: f64,
+    pub omega2: f64,
+    /// Every mass's displacement at T, the first (the one the ball touches) first.
+    pub x: Vec<f64>,
+    /// Every mass's velocity at T.
+    pub v: Vec<f64>,
+    /// The stretch of the ball's spring at T.
+    pub e: f64,
+    /// The number of phases.
+    pub phases: usize,
+    /// Each phase's slip sign in order: +1 or -1 sliding, 0 gripping.
+    pub kinds: Vec<i8>,
+    /// Each transition's time (one fewer than the phases).
+    pub transitions: Vec<f64>,
+    /// True when the bounce stopped at [`MAX_PHASES`] (chatter) before T.
+    pub capped: bool,
+    pub energy: Budget,
+}
+
+struct Model {
+    n: usize,
+    m: f64,
+    r: f64,
+    inertia: f64,
+    /// Each mass, M/N.
+    link: f64,
+    /// Each spring, N k.
+    kappa: f64,
+    mu: f64,
+    n0: f64,
+    w: f64,
+    kb: f64,
+    cb: f64,
+}
+
+impl Model {
+    fn new(p: &Params) -> Model {
+        let n = p.chain as usize;
+        assert!((1..=MAX_LINKS).contains(&n) && n as f64 == p.chain);
+        let vy1 = p.speed * (90.0 - p.angle_deg).to_radians().cos();
+        let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+        Model {
+            n,
+            m: p.mass,
+            r: p.radius,
+            inertia: p.alpha * p.mass * p.radius * p.radius,
+            link: p.cart_mass / n as f64,
+            kappa: p.stiffness * n as f64,
+            mu: p.mu,
+            n0: (1.0 + p.ey) * PI * p.mass * vy1 / (2.0 * p.duration),
+            w: PI / p.duration,
+            kb: p.ball_stiffness,
+            cb: 2.0 * p.ball_damping * (p.ball_stiffness * m_eff).sqrt(),
+        }
+    }
+
+    fn dim(&self) -> usize {
+        2 * self.n + 5
+    }
+    fn xi(&self, i: usize) -> usize {
+        2 + i
+    }
+    fn vi(&self, i: usize) -> usize {
+        2 + self.n + i
+    }
+    fn ei(&self) -> usize {
+        2 + 2 * self.n
+    }
+
+    fn normal(&self, t: f64) -> f64 {
+        self.n0 * (self.w * t).sin().max(0.0)
+    }
+
+    /// v_x - r omega - V_1: how fast the ball's contact point moves over the first mass.
+    fn contact_slip(&self, y: &Y) -> f64 {
+        y[0] - self.r * y[1] - y[self.vi(0)]
+    }
+
+    /// (F, e') in mode `dir` (0 = grip).
+    fn force(&self, dir: f64, t: f64, y: &Y) -> (f64, f64) {
+        let e = y[self.ei()];
+        if dir == 0.0 {
+            let de = self.contact_slip(y);
+            (self.kb * e + self.cb * de, de)
+        } else {
+            let f = dir * self.mu * self.normal(t);
+            let de = if self.cb > 0.0 {
+                (f - self.kb * e) / self.cb
+            } else {
+                dir * self.mu * self.n0 * self.w * (self.w * t).cos() / self.kb
+            };
+            (f, de)
+        }
+    }
+
+    /// The chain's springs on mass i, pulling it back towards rest.
+    fn spring(&self, y: &Y, i: usize) -> f64 {
+        let x = |j: usize| y[self.xi(j)];
+        let behind = if i > 0 { x(i) - x(i - 1) } else { 0.0 };
+        let ahead = if i + 1 < self.n {
+            x(i) - x(i + 1)
+        } else {
+            x(i)
+        };
+        self.kappa * (behind + ahead)
+    }
+
+    fn rate(&self, dir: f64, t: f64, y: &Y) -> Y {
+        let (f, de) = self.force(dir, t, y);
+        let mut out = [0.0; DIM];
+        out[0] = -f / self.m;
+        out[1] = self.r * f / self.inertia;
+        for i in 0..self.n {
+            out[self.xi(i)] = y[self.vi(i)];
+            let push = if i == 0 { f } else { 0.0 };
+            out[self.vi(i)] = (push - self.spring(y, i)) / self.link;
+        }
+        let ei = self.ei();
+        out[ei] = de;
+        out[ei + 1] = if dir == 0.0 {
+            0.0
+        } else {
+            f * (self.contact_slip(y) - de)
+        };
+        out[ei + 2] = self.cb * de * de;
+        out
+    }
+
+    fn rk4(&self, dir: f64, t: f64, y: &Y, h: f64) -> Y {
+        let d = self.dim();
+        let add = |a: &Y, b: &Y, s: f64| -> Y {
+            let mut out = [0.0; DIM];
+            for i in 0..d {
+                out[i] = a[i] + s * b[i];
+            }
+            out
+        };
+        let k1 = self.rate(dir, t, y);
+        let k2 = self.rate(dir, t + h / 2.0, &add(y, &k1, h / 2.0));
+        let k3 = self.rate(dir, t + h / 2.0, &add(y, &k2, h / 2.0));
+        let k4 = self.rate(dir, t + h, &add(y, &k3, h));
+        let mut out = [0.0; DIM];
+        for i in 0..d {
+            out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
+        }
+        out
+    }
+
+    /// The event function of mode `dir`, positive once the phase has ended, and the mode that follows.
+    fn event(&self, dir: f64, t: f64, y: &Y) -> (f64, f64) {
+        let (f, de) = self.force(dir, t, y);
+        if dir == 0.0 {
+            (f.abs() - self.mu * self.normal(t), f.signum())
+        } else {
+            let patch_slip = self.contact_slip(y) - de;
+            (-dir * patch_slip, 0.0)
+        }
+    }
+
+    fn budget(&self, vx1: f64, omega1: f64, y: &Y) -> Budget {
+        let n = self.n;
+        let ball = |vx: f64, omega: f64| 0.5 * (self.m * vx * vx + self.inertia * omega * omega);
+        let kinetic: f64 = (0..n).map(|i| y[self.vi(i)].powi(2)).sum::<f64>() * self.link;
+        let stretch: f64 = (0..n)
+            .map(|i| {
+                let d = if i + 1 < n {
+                    y[self.xi(i)] - y[self.xi(i + 1)]
+                } else {
+                    y[self.xi(i)]
+                };
+                d * d
+            })
+            .sum::<f64>()
+            * self.kappa;
+        let ei = self.ei();
+        Budget {
+            initial: ball(vx1, omega1),
+            ball: ball(y[0], y[1]),
+            chain: 0.5 * (kinetic + stretch),
+            ball_spring: 0.5 * self.kb * y[ei] * y[ei],
+            friction_loss: y[ei + 1],
+            dashpot_loss: y[ei + 2],
+        }
+    }
+}
+
+/// Upper bounds on the fastest oscillation (Gershgorin on the stiffnesses over the masses: the chain's
+/// springs, and the ball's spring between its m_eff and the first mass) and the fastest decay (the
+/// dashpot between m_eff and the first mass while gripping, the stretch's k_b/c_b while sliding), 1/s.
+fn rates(p: &Params) -> (f64, f64) {
+    let model = Model::new(p);
+    let m_eff = 1.0 / (1.0 / model.m + model.r * model.r / model.inertia);
+    let both = 1.0 / m_eff + 1.0 / model.link;
+    let oscillation = (4.0 * model.kappa / model.link + 2.0 * model.kb * both).sqrt();
+    let decay = if model.cb > 0.0 {
+        (model.cb * both).max(model.kb / model.cb)
+    } else {
+        0.0
+    };
+    (oscillation.max(model.w), decay.max(model.w))
+}
+
+/// An upper bound on the fastest rate in the bounce, 1/s.
+#[allow(dead_code)] // not every test file needs it
+pub fn fastest(p: &Params) -> f64 {
+    let (oscillation, decay) = rates(p);
+    oscillation.max(decay)
+}
+
+/// A step small against the contact time and the fastest motion: `per_radian` of a radian of the fastest
+/// oscillation, ten times that of the fastest decay (RK4 follows a decay accurately at h rate < 0.1),
+/// and at most T/20 000.
+pub fn step_for(p: &Params, per_radian: f64) -> f64 {
+    let (oscillation, decay) = rates(p);
+    (p.duration / 20_000.0)
+        .min(per_radian / oscillation)
+        .min(10.0 * per_radian / decay)
+}
+
+/// Integrates one bounce with RK4 steps of at most `max_step` seconds.
+pub fn integrate(p: &Params, max_step: f64) -> Reference {
+    let model = Model::new(p);
+    let n = model.n;
+    let vx1 = p.speed * (90.0 - p.angle_deg).to_radians().sin();
+    let mut y: Y = [0.0; DIM];
+    y[0] = vx1;
+    y[1] = p.spin;
+    let slip0 = model.contact_slip(&y);
+    let scale = vx1.abs() + p.radius * p.spin.abs();
+    // Rolling grips; without a dashpot the spring takes up a small slip before the friction limit grows.
+    let rolling = slip0.abs() <= 1e-12 * scale;
+    let gentle = model.cb == 0.0 && model.kb * slip0.abs() <= model.mu * model.n0 * model.w;
+    let mut dir = if rolling || gentle {
+        0.0
+    } else {
+        slip0.signum()
+    };
+    // An event function sits on zero when its phase starts: it counts as risen only above rounding.
+    let tolerance = |dir: f64| {
+        if dir == 0.0 {
+            1e-11 * model.mu * model.n0
+        } else {
+            1e-11 * (scale + 1.0)
+        }
+    };
+    let end = p.duration;
+    let mut t = 0.0;
+    let mut kinds = vec![dir as i8];
+    let mut transitions = vec![];
+    let mut capped = false;
+    while t < end {
+        let h = max_step.min(end - t);
+        let next = model.rk4(dir, t, &y, h);
+        if model.event(dir, t + h, &next).0 <= tolerance(dir) {
+            y = next;
+            t += h;
+            continue;
+        }
+        // The shortest part of the step after which the event function has risen.
+        let (mut lo, mut hi) = (0.0, h);
+        for _ in 0..200 {
+            let mid = 0.5 * (lo + hi);
+            if mid <= lo || mid >= hi {
+                break;
+            }
+            let ym = model.rk4(dir, t, &y, mid);
+            if model.event(dir, t + mid, &ym).0 > tolerance(dir) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        y = model.rk4(dir, t, &y, hi);
+        t += hi;
+        // A transition within rounding of the end changes nothing.
+        if t >= end * (1.0 - 1e-12) {
+            break;
+        }
+        dir = model.event(dir, t, &y).1;
+        kinds.push(dir as i8);
+        transitions.push(t);
+        if kinds.len() >= MAX_PHASES {
+            capped = true;
+            break;
+        }
+    }
+    Reference {
+        vx2: y[0],
+        omega2: y[1],
+        x: (0..n).map(|i| y[model.xi(i)]).collect(),
+        v: (0..n).map(|i| y[model.vi(i)]).collect(),
+        e: y[model.ei()],
+        phases: kinds.len(),
+        kinds,
+        transitions,
+        capped,
+        energy: model.budget(vx1, p.spin, &y),
+    }
+}
