@@ -9,7 +9,7 @@ use snapback::analysis::optimize::{Objective, optimize};
 use snapback::analysis::reproduce::{self, Status};
 use snapback::analysis::{Span, retune, sweep, timeline};
 use snapback::export::svg;
-use snapback::model::params::ParamId;
+use snapback::model::params::{ParamId, spec_named};
 use snapback::model::{Params, solve};
 
 #[test]
@@ -203,6 +203,142 @@ fn optimize_beats_a_dense_scan() {
             Some(best.objective_value)
         );
     }
+}
+
+/// The chain lengths from `from` to `to` (either way) with the objective there, solved one by one.
+fn each_chain(base: &Params, from: u32, to: u32, objective: Objective) -> Vec<(f64, f64)> {
+    let ns: Vec<u32> = if from <= to {
+        (from..=to).collect()
+    } else {
+        (to..=from).rev().collect()
+    };
+    ns.into_iter()
+        .map(|n| {
+            let params = Params {
+                chain: f64::from(n),
+                ..*base
+            };
+            let outcome = solve(&params).unwrap().outcome;
+            (f64::from(n), objective.of(&outcome).unwrap())
+        })
+        .collect()
+}
+
+#[test]
+fn optimize_over_the_chain_is_the_best_of_every_whole_number() {
+    let light = Params {
+        cart_mass: 1e-3,
+        stiffness: 5e3,
+        ..Params::default()
+    };
+    for base in [Params::default(), light] {
+        for (from, to) in [(1, 16), (16, 1), (3, 9)] {
+            for objective in Objective::ALL {
+                for minimize in [false, true] {
+                    let span =
+                        Span::parse("chain", &from.to_string(), &to.to_string(), false).unwrap();
+                    let best = optimize(&base, &span, objective, minimize, 400).unwrap();
+                    let each = each_chain(&base, from, to, objective);
+                    // The first of equal values from --from on, as the optimizer takes it.
+                    let expected = each
+                        .iter()
+                        .copied()
+                        .reduce(|a, b| {
+                            let better = if minimize { b.1 < a.1 } else { b.1 > a.1 };
+                            if better { b } else { a }
+                        })
+                        .unwrap();
+                    let case = format!("{from}..{to} {} min {minimize}", objective.name());
+                    assert_eq!((best.value, best.objective_value), expected, "{case}");
+                    assert_eq!(best.bounce.params.chain, best.value, "{case}");
+                    assert_eq!(objective.of(&best.bounce.outcome), Some(expected.1));
+                    assert!(best.exhaustive, "{case}");
+                    assert!(!best.span.log);
+                    assert_eq!((best.span.from, best.span.to), (from.into(), to.into()));
+                }
+            }
+        }
+    }
+    // The default case: the most spin is at an interior N, not at an end.
+    let span = Span::parse("chain", "1", "16", true).unwrap();
+    let best = optimize(&Params::default(), &span, Objective::Omega2, false, 3).unwrap();
+    assert!(best.value > 1.0 && best.value < 16.0, "{}", best.value);
+    assert!(!best.span.log, "a whole-number search is not geometric");
+    // A continuous parameter is still scanned and refined.
+    let span = Span::parse("angle", "20", "80", false).unwrap();
+    assert!(
+        !optimize(&Params::default(), &span, Objective::Omega2, false, 400)
+            .unwrap()
+            .exhaustive
+    );
+}
+
+#[test]
+fn a_chain_range_is_narrowed_to_its_whole_numbers_and_refused_without_one() {
+    let chain = spec_named("chain").unwrap();
+    // Ends that are not whole (possible through the library) are rounded inwards.
+    let span = Span::new(chain, 1.5, 3.7, false).unwrap();
+    assert_eq!(span.whole_numbers().unwrap(), vec![2.0, 3.0]);
+    let best = optimize(&Params::default(), &span, Objective::Omega2, false, 400).unwrap();
+    let each = each_chain(&Params::default(), 2, 3, Objective::Omega2);
+    let top = if each[0].1 >= each[1].1 {
+        each[0]
+    } else {
+        each[1]
+    };
+    assert_eq!((best.value, best.objective_value), top);
+    assert_eq!((best.span.from, best.span.to), (2.0, 3.0));
+    let reversed = Span::new(chain, 3.7, 1.5, false).unwrap();
+    assert_eq!(reversed.whole_numbers().unwrap(), vec![3.0, 2.0]);
+    // No whole number between the ends.
+    let empty = Span::new(chain, 1.2, 1.8, false).unwrap();
+    let err = optimize(&Params::default(), &empty, Objective::Omega2, false, 400)
+        .unwrap_err()
+        .to_string();
+    assert_eq!(
+        err,
+        "--from 1.2 --to 1.8 holds no whole number, and --chain must be in {1, 2, ..., 16}"
+    );
+}
+
+#[test]
+fn a_chain_sweep_lands_on_whole_numbers_or_is_refused() {
+    let base = Params::default();
+    let span = Span::parse("chain", "1", "16", false).unwrap();
+    let rows = sweep::sweep(&base, &span, 16).unwrap();
+    let each = each_chain(&base, 1, 16, Objective::Omega2);
+    for (row, (n, omega2)) in rows.iter().zip(&each) {
+        assert_eq!((row.value, row.omega2), (*n, *omega2));
+    }
+    let values = |span: &Span, steps| -> Vec<f64> {
+        sweep::sweep(&base, span, steps)
+            .unwrap()
+            .iter()
+            .map(|r| r.value)
+            .collect()
+    };
+    assert_eq!(values(&span, 4), [1.0, 6.0, 11.0, 16.0]);
+    // Geometric steps that land on whole numbers are exact.
+    let log = Span::parse("chain", "1", "16", true).unwrap();
+    assert_eq!(values(&log, 5), [1.0, 2.0, 4.0, 8.0, 16.0]);
+    // Steps between whole numbers: refused before anything is solved or written.
+    let err = sweep::sweep(&base, &span, 5).unwrap_err().to_string();
+    assert_eq!(
+        err,
+        "--steps 5 puts --chain at 4.75, not a whole number; from 1 to 16 use --steps 2, 4, 6 or 16 \
+         (16 takes every whole number)"
+    );
+    let err = sweep::sweep(&base, &log, 6).unwrap_err().to_string();
+    assert!(
+        err.contains("use --steps 2, 3 or 5 with --log, or --steps 16 without it"),
+        "{err}"
+    );
+    let mut out = Vec::new();
+    assert!(sweep::write_csv(&mut out, &base, &span, 3).is_err());
+    assert!(out.is_empty(), "no header before the refusal");
+    // Every other parameter sweeps at any count.
+    let angle = Span::parse("angle", "10", "80", false).unwrap();
+    assert_eq!(values(&angle, 4)[1], 10.0 + 70.0 / 3.0);
 }
 
 #[test]

@@ -360,6 +360,113 @@ fn optimize_minimizes_and_rejects_bad_objectives() {
 }
 
 #[test]
+fn optimize_over_the_chain_tries_every_whole_number() {
+    let (code, out, stderr) = run(&[
+        "optimize", "--vary", "chain", "--from", "1", "--to", "16", "--format", "json",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(doc["vary"], "chain");
+    assert_eq!(doc["exhaustive"], true);
+    assert_eq!(doc["scan"], 16);
+    assert_eq!(doc["log"], false);
+    assert_eq!(doc["unit"], "");
+    let n = doc["value"].as_f64().unwrap();
+    let spin = doc["objective_value"].as_f64().unwrap();
+    assert_eq!(doc["bounce"]["params"]["chain"].as_f64().unwrap(), n);
+    // The best of solving each N on its own.
+    let mut best = (0.0, f64::NEG_INFINITY);
+    for each in 1..=16 {
+        let (code, out, _) = run(&["simulate", "--chain", &each.to_string(), "--format", "json"]);
+        assert_eq!(code, 0);
+        let omega2 = serde_json::from_str::<Value>(&out).unwrap()["omega2"]
+            .as_f64()
+            .unwrap();
+        if omega2 > best.1 {
+            best = (f64::from(each), omega2);
+        }
+    }
+    assert_eq!((n, spin), best);
+    // The table says how it searched.
+    let (code, out, _) = run(&[
+        "optimize",
+        "--vary",
+        "chain",
+        "--from",
+        "16",
+        "--to",
+        "1",
+        "--minimize",
+    ]);
+    assert_eq!(code, 0);
+    assert!(
+        out.starts_with(
+            "The chain masses minimises omega2 (every whole number from 16 to 1: 16 solved)\n"
+        ),
+        "{out}"
+    );
+    assert!(out.contains("chain masses N          1 "), "{out}");
+    assert!(out.contains("Outcome"), "{out}");
+    // A continuous parameter is still scanned.
+    let (code, out, _) = run(&[
+        "optimize", "--vary", "angle", "--from", "20", "--to", "80", "--format", "json",
+    ]);
+    assert_eq!(code, 0);
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    assert_eq!(doc["exhaustive"], false);
+    assert_eq!(doc["scan"], 400);
+    // Ends that are not whole numbers are refused, naming the flag.
+    usage_error(
+        &[
+            "optimize", "--vary", "chain", "--from", "1.5", "--to", "1.7",
+        ],
+        &["--from", "--chain must be in {1, 2, ..., 16}", "got 1.5"],
+    );
+    usage_error(
+        &["optimize", "--vary", "chain", "--from", "1", "--to", "17"],
+        &["--to", "--chain must be in {1, 2, ..., 16}", "got 17"],
+    );
+}
+
+#[test]
+fn sweep_over_the_chain_stays_on_whole_numbers() {
+    let (code, out, _) = run(&[
+        "sweep", "--vary", "chain", "--from", "1", "--to", "16", "--steps", "4",
+    ]);
+    assert_eq!(code, 0);
+    let firsts: Vec<&str> = out
+        .lines()
+        .map(|line| line.split(',').next().unwrap())
+        .collect();
+    assert_eq!(firsts, ["chain", "1", "6", "11", "16"]);
+    let (code, out, _) = run(&[
+        "sweep", "--vary", "chain", "--from", "1", "--to", "16", "--steps", "5", "--log",
+        "--format", "json",
+    ]);
+    assert_eq!(code, 0);
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    let values: Vec<f64> = doc
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|row| row["chain"].as_f64().unwrap())
+        .collect();
+    assert_eq!(values, [1.0, 2.0, 4.0, 8.0, 16.0]);
+    for format in ["csv", "json"] {
+        usage_error(
+            &[
+                "sweep", "--vary", "chain", "--from", "1", "--to", "16", "--steps", "5",
+                "--format", format,
+            ],
+            &[
+                "--steps 5 puts --chain at 4.75, not a whole number",
+                "use --steps 2, 4, 6 or 16",
+            ],
+        );
+    }
+}
+
+#[test]
 fn reproduce_checks_every_claim_and_succeeds() {
     let (code, out, stderr) = run(&["reproduce", "--format", "json"]);
     assert_eq!(code, 0, "{stderr}");

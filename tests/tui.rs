@@ -411,6 +411,22 @@ fn dot_and_block_markers_draw_without_braille() {
 }
 
 #[test]
+fn snapshots_of_a_chain_of_six() {
+    // At the second transition (the grip's end) the first mass is well away from its rest position.
+    let params = Params {
+        chain: 6.0,
+        ..Params::default()
+    };
+    for (w, h) in SIZES {
+        let mut terminal = Terminal::new(TestBackend::new(w, h)).unwrap();
+        let mut app = App::new(params, Theme::default()).unwrap();
+        let events = vec![key(KeyCode::Char('}')), key(KeyCode::Char('}'))];
+        run(&mut terminal, &mut app, &mut Scripted::from(events)).unwrap();
+        insta::assert_snapshot!(format!("chain6_{w}x{h}"), text(&terminal));
+    }
+}
+
+#[test]
 fn snapshots_of_the_default_screens() {
     for (w, h) in SIZES {
         let (_, contact) = explore(w, h, vec![]);

@@ -262,6 +262,73 @@ fn the_cart_and_the_arrow_follow_x_and_f() {
 }
 
 #[test]
+fn a_chain_draws_its_other_masses_at_rest_and_the_first_moving_with_x() {
+    let params = Params {
+        chain: 6.0,
+        ..Params::default()
+    };
+    let bounce = solve(&params).unwrap();
+    let mut app = App::new(params, Theme::default()).unwrap();
+    let rest = Scene::at(&app);
+    // Masses 2 to 6, from the cart towards the wall, equal, apart, between the wall and the cart.
+    assert_eq!(rest.links.len(), 5);
+    let width = rest.links[0].1 - rest.links[0].0;
+    assert!(width > 0.0);
+    let mut right = rest.cart.0;
+    for &(left, r) in &rest.links {
+        assert!((r - left - width).abs() < 1e-9);
+        assert!(r < right, "{:?}", rest.links);
+        right = left;
+    }
+    assert!(rest.wall < right);
+    // The chain and the ball fit in the picture.
+    assert!(rest.x_bounds[0] < rest.wall && rest.cart.1 < rest.x_bounds[1]);
+    let mut times: Vec<f64> = app.series.iter().map(|s| s.t).collect();
+    times.extend([1.0e-3, 2.5e-3, 4.0e-3]);
+    for t in times {
+        app.update(Action::CursorTo(t));
+        let scene = Scene::at(&app);
+        // Only the first mass moves, by its X times the written scale (the core gives no other mass's
+        // displacement); the others and the wall stay put.
+        let moved = scene.cart.0 - rest.cart.0;
+        assert!((moved - scene.x_scale * bounce.sample_at(t).x * 1e3).abs() < 1e-9);
+        assert_eq!(scene.links, rest.links);
+        assert_eq!(scene.wall, rest.wall);
+        // The spring between the first and second masses never turns inside out.
+        assert!(scene.cart.0 > scene.links[0].1, "at {t}");
+    }
+    // The single cart has no other masses.
+    let single = App::new(Params::default(), Theme::default()).unwrap();
+    assert!(Scene::at(&single).links.is_empty());
+}
+
+#[test]
+fn a_long_chain_still_draws_the_ball_at_a_readable_size() {
+    // Sixteen masses, the most: the picture keeps the ball at least a fifth of its width.
+    for n in [2.0, 16.0] {
+        let params = Params {
+            chain: n,
+            ..Params::default()
+        };
+        let scene = Scene::at(&App::new(params, Theme::default()).unwrap());
+        assert_eq!(scene.links.len(), n as usize - 1);
+        let width = scene.x_bounds[1] - scene.x_bounds[0];
+        assert!(2.0 * scene.radius > 0.2 * width, "N {n}: {width}");
+    }
+    let (_, terminal, _) = explore_inputs(
+        Params {
+            chain: 16.0,
+            ..Params::default()
+        },
+        160,
+        48,
+        vec![key('}')],
+    );
+    let screen = text(&terminal);
+    assert!(screen.contains(" mass 1: X ×"), "{screen}");
+}
+
+#[test]
 fn playback_advances_time_at_the_speed_and_stops_at_t() {
     // 1 s of wall time at the default 1 ms / 2 s is 0.5 ms of bounce.
     let (app, _) = explore(vec![key(' '), tick(1000)]);

@@ -1,5 +1,6 @@
 //! `optimize`: the value of one parameter that maximises (or minimises) an outcome of the bounce.
-//! A scan fine enough not to miss a narrow peak, then Brent's method around the best scan point.
+//! A scan fine enough not to miss a narrow peak, then Brent's method around the best scan point; for a
+//! whole-number parameter (the chain's N), every whole number in the range.
 
 use rayon::prelude::*;
 
@@ -89,8 +90,12 @@ pub struct Optimum {
     pub objective_value: f64,
     /// The bounce there.
     pub bounce: Bounce,
-    /// The span actually scanned (geometric when the range spans decades).
+    /// The span actually scanned (geometric when the range spans decades); for a whole-number
+    /// parameter, the whole numbers' span: its ends rounded inwards, never geometric.
     pub span: Span,
+    /// True when the parameter takes whole numbers and every one of them in the span was solved (no
+    /// scan between them, no Brent): the optimum is exact.
+    pub exhaustive: bool,
 }
 
 /// The span with geometric spacing switched on when the range spans two decades or more.
@@ -105,6 +110,10 @@ pub fn scan_span(span: &Span) -> Span {
 /// The value in `span` that maximises the objective (minimises it with `minimize`): `scan` evenly
 /// spaced points (geometric for a span of decades), then Brent's method between the best point's
 /// neighbours, in the scan's coordinate, to a relative 1e-10.
+///
+/// A whole-number parameter is not scanned: every whole number in the span is solved and the best
+/// taken (the first from `span.from` on a tie), `scan` and `log` unused. A span holding no whole
+/// number is refused.
 pub fn optimize(
     base: &Params,
     span: &Span,
@@ -112,30 +121,17 @@ pub fn optimize(
     minimize: bool,
     scan: usize,
 ) -> Result<Optimum, AnalysisError> {
+    if span.spec.integer {
+        return exhaustive(base, span, objective, minimize);
+    }
     let span = scan_span(span);
-    let sign = if minimize { 1.0 } else { -1.0 };
-    // The quantity Brent minimises; an undefined objective counts as the worst value.
-    let cost = |value: f64| -> Result<f64, AnalysisError> {
-        let bounce = span.solve(base, value)?;
-        Ok(objective
-            .of(&bounce.outcome)
-            .map_or(f64::INFINITY, |v| sign * v))
-    };
+    let cost = |value: f64| cost_at(base, &span, objective, minimize, value);
     let scan = scan.max(3);
     let costs: Vec<f64> = (0..scan)
         .into_par_iter()
         .map(|i| cost(span.at(i, scan)))
         .collect::<Result<_, _>>()?;
-    let best = (0..scan)
-        .min_by(|&i, &j| costs[i].total_cmp(&costs[j]))
-        .expect("the scan has points");
-    if costs[best] == f64::INFINITY {
-        return Err(AnalysisError::Input(format!(
-            "--objective {} is undefined over the whole range of --{}",
-            objective.name(),
-            span.spec.flag
-        )));
-    }
+    let best = best_of(&costs, objective, &span)?;
     // Brent works on u in [0, 1], the fraction of the span, so a geometric scan stays geometric. The
     // solves cannot fail inside the bracket: its ends were solved and the parameter checks are intervals.
     let unit = |i: usize| i as f64 / (scan - 1) as f64;
@@ -156,5 +152,68 @@ pub fn optimize(
         objective_value,
         bounce,
         span,
+        exhaustive: false,
+    })
+}
+
+/// The quantity minimised: the objective, negated to maximise; an undefined objective counts as the
+/// worst value.
+fn cost_at(
+    base: &Params,
+    span: &Span,
+    objective: Objective,
+    minimize: bool,
+    value: f64,
+) -> Result<f64, AnalysisError> {
+    let sign = if minimize { 1.0 } else { -1.0 };
+    let bounce = span.solve(base, value)?;
+    Ok(objective
+        .of(&bounce.outcome)
+        .map_or(f64::INFINITY, |v| sign * v))
+}
+
+/// The index of the lowest cost (the first of equals); an error when the objective is undefined at
+/// every point.
+fn best_of(costs: &[f64], objective: Objective, span: &Span) -> Result<usize, AnalysisError> {
+    let best = (0..costs.len())
+        .min_by(|&i, &j| costs[i].total_cmp(&costs[j]))
+        .expect("the scan has points");
+    if costs[best] == f64::INFINITY {
+        return Err(AnalysisError::Input(format!(
+            "--objective {} is undefined over the whole range of --{}",
+            objective.name(),
+            span.spec.flag
+        )));
+    }
+    Ok(best)
+}
+
+/// The optimum of a whole-number parameter: every whole number of the span solved, on all cores.
+fn exhaustive(
+    base: &Params,
+    span: &Span,
+    objective: Objective,
+    minimize: bool,
+) -> Result<Optimum, AnalysisError> {
+    let values = span.whole_numbers()?;
+    let span = Span {
+        log: false,
+        ..span.whole()?
+    };
+    let costs: Vec<f64> = values
+        .par_iter()
+        .map(|&value| cost_at(base, &span, objective, minimize, value))
+        .collect::<Result<_, _>>()?;
+    let value = values[best_of(&costs, objective, &span)?];
+    let bounce = span.solve(base, value)?;
+    let objective_value = objective
+        .of(&bounce.outcome)
+        .expect("the optimum has a defined objective");
+    Ok(Optimum {
+        value,
+        objective_value,
+        bounce,
+        span,
+        exhaustive: true,
     })
 }

@@ -60,7 +60,8 @@ impl Span {
         })
     }
 
-    /// The `i`-th of `n` values (n >= 2), ends included exactly.
+    /// The `i`-th of `n` values (n >= 2), ends included exactly. For a whole-number parameter a value
+    /// within rounding of a whole number is that number (a geometric 1, 2, 4, 8, 16 is exact).
     pub fn at(&self, i: usize, n: usize) -> f64 {
         if i == 0 {
             return self.from;
@@ -68,7 +69,110 @@ impl Span {
         if i + 1 >= n {
             return self.to;
         }
-        self.from_unit(i as f64 / (n - 1) as f64)
+        let value = self.from_unit(i as f64 / (n - 1) as f64);
+        if self.spec.integer {
+            nearly_whole(value).unwrap_or(value)
+        } else {
+            value
+        }
+    }
+
+    /// Checks that `n` values of a whole-number parameter all land on whole numbers (always true of
+    /// any other parameter); the message names the first value that does not and the counts that work.
+    pub fn check_steps(&self, flag: &str, n: usize) -> Result<(), AnalysisError> {
+        let Some(bad) = self.off_whole(n) else {
+            return Ok(());
+        };
+        let counts = self.whole_counts();
+        if counts.is_empty() {
+            return Err(AnalysisError::Input(format!(
+                "--{} must be in {}; got --from {} --to {}",
+                self.spec.flag,
+                self.spec.range_text(),
+                units::brief(self.from, 6),
+                units::brief(self.to, 6),
+            )));
+        }
+        let mut listed: Vec<String> = counts.iter().take(12).map(|c| c.to_string()).collect();
+        if counts.len() > listed.len() {
+            listed.push("...".to_string());
+        }
+        let last = listed.pop().expect("at least one count");
+        let choices = if listed.is_empty() {
+            last
+        } else {
+            format!("{} or {last}", listed.join(", "))
+        };
+        let every = (self.from - self.to).abs() as usize + 1;
+        let advice = if self.log {
+            format!("{choices} with --log, or {flag} {every} without it for every whole number")
+        } else {
+            format!("{choices} ({every} takes every whole number)")
+        };
+        Err(AnalysisError::Input(format!(
+            "{flag} {n} puts --{} at {}, not a whole number; from {} to {} use {flag} {advice}",
+            self.spec.flag,
+            units::brief(bad, 6),
+            units::brief(self.from, 6),
+            units::brief(self.to, 6),
+        )))
+    }
+
+    /// For a whole-number parameter, the first of `n` values that is not whole.
+    fn off_whole(&self, n: usize) -> Option<f64> {
+        if !self.spec.integer {
+            return None;
+        }
+        (0..n).map(|i| self.at(i, n)).find(|v| v.fract() != 0.0)
+    }
+
+    /// The counts of values from 2 up to one per whole number that all land on whole numbers.
+    fn whole_counts(&self) -> Vec<usize> {
+        let every = ((self.from - self.to).abs() as usize + 1).min(MAX_STEPS);
+        (2..=every.max(2))
+            .filter(|&n| self.off_whole(n).is_none())
+            .collect()
+    }
+
+    /// The span narrowed to the whole numbers inside it, in the same direction: its ends rounded
+    /// inwards. An error, naming the flag, when it holds no whole number.
+    pub fn whole(&self) -> Result<Span, AnalysisError> {
+        let (lo, hi) = (self.from.min(self.to), self.from.max(self.to));
+        let (first, last) = (lo.ceil(), hi.floor());
+        if first > last {
+            return Err(AnalysisError::Input(format!(
+                "--from {} --to {} holds no whole number, and --{} must be in {}",
+                units::brief(self.from, 6),
+                units::brief(self.to, 6),
+                self.spec.flag,
+                self.spec.range_text(),
+            )));
+        }
+        let (from, to) = if self.from <= self.to {
+            (first, last)
+        } else {
+            (last, first)
+        };
+        Ok(Span { from, to, ..*self })
+    }
+
+    /// The whole numbers of the span, from `from` towards `to`.
+    pub fn whole_numbers(&self) -> Result<Vec<f64>, AnalysisError> {
+        let span = self.whole()?;
+        let count = (span.to - span.from).abs() + 1.0;
+        if count > MAX_STEPS as f64 {
+            return Err(AnalysisError::Input(format!(
+                "--{} from {} to {} holds {} whole numbers, more than the {MAX_STEPS} that can be solved",
+                self.spec.flag,
+                units::brief(span.from, 6),
+                units::brief(span.to, 6),
+                units::brief(count, 6),
+            )));
+        }
+        let step = if span.to < span.from { -1.0 } else { 1.0 };
+        Ok((0..count as usize)
+            .map(|i| span.from + step * i as f64)
+            .collect())
     }
 
     /// The value at the fraction `u` of the way from `from` (0) to `to` (1), geometric when `log`.
@@ -107,6 +211,12 @@ impl Span {
             source,
         })
     }
+}
+
+/// The whole number `value` is within rounding of (a relative 1e-9), if any.
+fn nearly_whole(value: f64) -> Option<f64> {
+    let whole = value.round();
+    ((value - whole).abs() <= 1e-9 * whole.abs().max(1.0)).then_some(whole)
 }
 
 /// The column name of a parameter: its key and base unit, `/` written `_`.

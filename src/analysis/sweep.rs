@@ -35,8 +35,11 @@ pub const COLUMNS: [&str; 7] = [
     "slides_throughout",
 ];
 
-/// One bounce per value of `span` (`steps` values, ends included), on all cores, in order.
+/// One bounce per value of `span` (`steps` values, ends included), on all cores, in order. For a
+/// whole-number parameter (the chain) every value must land on a whole number: a `steps` that does not
+/// is refused before anything is solved.
 pub fn sweep(base: &Params, span: &Span, steps: usize) -> Result<Vec<Row>, AnalysisError> {
+    span.check_steps("--steps", steps)?;
     rows(base, span, steps, 0..steps)
 }
 
@@ -86,13 +89,15 @@ const CHUNK: usize = 4096;
 
 /// Solves the sweep and writes it as CSV with a header, block by block; `span.column()` names the
 /// varied value. Numbers are written in full (shortest round-trip form); an undefined `ex` is an empty
-/// field. A bounce that cannot be solved stops the sweep after the rows before its block.
+/// field. A bounce that cannot be solved stops the sweep after the rows before its block; a `steps` that
+/// puts a whole-number parameter between whole numbers stops it before the header.
 pub fn write_csv(
     out: &mut impl Write,
     base: &Params,
     span: &Span,
     steps: usize,
 ) -> Result<(), CsvError> {
+    span.check_steps("--steps", steps)?;
     writeln!(out, "{},{}", span.column(), COLUMNS.join(","))?;
     for start in (0..steps).step_by(BLOCK) {
         let block = rows(base, span, steps, start..(start + BLOCK).min(steps))?;

@@ -16,7 +16,9 @@ pub enum Format {
     /// The optimum, then the bounce there as `simulate` prints it.
     #[default]
     Table,
-    /// One JSON object: `vary`, `value`, `unit`, `objective`, `objective_value`, `minimize`, `scan`, `log`, `bounce`.
+    /// One JSON object: `vary`, `value`, `unit`, `objective`, `objective_value`, `objective_unit`,
+    /// `minimize`, `scan`, `log`, `exhaustive`, `bounce`. For a whole-number parameter (chain) every
+    /// whole number is solved: `exhaustive` is true, `scan` is how many, `log` false.
     Json,
 }
 
@@ -42,7 +44,8 @@ pub struct OptimizeArgs {
     /// Scan geometrically (automatic when the range spans two decades or more).
     #[arg(long)]
     pub log: bool,
-    /// Points of the scan that precedes Brent's method (at least 3).
+    /// Points of the scan that precedes Brent's method (at least 3); a whole-number parameter (chain)
+    /// is not scanned: every whole number from A to B is solved.
     #[arg(long, value_name = "N", default_value_t = DEFAULT_SCAN.to_string(), allow_hyphen_values = true)]
     pub scan: String,
     /// Output format.
@@ -62,6 +65,12 @@ pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
         optimize::optimize(&base, &span, objective, args.minimize, scan).map_err(Failure::usage)?;
     let spec = span.spec;
     let unit = spec.dimension.base_symbol();
+    // What was solved: the scan points, or every whole number of the range.
+    let solved = if best.exhaustive {
+        (best.span.to - best.span.from).abs() as usize + 1
+    } else {
+        scan
+    };
     let text = match args.format {
         Format::Json => {
             let doc = serde_json::json!({
@@ -72,8 +81,9 @@ pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
                 "objective_value": best.objective_value,
                 "objective_unit": objective.unit(),
                 "minimize": args.minimize,
-                "scan": scan,
+                "scan": solved,
                 "log": best.span.log,
+                "exhaustive": best.exhaustive,
                 "bounce": export::json::value(&best.bounce),
             });
             let mut text =
@@ -88,14 +98,24 @@ pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
             } else {
                 "maximises"
             };
+            let how = if best.exhaustive {
+                format!(
+                    "every whole number from {} to {}: {solved} solved",
+                    units::brief(best.span.from, 10),
+                    units::brief(best.span.to, 10)
+                )
+            } else {
+                format!(
+                    "{scan} scan points{}, then Brent's method",
+                    if best.span.log { ", geometric" } else { "" }
+                )
+            };
             let _ = writeln!(
                 out,
-                "The {} {} {} ({} scan points{}, then Brent's method)",
+                "The {} {} {} ({how})",
                 spec.label,
                 goal,
                 objective.name(),
-                scan,
-                if best.span.log { ", geometric" } else { "" }
             );
             let _ = writeln!(
                 out,

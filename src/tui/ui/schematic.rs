@@ -15,10 +15,29 @@
 //! cart's displacement X, which is magnified by [`Scene::x_scale`] so that it shows; the factor is written
 //! under the picture. The ball's travel and its rotation angle are the integrals of v_x and omega,
 //! computed numerically from the exact solution ([`crate::tui::travel::Travel`]).
+//!
+//! With a chain of N masses (`--chain N`) the cart is its first mass, the one the ball touches, and the
+//! other N - 1 masses stand between it and the wall, a spring between each pair and from the last to the
+//! wall (`--chain 6`, masses 6 to 2 solid, the first mass the open cart under the ball):
+//!
+//! ```text
+//! │ ⣼                         F⢦⡀       ⣠⠞  │
+//! │⠨⣺  ⢀⣀⡀  ⣀⣀  ⢀⣀⡀  ⣀⣀  ⢀⣀⡀    ⠭⣷⠦⠤⠤⠤⠖⠋⠁⠤⠤⡄│
+//! │⢐⢽⠜⡄⣼⣿⡧⢣⢠⣿⣿⠜⡄⣼⣿⡧⢣⢠⣿⣿⠜⡄⣼⣿⡧⠜⢆⢀⠎⢆⢠⡇        ⡇│
+//! │⠠⠻⠤⠬⠼⠿⠧⠤⠥⠿⠿⠤⠬⠼⠿⠧⠤⠥⠿⠿⠤⠬⠼⠿⠧⠤⠤⠥⠤⠤⠥⠧⠤⠤⠤⠤⠤⠤⠤⠤⠧│
+//! └ mass 1: X ×2 · F: 200 N per r ──────────┘
+//! ```
+//!
+//! Only the first mass is drawn moving. The other masses move too, in the chain's modes, but what the
+//! core gives the explorer ([`crate::model::Sample`], [`crate::model::State`]) holds the first mass's
+//! displacement X alone, so masses 2 to N are drawn at their rest positions, not moving, and the spring
+//! between the first and the second takes up X. Their widths are a drawing's, not their masses' (all N
+//! are M/N); a long chain is drawn closer together and its short springs straight.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
 use ratatui::style::{Color, Style};
+use ratatui::symbols::Marker;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::canvas::{Canvas, Circle, Context, Line as Segment};
 use ratatui::widgets::{Block, Widget};
@@ -41,6 +60,16 @@ const SPRING_LENGTH: f64 = 1.0;
 const X_ROOM: f64 = 1.25;
 /// Zigzags of the spring.
 const COILS: usize = 6;
+/// With a chain: the width of each of the other masses, and the length of the springs between them at
+/// rest, in radii, while the N - 1 of them fit in [`CHAIN_ROOM`].
+const LINK_WIDTH: f64 = 0.25;
+const LINK_SPRING: f64 = 0.45;
+/// With a chain: the most room, in radii, the other masses and their springs take; a long chain is
+/// drawn closer together.
+const CHAIN_ROOM: f64 = 3.5;
+/// Zigzags of each spring of a chain, at most, and the marker's dots along the spring each one needs.
+const LINK_COILS: usize = 2;
+const DOTS_PER_COIL: f64 = 4.0;
 
 /// The picture at the cursor, in mm: x along the surface from the point the ball first touches, y up from
 /// the cart's top.
@@ -60,6 +89,9 @@ pub struct Scene {
     pub cart_height: f64,
     /// The wall the spring is fixed to.
     pub wall: f64,
+    /// With a chain of N > 1 masses, masses 2 to N (left and right edges, at rest), from the one next to
+    /// the cart to the one next to the wall; empty for the single cart.
+    pub links: Vec<(f64, f64)>,
     /// Drawn cart displacement per true displacement.
     pub x_scale: f64,
     /// The friction force on the ball, N, positive backward (to the left).
@@ -130,8 +162,25 @@ impl Scene {
         let shift = x_scale * sample.x * 1e3;
         let rest_left = travel_min * 1e3 - CART_OVERHANG * r;
         let rest_right = travel_max * 1e3 + CART_OVERHANG * r;
-        // Long enough at rest that the spring keeps its length even when the cart moves towards the wall.
-        let wall = rest_left - SPRING_LENGTH * r + x_scale * x_low.min(0.0) * 1e3;
+        // The room the cart's spring needs beside its shortest length as drawn, so that it keeps that
+        // length even when the cart moves towards the wall.
+        let toward_wall = -x_scale * x_low.min(0.0) * 1e3;
+        // A chain's other masses at rest, spaced evenly from the cart's spring to the wall's.
+        let others = (app.params.chain as usize).saturating_sub(1);
+        let (width, spring) = if others == 0 {
+            (0.0, SPRING_LENGTH * r)
+        } else {
+            let pitch = (LINK_WIDTH + LINK_SPRING).min(CHAIN_ROOM / others as f64);
+            let width = pitch * LINK_WIDTH / (LINK_WIDTH + LINK_SPRING);
+            (width * r, (pitch - width) * r)
+        };
+        let mut links = Vec::with_capacity(others);
+        let mut right = rest_left - spring - toward_wall;
+        for _ in 0..others {
+            links.push((right - width, right));
+            right -= width + spring;
+        }
+        let wall = right;
         let length = -sample.friction / newtons_per_radius * r;
         // Along the surface from the contact point.
         let arrow =
@@ -144,6 +193,7 @@ impl Scene {
             cart: (rest_left + shift, rest_right + shift),
             cart_height: CART_HEIGHT * r,
             wall,
+            links,
             x_scale,
             force: sample.friction,
             newtons_per_radius,
@@ -160,6 +210,17 @@ impl Scene {
     /// The x-factor as written under the picture: `×2`, `×0.5`.
     pub fn x_scale_label(&self) -> String {
         format!("×{}", self.x_scale)
+    }
+}
+
+/// The dots a cell holds across and up with `marker`.
+fn dots_per_cell(marker: Marker) -> (f64, f64) {
+    match marker {
+        Marker::Braille | Marker::Octant => (2.0, 4.0),
+        Marker::Sextant => (2.0, 3.0),
+        Marker::Quadrant => (2.0, 2.0),
+        Marker::HalfBlock => (1.0, 2.0),
+        _ => (1.0, 1.0),
     }
 }
 
@@ -180,13 +241,24 @@ fn fit(x: [f64; 2], y: [f64; 2], width: u16, height: u16) -> ([f64; 2], [f64; 2]
     }
 }
 
-/// The spring as a zigzag from the wall to the cart, at height `y`.
-fn spring(ctx: &mut Context, from: f64, to: f64, y: f64, amplitude: f64, color: Color) {
+/// A spring as a zigzag of `coils` from `from` to `to`, at height `y`.
+fn spring(
+    ctx: &mut Context,
+    (from, to): (f64, f64),
+    y: f64,
+    amplitude: f64,
+    coils: usize,
+    color: Color,
+) {
+    if coils == 0 {
+        ctx.draw(&Segment::new(from, y, to, y, color));
+        return;
+    }
     let length = to - from;
     let lead = 0.1 * length;
-    let step = (length - 2.0 * lead) / (2 * COILS) as f64;
+    let step = (length - 2.0 * lead) / (2 * coils) as f64;
     let mut points = vec![(from, y), (from + lead, y)];
-    for i in 0..2 * COILS {
+    for i in 0..2 * coils {
         let side = if i % 2 == 0 { 1.0 } else { -1.0 };
         points.push((from + lead + step * (i as f64 + 0.5), y + side * amplitude));
     }
@@ -199,7 +271,9 @@ fn spring(ctx: &mut Context, from: f64, to: f64, y: f64, amplitude: f64, color: 
     }
 }
 
-fn paint(ctx: &mut Context, scene: &Scene, app: &App, x_bounds: [f64; 2]) {
+/// `dot` is the size of the marker's dots across and up, for filled shapes and for springs too short
+/// to zigzag.
+fn paint(ctx: &mut Context, scene: &Scene, app: &App, x_bounds: [f64; 2], dot: (f64, f64)) {
     let theme = &app.theme;
     let r = scene.radius;
     let h = scene.cart_height;
@@ -220,12 +294,34 @@ fn paint(ctx: &mut Context, scene: &Scene, app: &App, x_bounds: [f64; 2]) {
         ));
         y += hatch;
     }
+    // The springs: wall to cart, or along a chain from the wall through masses N to 2 to the cart. A
+    // chain's springs zigzag as much as their length in dots allows, down to a straight line.
+    let coils = |from: f64, to: f64| {
+        if scene.links.is_empty() {
+            COILS
+        } else {
+            (((to - from) / dot.0 / DOTS_PER_COIL) as usize).min(LINK_COILS)
+        }
+    };
+    let mut from = scene.wall;
+    for &(left, right) in scene.links.iter().rev() {
+        let turns = coils(from, left);
+        spring(ctx, (from, left), -0.5 * h, 0.3 * h, turns, theme.spring());
+        // Solid, so that a mass reads apart from the springs at any length of chain.
+        let mut y = -h;
+        while y <= 0.0 {
+            ctx.draw(&Segment::new(left, y, right, y, theme.body()));
+            y += dot.1.max(h / 64.0);
+        }
+        from = right;
+    }
+    let turns = coils(from, scene.cart.0);
     spring(
         ctx,
-        scene.wall,
-        scene.cart.0,
+        (from, scene.cart.0),
         -0.5 * h,
         0.3 * h,
+        turns,
         theme.spring(),
     );
     // The cart; its top is left open under the force arrow, which is drawn along it.
@@ -318,7 +414,14 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         ),
         Span::raw(format!("{} ", app.speed.label())),
     ]);
-    let caption = if wide {
+    let caption = if wide && !scene.links.is_empty() {
+        // A chain: X, the one displacement drawn, is the first mass's.
+        format!(
+            " mass 1: X {} · F: {} N per r ",
+            scene.x_scale_label(),
+            scene.newtons_per_radius
+        )
+    } else if wide {
         format!(
             " X {} · arrow F: {} N per r ",
             scene.x_scale_label(),
@@ -338,11 +441,16 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let inner = block.inner(area);
     frame.render_widget(block, area);
     let (x_bounds, y_bounds) = fit(scene.x_bounds, scene.y_bounds, inner.width, inner.height);
+    let (across, up) = dots_per_cell(theme.marker);
+    let dot = (
+        (x_bounds[1] - x_bounds[0]) / (across * f64::from(inner.width.max(1))),
+        (y_bounds[1] - y_bounds[0]) / (up * f64::from(inner.height.max(1))),
+    );
     Canvas::default()
         .marker(theme.marker)
         .x_bounds(x_bounds)
         .y_bounds(y_bounds)
-        .paint(|ctx| paint(ctx, &scene, app, x_bounds))
+        .paint(|ctx| paint(ctx, &scene, app, x_bounds, dot))
         .render(inner, frame.buffer_mut());
 }
 
