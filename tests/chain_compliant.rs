@@ -573,7 +573,7 @@ proptest! {
     #![proptest_config(config(200))]
 
     #[test]
-    
+
     fn every_compliant_chain_bounce_is_physical(p in compliant_chains(2usize..=16)) {
         solve_and_check(&p)?;
     }

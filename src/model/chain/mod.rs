@@ -14,7 +14,7 @@
 pub mod modes;
 pub mod motion;
 
-use std::sync::Arc;
+use std::sync::{Arc, OnceLock};
 
 use super::bounce::{
     Bounce, MAX_RADIANS, MAX_TRANSITIONS, Motion as PhaseMotion, Phase, PhaseKind, ROLLING,
@@ -38,7 +38,9 @@ pub struct Chain {
     /// N k, N/m.
     pub link_stiffness: f64,
     pub slide: Modes,
-    pub grip: Modes,
+    /// The gripping modes, computed when first needed (a compliant ball never needs them).
+    grip: OnceLock<Modes>,
+    m_eff: f64,
 }
 
 impl Chain {
@@ -51,13 +53,20 @@ impl Chain {
             link_mass,
             link_stiffness,
             slide: Modes::new(n, link_mass, link_stiffness, 0.0),
-            grip: Modes::new(n, link_mass, link_stiffness, setup.m_eff),
+            grip: OnceLock::new(),
+            m_eff: setup.m_eff,
         }
+    }
+
+    /// The modes of the chain with the ball's m_eff riding on its first mass.
+    pub fn grip(&self) -> &Modes {
+        self.grip
+            .get_or_init(|| Modes::new(self.n, self.link_mass, self.link_stiffness, self.m_eff))
     }
 
     /// The modes of a sliding (`dir` ±1) or gripping (`dir` 0) phase.
     pub fn modes(&self, dir: f64) -> &Modes {
-        if dir == 0.0 { &self.grip } else { &self.slide }
+        if dir == 0.0 { self.grip() } else { &self.slide }
     }
 
     /// Kinetic plus spring energy of the whole chain.
@@ -134,7 +143,7 @@ pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     }
     let setup = Setup::new(params);
     let chain = Arc::new(Chain::new(params, &setup));
-    let radians = chain.slide.fastest.max(chain.grip.fastest) * setup.duration;
+    let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
     if radians > MAX_RADIANS {
         return Err(SolveError::TooFast { radians });
     }
@@ -189,7 +198,7 @@ pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
                 };
                 let (curvature, terms) = motion.margin_curvature(&setup);
                 let noise = ROUNDING * terms;
-                let step = setup.event_step(chain.grip.fastest);
+                let step = setup.event_step(chain.grip().fastest);
                 first_rise(f, t0, end, step, [curvature; 2], [noise; 2]).map(|(t, branch)| {
                     let sign = if branch == 0 { 1.0 } else { -1.0 };
                     (t, Cause::GripBreak(sign))

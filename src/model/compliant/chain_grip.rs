@@ -30,6 +30,7 @@ use nalgebra::{Cholesky, Complex, DMatrix, DVector};
 use super::super::chain::modes::MAX;
 use super::super::chain::{Chain, ChainState};
 use super::super::setup::{Setup, State};
+use super::stretch::SETTLED;
 use super::{BallSpring, Point};
 
 type C64 = Complex<f64>;
@@ -45,6 +46,8 @@ const RECONSTRUCTION: f64 = 1e-12;
 /// ...and the sum of the sizes of the modal terms may exceed the state's size by at most this factor
 /// (the cancellation that multiplies the roots' rounding).
 const CANCELLATION: f64 = 1e3;
+/// A mode whose share of the bound on |F''| is below this fraction sets no step for the event search.
+const NEGLIGIBLE: f64 = 1e-6;
 
 /// One mode of the gripping ball and chain, scaled to carry the unit force.
 #[derive(Clone, Debug)]
@@ -174,27 +177,35 @@ impl GripModes {
         self.accept(&schur)
     }
 
-    /// g(s) and g'(s), with the size of g's terms (for the residual test).
-    fn g(&self, s: C64) -> (C64, C64, f64) {
+    /// g(s) and g'(s).
+    fn g(&self, s: C64) -> (C64, C64) {
         let s2 = s * s;
         let mut r = (s2 * self.m_eff).inv();
         let mut dr = -r * 2.0 / s;
-        let mut size = r.norm();
         for j in 0..self.n {
             let p = (s2 + self.omega2[j]).inv();
             let a = self.phi1[j] * self.phi1[j];
             r += p * a;
             dr -= p * p * s * (2.0 * a);
-            size += (p * a).norm();
         }
         let b = s * self.cb + self.kb;
-        (b * r + 1.0, r * self.cb + b * dr, 1.0 + b.norm() * size)
+        (b * r + 1.0, r * self.cb + b * dr)
+    }
+
+    /// |g(s)| relative to the size of the terms it is summed from.
+    fn residual(&self, s: C64) -> f64 {
+        let s2 = s * s;
+        let mut size = (s2 * self.m_eff).inv().norm();
+        for j in 0..self.n {
+            size += ((s2 + self.omega2[j]).inv() * (self.phi1[j] * self.phi1[j])).norm();
+        }
+        self.g(s).0.norm() / (1.0 + (s * self.cb + self.kb).norm() * size)
     }
 
     /// P'/P for P(s) = m_eff s² Π (s² + Ω_j²) g(s): the polynomial whose roots are g's, without its
     /// poles.
     fn log_slope(&self, s: C64) -> C64 {
-        let (g, dg, _) = self.g(s);
+        let (g, dg) = self.g(s);
         let mut slope = dg / g + s.inv() * 2.0;
         for j in 0..self.n {
             slope += s * 2.0 / (s * s + self.omega2[j]);
@@ -210,7 +221,7 @@ impl GripModes {
                 break;
             }
             s -= step;
-            if step.norm() <= 4.0 * f64::EPSILON * s.norm() {
+            if step.norm_sqr() <= (4.0 * f64::EPSILON).powi(2) * s.norm_sqr() {
                 break;
             }
         }
@@ -251,13 +262,15 @@ impl GripModes {
                 } else {
                     hi = lambda;
                 }
-                let newton = lambda - value / slope;
+                let step = value / slope;
+                let newton = lambda - step;
                 lambda = if newton > lo && newton < hi {
                     newton
                 } else {
                     0.5 * (lo + hi)
                 };
-                if hi - lo <= 1e-6 * hi || value == 0.0 {
+                // A start for Newton's method on g needs no more.
+                if hi - lo <= 1e-6 * hi || step.abs() <= 1e-9 * lambda {
                     break;
                 }
             }
@@ -333,8 +346,7 @@ impl GripModes {
             return None;
         }
         for (i, (a, _)) in kept.iter().enumerate() {
-            let (g, _, size) = self.g(*a);
-            if g.norm() > RESIDUAL * size {
+            if self.residual(*a) > RESIDUAL {
                 return None;
             }
             if kept[..i]
@@ -503,7 +515,7 @@ impl ChainGrip {
         match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
                 for (mode, &ci) in list.iter().zip(c) {
-                    let a = ci * (mode.s * tau).exp();
+                    let a = ci * exp(mode.s * tau);
                     let (da, dda) = (a * mode.s, a * mode.s * mode.s);
                     z[0] += (a * mode.u).re;
                     z[n + 1] += (da * mode.u).re;
@@ -539,7 +551,7 @@ impl ChainGrip {
                 let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde) =
                     (zero, zero, zero, zero, zero, zero, zero);
                 for (mode, &ci) in list.iter().zip(c) {
-                    let a = ci * (mode.s * tau).exp();
+                    let a = ci * exp(mode.s * tau);
                     let da = a * mode.s;
                     u += a * mode.u;
                     du += da * mode.u;
@@ -600,21 +612,78 @@ impl ChainGrip {
         (state, point.e)
     }
 
+    /// The stages of the event search over the rest of the contact, (from, to, bound on |F''|, step),
+    /// and the size of the terms F is summed from. A strongly damped mode dominates the bound only
+    /// until it has died out: the first 40 e-folds of the fastest decay are cut into stages of 4, each
+    /// bounded from its start, with a step on the scale sqrt(|F''| / |F|) of its bound.
+    pub fn search_stages(&self, setup: &Setup) -> (Vec<(f64, f64, f64, f64)>, f64) {
+        let (t0, end) = (self.start.t, setup.duration);
+        let decay = match &self.modes.modes {
+            Some(list) if self.coefficients.is_some() => {
+                list.iter().map(|m| -m.s.re).fold(0.0, f64::max)
+            }
+            _ => 0.0,
+        };
+        let stage = SETTLED / 10.0 / decay;
+        let cuts = (1..=10)
+            .map(|k| t0 + k as f64 * stage)
+            .take_while(|&t| t < end);
+        let (_, size, _) = self.force_bounds(setup, t0);
+        let bounds = |from: f64| {
+            let (curvature, terms, fastest) = self.force_bounds(setup, from);
+            let rate = if terms > 0.0 {
+                (curvature / terms).sqrt().min(fastest)
+            } else {
+                0.0
+            };
+            (curvature, setup.event_step(rate))
+        };
+        // A cut pays for itself only where the bound has fallen by half since the stage began.
+        let (curvature, step) = bounds(t0);
+        let mut stages = vec![(t0, end, curvature, step)];
+        for cut in cuts {
+            let (curvature, step) = bounds(cut);
+            let current = stages.last_mut().expect("one stage at least");
+            if curvature < 0.5 * current.2 {
+                current.1 = cut;
+                stages.push((cut, end, curvature, step));
+            }
+        }
+        (stages, size)
+    }
+
     /// A bound on |F''| over the rest of the contact, and the size of the terms F is summed from (for
     /// the rounding floor).
-    pub fn force_bounds(&self, setup: &Setup) -> (f64, f64) {
+    ///
+    /// From `from` on: a mode decaying at -Re s has shrunk by e^(Re s (from - t0)) there, so a strongly
+    /// damped mode stops counting once it has died out. Also the fastest rate still worth resolving.
+    pub fn force_bounds(&self, setup: &Setup, from: f64) -> (f64, f64, f64) {
         let g = &self.modes;
-        let remaining = setup.duration - self.start.t;
+        let (elapsed, remaining) = (from - self.start.t, setup.duration - self.start.t);
         match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
                 let (mut curvature, mut size) = (0.0, 0.0);
-                for (mode, ci) in list.iter().zip(c) {
-                    let growth = (mode.s.re * remaining).exp().max(1.0);
-                    let term = (ci * mode.force).norm() * growth;
-                    curvature += term * mode.s.norm_sqr();
-                    size += term;
-                }
-                (curvature, size)
+                let terms: Vec<(f64, f64)> = list
+                    .iter()
+                    .zip(c)
+                    .map(|(mode, ci)| {
+                        let growth = if mode.s.re <= 0.0 {
+                            (mode.s.re * elapsed).exp()
+                        } else {
+                            (mode.s.re * remaining).exp()
+                        };
+                        let term = (ci * mode.force).norm() * growth;
+                        curvature += term * mode.s.norm_sqr();
+                        size += term;
+                        (term * mode.s.norm_sqr(), mode.s.norm())
+                    })
+                    .collect();
+                let fastest = terms
+                    .iter()
+                    .filter(|(part, _)| *part >= NEGLIGIBLE * curvature)
+                    .map(|&(_, rate)| rate)
+                    .fold(0.0, f64::max);
+                (curvature, size, fastest)
             }
             _ => {
                 // |h z| <= |T⁻ᵀ hᵀ| sqrt(2E), and F'' = h A² z = (T⁻ᵀ hᵀ)ᵀ Ã² z̃; the dashpot only lowers E.
@@ -634,10 +703,19 @@ impl ChainGrip {
                 (
                     second.norm() * size,
                     (g.dual(&stretch).norm() * g.kb + g.dual(&rate).norm() * g.cb) * size,
+                    g.fastest,
                 )
             }
         }
     }
+}
+
+/// e^z, with one `sin_cos` (num_complex calls `sin` and `cos` apart).
+#[inline]
+fn exp(z: C64) -> C64 {
+    let (sin, cos) = z.im.sin_cos();
+    let size = z.re.exp();
+    C64::new(size * cos, size * sin)
 }
 
 /// The weighted coefficients of z0 in the modes, if they reproduce it to rounding without cancellation.

@@ -254,7 +254,7 @@ enum Support {
     Cart(Box<Compliance>),
     Chain {
         chain: Arc<Chain>,
-        grip: Arc<GripModes>,
+        modes: Arc<GripModes>,
     },
 }
 
@@ -287,14 +287,14 @@ fn solve_on(params: &Params, on_chain: bool) -> Result<Bounce, SolveError> {
     let spring = BallSpring::new(params, &setup);
     let support = if on_chain && params.stiffness > 0.0 {
         let chain = Arc::new(Chain::new(params, &setup));
-        let grip = Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb));
-        Support::Chain { chain, grip }
+        let modes = Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb));
+        Support::Chain { chain, modes }
     } else {
         Support::Cart(Box::new(Compliance::new(params, &setup)))
     };
     let (cart_fastest, ball_fastest) = match &support {
         Support::Cart(c) => (setup.omega_slide.max(setup.omega_grip), c.fastest),
-        Support::Chain { chain, grip } => (chain.slide.fastest, grip.fastest),
+        Support::Chain { chain, modes } => (chain.slide.fastest, modes.fastest),
     };
     let radians = cart_fastest * setup.duration;
     if radians > MAX_RADIANS {
@@ -380,28 +380,28 @@ fn solve_on(params: &Params, on_chain: bool) -> Result<Bounce, SolveError> {
                 (CompliantMotion::Slide(slide), event)
             }
             None => {
-                let (grip, curvature, noise, fastest) = match &support {
+                let margin_curvature = mu * n0 * w * w;
+                // Stages of the search: (from, to, curvature, step).
+                let (grip, noise, stages) = match &support {
                     Support::Cart(compliance) => {
                         let grip = CompliantGrip::new(**compliance, state, e, &setup);
                         let (curvature, size) = grip.force_bounds(&setup);
                         let noise = ROUNDING * (mu * n0 + EXP_ROUNDING * size);
-                        (
-                            CompliantMotion::Grip(Box::new(grip)),
-                            curvature,
-                            noise,
-                            compliance.fastest,
-                        )
+                        let step = setup.event_step(compliance.fastest);
+                        let stage = (t0, end, curvature + margin_curvature, step);
+                        (CompliantMotion::Grip(Box::new(grip)), noise, vec![stage])
                     }
-                    Support::Chain { grip, .. } => {
-                        let chain_grip = ChainGrip::new(grip.clone(), full, e, &setup);
-                        let (curvature, size) = chain_grip.force_bounds(&setup);
+                    Support::Chain { modes, .. } => {
+                        let grip = ChainGrip::new(modes.clone(), full, e, &setup);
+                        let (stages, size) = grip.search_stages(&setup);
+                        let stages = stages
+                            .into_iter()
+                            .map(|(from, to, curvature, step)| {
+                                (from, to, curvature + margin_curvature, step)
+                            })
+                            .collect();
                         let noise = ROUNDING * (mu * n0 + size);
-                        (
-                            CompliantMotion::ChainGrip(chain_grip),
-                            curvature,
-                            noise,
-                            grip.fastest,
-                        )
+                        (CompliantMotion::ChainGrip(grip), noise, stages)
                     }
                 };
                 let f = |t: f64| {
@@ -409,9 +409,11 @@ fn solve_on(params: &Params, on_chain: bool) -> Result<Bounce, SolveError> {
                     last.set(Some(p));
                     setup.grip_margins(t, p.friction, p.friction_rate)
                 };
-                let curvature = curvature + mu * n0 * w * w;
-                let step = setup.event_step(fastest);
-                let event = first_rise(f, t0, end, step, [curvature; 2], [noise; 2])
+                let event = stages
+                    .iter()
+                    .find_map(|&(from, to, curvature, step)| {
+                        first_rise(f, from, to, step, [curvature; 2], [noise; 2])
+                    })
                     .map(|(t, branch)| (t, if branch == 0 { 1.0 } else { -1.0 }));
                 (grip, event)
             }
