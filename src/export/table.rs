@@ -44,9 +44,15 @@ pub fn summary(b: &Bounce) -> String {
         ("cart", "cart + spring")
     };
     let _ = writeln!(out, "\nPhases ({})", b.phase_summary());
+    // A compliant ball grips through its contact patch, and its force then follows its spring.
+    let compliant = b.params.ball_stiffness > 0.0;
     for p in &b.phases {
         let slip = match (p.kind, p.slip_sign, p.cart) {
             (PhaseKind::Grip, _, Cart::Stuck) => "rolling on the stuck cart",
+            (PhaseKind::Grip, _, _) if compliant && chain => {
+                "patch moves with the first mass, F = k_b e + c_b e'"
+            }
+            (PhaseKind::Grip, _, _) if compliant => "patch moves with the cart, F = k_b e + c_b e'",
             (PhaseKind::Grip, _, _) if chain => "contact point moves with the first mass",
             (PhaseKind::Grip, _, _) => "contact point moves with the cart",
             (_, s, Cart::Stuck) if s > 0 => "slipping forward, F = +μN; cart stuck",

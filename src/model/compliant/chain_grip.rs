@@ -12,8 +12,8 @@
 //! the receptance between the ball and the first mass. g has 2(N + 1) roots. They start from the
 //! undamped modes (c_b = 0: one root ω² of 1 + k_b R(iω) = 0 between each pair of neighbouring Ω_j²,
 //! found by bisection), damped in proportion to the dashpot's share of each mode, and are then found
-//! by Newton's method on g; by Aberth's method on all roots at once when that misses some; and from the
-//! Schur form of the state matrix when that fails too. The damping is not proportional, but the system
+//! by Newton's method on the polynomial with Maehly's deflation (so that no root is found twice), or from
+//! the Schur form of the state matrix when that fails. The damping is not proportional, but the system
 //! is symmetric (mass D, damping C, stiffness K), so its modes w = (y, s y) are orthogonal under
 //! [[C, D], [D, 0]]: the coefficient of mode i in a state z0 is w_iᵀ [[C, D], [D, 0]] z0 over
 //! w_iᵀ [[C, D], [D, 0]] w_i, O(N) each. Every state of the grip is then Σ c_i e^{s_i τ} w_i, and the
@@ -149,21 +149,21 @@ impl GripModes {
         grip
     }
 
-    /// The roots, by Newton's method from the damped undamped modes, else by Aberth's method, else from
-    /// the Schur form; each accepted only if all 2(N + 1) are found, distinct, and satisfy g(s) = 0.
+    /// The roots: by Newton's method from the damped undamped modes (one start per pair); where two
+    /// starts find the same root, by Newton's method with deflation from every start; else from the
+    /// Schur form. Each set is accepted only if all 2(N + 1) roots are found, distinct, and satisfy
+    /// g(s) = 0.
     fn find_modes(&self) -> Option<Vec<Mode>> {
-        let guesses = self.guesses()?;
-        let newton: Vec<C64> = guesses
-            .iter()
-            .filter(|s| s.im >= 0.0)
-            .map(|&s| self.polish(s, 30))
-            .collect();
-        if let Some(modes) = self.accept(&newton) {
-            return Some(modes);
-        }
-        if let Some(roots) = self.aberth(&guesses) {
-            let polished: Vec<C64> = roots.iter().map(|&s| self.polish(s, 3)).collect();
-            if let Some(modes) = self.accept(&polished) {
+        if let Some(guesses) = self.guesses() {
+            let newton: Vec<C64> = guesses
+                .iter()
+                .filter(|s| s.im >= 0.0)
+                .map(|&s| self.polish(s, 30))
+                .collect();
+            if let Some(modes) = self
+                .accept(&newton)
+                .or_else(|| self.accept(&self.deflated(&guesses)))
+            {
                 return Some(modes);
             }
         }
@@ -299,32 +299,29 @@ impl GripModes {
             .then_some(out)
     }
 
-    /// All roots at once by Aberth's method from `guesses` (turned slightly, so that a conjugate pair can
-    /// split into two real roots).
-    fn aberth(&self, guesses: &[C64]) -> Option<Vec<C64>> {
-        let turn = C64::from_polar(1.0, 1e-3);
-        let mut z: Vec<C64> = guesses.iter().map(|&s| s * turn).collect();
-        for _ in 0..200 {
-            let mut moved: f64 = 0.0;
-            for k in 0..z.len() {
-                let s = z[k];
-                let log_slope = self.log_slope(s);
-                let repulsion: C64 = (0..z.len())
-                    .filter(|&j| j != k)
-                    .map(|j| (s - z[j]).inv())
-                    .sum();
-                let step = (log_slope - repulsion).inv();
-                if !(step.re.is_finite() && step.im.is_finite()) {
-                    return None;
+    /// Every root, by Newton's method from each guess in turn on P divided by the roots already found
+    /// (Maehly's deflation): each start finds a root not found before.
+    fn deflated(&self, guesses: &[C64]) -> Vec<C64> {
+        let mut found: Vec<C64> = Vec::with_capacity(guesses.len());
+        for &start in guesses {
+            let mut s = start;
+            for _ in 0..300 {
+                let mut slope = self.log_slope(s);
+                for &r in &found {
+                    slope -= (s - r).inv();
                 }
-                z[k] = s - step;
-                moved = moved.max(step.norm() / z[k].norm());
+                let step = slope.inv();
+                if !(step.re.is_finite() && step.im.is_finite()) {
+                    break;
+                }
+                s -= step;
+                if step.norm_sqr() <= (4.0 * f64::EPSILON).powi(2) * s.norm_sqr() {
+                    break;
+                }
             }
-            if moved <= 1e-13 {
-                return Some(z);
-            }
+            found.push(s);
         }
-        None
+        found
     }
 
     /// The modes from a set of roots: the upper half-plane and the real axis, each pair once, if they
@@ -859,6 +856,75 @@ mod tests {
                     nearest <= 1e-12 * mode.s.norm(),
                     "{:?}: {nearest:e}",
                     mode.s
+                );
+            }
+        }
+    }
+
+    /// Newton's method finds the roots, with deflation where it found one twice, in nearly every case
+    /// (in 965 of these 1000 extreme ones; the Schur form serves the rest, at several times the cost).
+    #[test]
+    fn newton_finds_almost_every_set_of_roots() {
+        let mut rng = Lcg(99);
+        let mut found = 0;
+        for _ in 0..1000 {
+            let (g, _) = grip_modes(&random(&mut rng));
+            let guesses = g.guesses().expect("the undamped modes");
+            let newton: Vec<C64> = guesses
+                .iter()
+                .filter(|s| s.im >= 0.0)
+                .map(|&s| g.polish(s, 30))
+                .collect();
+            if g.accept(&newton).is_some() || g.accept(&g.deflated(&guesses)).is_some() {
+                found += 1;
+            }
+        }
+        assert!(found >= 950, "Newton found {found} of 1000");
+    }
+
+    /// The grip's fallback, the exponential in energy coordinates, against its modes: the same contact
+    /// state and force, and its bound on |F''| holds.
+    #[test]
+    fn the_exponential_fallback_agrees_with_the_modes() {
+        let mut rng = Lcg(29);
+        for case in 0..40 {
+            let p = Params {
+                ball_stiffness: rng.log(1e4, 1e7),
+                ..random(&mut rng)
+            };
+            let (g, setup) = grip_modes(&p);
+            let mut start = ChainState::from_contact(&setup.initial(50.0));
+            start.t = 1e-3;
+            for i in 0..g.n {
+                start.x[i] = 1e-3 * (rng.unit() - 0.5);
+                start.v[i] = rng.unit() - 0.5;
+            }
+            let modal = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup);
+            let fallback = ChainGrip {
+                coefficients: None,
+                ..modal.clone()
+            };
+            let (bound, _, _) = fallback.force_bounds(&setup, start.t);
+            let scale = modal.modes.energy_norm(&modal.z0);
+            for k in 0..=8 {
+                let t = start.t + 0.5e-3 * k as f64;
+                let (a, b) = (modal.at(&setup, t), fallback.at(&setup, t));
+                let speeds = (a.state.vx - b.state.vx).abs() + (a.state.v - b.state.v).abs();
+                assert!(
+                    speeds <= 1e-9 * scale,
+                    "case {case} t {t}: speeds {speeds:e}"
+                );
+                let force = (a.friction - b.friction).abs();
+                assert!(
+                    force <= 1e-9 * (bound / modal.modes.fastest.powi(2)),
+                    "case {case}: F"
+                );
+                // F'' from the modes' own e''' is not at hand; the rate's change over a short step is.
+                let h = 1e-9;
+                let second = (modal.at(&setup, t + h).friction_rate - a.friction_rate) / h;
+                assert!(
+                    second.abs() <= bound * (1.0 + 1e-6),
+                    "case {case}: |F''| bound"
                 );
             }
         }
