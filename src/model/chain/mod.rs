@@ -21,7 +21,7 @@ use super::bounce::{
     ROUNDING, SolveError, finish,
 };
 use super::cart::Cart;
-use super::compliant::solve_compliant_on_chain;
+use super::compliant::solve_compliant;
 use super::events::first_rise;
 use super::params::Params;
 use super::setup::{Setup, State};
@@ -134,7 +134,7 @@ pub type ChainMotion = Arc<Motion>;
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     params.validate()?;
     if params.ball_stiffness > 0.0 {
-        return solve_compliant_on_chain(params);
+        return solve_compliant(params);
     }
     if params.cart_friction > 0.0 {
         return Err(SolveError::ChainStringFriction {

@@ -258,18 +258,27 @@ enum Support {
     },
 }
 
-/// Solves one bounce of a compliant ball on the single cart or on a chain (no string friction).
+/// Solves one bounce of a compliant ball on the single cart or on a chain (no string friction). With a
+/// spring (k > 0) every grip is solved by [`ChainGrip`], the single cart being a chain of one mass; a
+/// free cart (k = 0) has a double zero root there, and its grips are solved by [`CompliantGrip`].
 pub fn solve_compliant(params: &Params) -> Result<Bounce, SolveError> {
-    solve_on(params, params.chain > 1.0)
+    solve_on(params, params.stiffness > 0.0)
 }
 
-/// As [`solve_compliant`], on the chain's modal solver even for N = 1 (where it reproduces the single
-/// cart's to rounding), unless k = 0.
-pub fn solve_compliant_on_chain(params: &Params) -> Result<Bounce, SolveError> {
-    solve_on(params, true)
+/// The compliant ball on the single cart (the chain's length ignored) with every grip solved by
+/// [`CompliantGrip`], the cart's own 4-state system, even with a spring: an independent check of
+/// [`solve_compliant`].
+pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
+    solve_on(
+        &Params {
+            chain: 1.0,
+            ..*params
+        },
+        false,
+    )
 }
 
-fn solve_on(params: &Params, on_chain: bool) -> Result<Bounce, SolveError> {
+fn solve_on(params: &Params, modal: bool) -> Result<Bounce, SolveError> {
     if params.cart_friction > 0.0 {
         return Err(SolveError::StringFrictionCompliantBall);
     }
@@ -285,7 +294,7 @@ fn solve_on(params: &Params, on_chain: bool) -> Result<Bounce, SolveError> {
         Setup::new(params)
     };
     let spring = BallSpring::new(params, &setup);
-    let support = if on_chain && params.stiffness > 0.0 {
+    let support = if modal {
         let chain = Arc::new(Chain::new(params, &setup));
         let modes = Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb));
         Support::Chain { chain, modes }
