@@ -112,17 +112,25 @@ pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
             };
             let _ = writeln!(
                 out,
-                "The {} {} {} ({how})",
+                "The {} that {} {} ({how})",
                 spec.label,
                 goal,
                 objective.name(),
             );
+            // The value in its base unit, and as people read it where that differs.
+            let base = format!("{} {unit}", units::brief(best.value, 10))
+                .trim_end()
+                .to_string();
+            let shown = spec.show(best.value).to_string();
             let _ = writeln!(
                 out,
-                "  {:<24}{} {unit} ({})",
+                "  {:<24}{}",
                 format!("{} {}", spec.label, spec.symbol),
-                units::brief(best.value, 10),
-                spec.show(best.value)
+                if shown.trim() == base.trim() {
+                    base
+                } else {
+                    format!("{base} ({shown})")
+                }
             );
             let _ = writeln!(
                 out,

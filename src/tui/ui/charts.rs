@@ -228,9 +228,11 @@ fn cursor_line(app: &App, theme: &Theme, width: u16) -> (Line<'static>, Line<'st
 fn readouts(app: &App, theme: &Theme) -> [Line<'static>; 3] {
     let s = app.cursor_sample();
     let dim = |text: &'static str| Span::styled(text, theme.dim());
-    let force = match app.cursor_before() {
-        Some(before) if before.friction != s.friction => {
-            format!("{}→{}", fixed(before.friction, 1), fixed(s.friction, 1))
+    // A jump shows only where it shows at the readout's precision (a compliant ball's force is
+    // continuous, and rounding would otherwise print `123.9→123.9`).
+    let force = match app.cursor_before().map(|b| fixed(b.friction, 1)) {
+        Some(before) if before != fixed(s.friction, 1) => {
+            format!("{before}→{}", fixed(s.friction, 1))
         }
         _ => fixed(s.friction, 1),
     };
