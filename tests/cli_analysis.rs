@@ -544,3 +544,26 @@ fn figure_writes_svg_and_reports_bad_paths() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn a_sweep_that_fails_writes_no_partial_csv() {
+    // The last stiffness makes the cart too fast to resolve.
+    let (code, out, err) = run(&[
+        "sweep",
+        "--vary",
+        "stiffness",
+        "--from",
+        "1e3",
+        "--to",
+        "1e13",
+        "--steps",
+        "3",
+        "--log",
+    ]);
+    assert_eq!(code, 2, "{err}");
+    assert_eq!(out, "", "nothing on stdout");
+    assert!(
+        err.contains("--stiffness") && err.contains("too fast"),
+        "{err}"
+    );
+}
