@@ -544,4 +544,3 @@ fn figure_writes_svg_and_reports_bad_paths() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
-

@@ -28,9 +28,12 @@ impl<const K: usize, F: Fn(f64) -> [(f64, f64); K]> Event<K> for F {}
 /// that hovers at zero, as near the end of contact where the normal force vanishes, is not a rise.
 ///
 /// A branch that starts on its own zero (the slip of a slide that begins where a grip broke or the
-/// friction reversed, the margins of a grip at first contact) leaves it downward, but the bound cannot
-/// see the direction it leaves in: over the first eighth of a step such a branch is checked at the
-/// end only, while the others are proved as everywhere else.
+/// friction reversed, the margins of a grip at first contact) usually leaves it downward, but the bound
+/// cannot see the direction it leaves in: over a first stretch such a branch is checked at the end
+/// only, while the others are proved as everywhere else. The stretch is an eighth of a step, and no
+/// longer than sqrt(2 noise / curvature) (but a millionth of a step at least), over which a branch
+/// leaving zero tangentially cannot rise above its noise: one that leaves upward (a compliant ball's
+/// grip that breaks at once) is still caught.
 pub fn first_rise<const K: usize>(
     f: impl Event<K>,
     t0: f64,
@@ -52,7 +55,14 @@ pub fn first_rise<const K: usize>(
         ends_only: at_zero,
     };
     if at_zero.contains(&true) {
-        let b = Point::at(&f, (t0 + step / 8.0).min(t1));
+        let tangent = (0..K)
+            .filter(|&i| at_zero[i] && curvature[i] > 0.0)
+            .map(|i| (2.0 * noise[i] / curvature[i]).sqrt())
+            .fold(f64::INFINITY, f64::min);
+        let b = Point::at(
+            &f,
+            (t0 + (step / 8.0).min(tangent.max(step * 1e-6))).min(t1),
+        );
         if let Some(t) = search.first_in(&a, &b) {
             return Some(t);
         }
