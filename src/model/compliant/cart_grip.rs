@@ -28,6 +28,14 @@ pub struct Compliance {
     pub cb: f64,
     /// The grip's state matrix for z = (X, V, e, e').
     a: Matrix4<f64>,
+    /// S for the balanced state S z, S = diag(s_X, sqrt(M), sqrt(k_b), sqrt(m_eff)) with s_X = sqrt(k),
+    /// or sqrt(M) times the contact's rate for a free cart: the exponential of S A S⁻¹ keeps its
+    /// rounding on the scale of the rates, not of the largest entry of A.
+    scale: Vector4<f64>,
+    /// S A S⁻¹.
+    balanced: Matrix4<f64>,
+    /// On a free cart (k = 0), the grip in closed form.
+    free: Option<Free>,
     /// An upper bound on the fastest frequency in the grip, rad/s.
     pub fastest: f64,
     /// The grip's modes, when they are distinct: a sum of exponentials is much cheaper than the matrix
@@ -109,6 +117,12 @@ impl Modes {
 }
 
 impl Compliance {
+    /// exp(A τ) z, through the balanced matrix.
+    fn exp(&self, tau: f64, z: &Vector4<f64>) -> Vector4<f64> {
+        let balanced = (self.balanced * tau).exp() * z.component_mul(&self.scale);
+        balanced.component_div(&self.scale)
+    }
+
     pub fn new(params: &Params, setup: &Setup) -> Self {
         let kb = params.ball_stiffness;
         let cb = 2.0 * params.ball_damping * (kb * setup.m_eff).sqrt();
@@ -123,13 +137,132 @@ impl Compliance {
         );
         let fastest = (kb * both + k / big_m).sqrt() + cb * both;
         let modes = Modes::new(&a, kb, cb, big_m, k, me);
+        let contact = (kb * both).sqrt();
+        let s_x = if k > 0.0 {
+            k.sqrt()
+        } else {
+            big_m.sqrt() * contact
+        };
+        let scale = Vector4::new(s_x, big_m.sqrt(), kb.sqrt(), me.sqrt());
+        let balanced = Matrix4::from_fn(|i, j| scale[i] * a[(i, j)] / scale[j]);
+        let free = (k == 0.0).then(|| {
+            let (c, kappa) = (cb * both, kb * both);
+            Free {
+                a: 0.5 * c,
+                d2: 0.25 * c * c - kappa,
+                c,
+                kappa,
+                share: big_m * both,
+                big_m,
+            }
+        });
         Compliance {
             kb,
             cb,
             a,
+            scale,
+            balanced,
+            free,
             fastest,
             modes,
         }
+    }
+}
+
+/// The grip on a free cart (k = 0) in closed form. The stretch alone is a damped oscillator,
+/// e'' + c e' + κ e = 0 with c = c_b (1/m_eff + 1/M) and κ = k_b (1/m_eff + 1/M), and momentum gives the
+/// cart: V = V0 - (e' - e0') / (M (1/m_eff + 1/M)).
+#[derive(Clone, Copy, Debug)]
+struct Free {
+    /// c/2.
+    a: f64,
+    /// a² - κ (negative: underdamped).
+    d2: f64,
+    c: f64,
+    kappa: f64,
+    /// M (1/m_eff + 1/M).
+    share: f64,
+    /// M.
+    big_m: f64,
+}
+
+impl Free {
+    /// (ψ, ψ', φ, φ') at τ: the solutions with (ψ, ψ') = (1, -a) and (φ, φ') = (0, 1) at 0, so that
+    /// e = e0 ψ + (e0' + a e0) φ. Overdamped, through the slow root -κ/(a + d) and expm1, so that
+    /// nothing overflows or cancels.
+    fn basis(&self, tau: f64) -> (f64, f64, f64, f64) {
+        let (a, d2) = (self.a, self.d2);
+        let (psi, phi) = if d2 < 0.0 {
+            let w = (-d2).sqrt();
+            let (s, c) = (w * tau).sin_cos();
+            let decay = (-a * tau).exp();
+            (decay * c, decay * s / w)
+        } else {
+            let d = d2.sqrt();
+            let slow = (-self.kappa / (a + d) * tau).exp();
+            let m = (-2.0 * d * tau).exp_m1();
+            let phi = if d > 0.0 {
+                slow * -m / (2.0 * d)
+            } else {
+                slow * tau
+            };
+            (slow * (2.0 + m) / 2.0, phi)
+        };
+        (psi, d2 * phi - a * psi, phi, psi - a * phi)
+    }
+
+    /// A bound on |φ| over τ >= 0 (|ψ| <= 1).
+    fn phi_max(&self) -> f64 {
+        let (a, d2) = (self.a, self.d2);
+        let e = std::f64::consts::E;
+        if d2 < 0.0 {
+            let w = (-d2).sqrt();
+            if a > 0.0 {
+                (1.0 / w).min(1.0 / (e * a))
+            } else {
+                1.0 / w
+            }
+        } else {
+            let d = d2.sqrt();
+            let slow = self.kappa / (a + d);
+            let by_d = if d > 0.0 {
+                1.0 / (2.0 * d)
+            } else {
+                f64::INFINITY
+            };
+            by_d.min(1.0 / (e * slow))
+        }
+    }
+
+    /// z = (X, V, e, e') and z' at τ from z0.
+    fn at(&self, z0: &Vector4<f64>, tau: f64, kb: f64, cb: f64) -> [Vector4<f64>; 2] {
+        let (x0, v0, e0, de0) = (z0[0], z0[1], z0[2], z0[3]);
+        let (psi, dpsi, phi, dphi) = self.basis(tau);
+        let lead = de0 + self.a * e0;
+        let e = e0 * psi + lead * phi;
+        let de = e0 * dpsi + lead * dphi;
+        let dde = -self.c * de - self.kappa * e;
+        let v = v0 - (de - de0) / self.share;
+        let x = x0 + v0 * tau - (e - e0 - de0 * tau) / self.share;
+        let force = kb * e + cb * de;
+        [
+            Vector4::new(x, v, e, de),
+            Vector4::new(v, force / self.big_m, de, dde),
+        ]
+    }
+
+    /// A bound on |F''| over the phase and on the size of F's terms k_b |e| + c_b |e'|. Both F and e
+    /// solve the oscillator, so y(τ) = y0 ψ + (y0' + a y0) φ bounds each by |y0| + |y0' + a y0| φ_max.
+    fn bounds(&self, z0: &Vector4<f64>, kb: f64, cb: f64) -> (f64, f64) {
+        let (a, c, kappa) = (self.a, self.c, self.kappa);
+        let reach = |y: f64, dy: f64| y.abs() + (dy + a * y).abs() * self.phi_max();
+        let (e, de) = (z0[2], z0[3]);
+        let dde = -c * de - kappa * e;
+        let f = kb * e + cb * de;
+        let df = kb * de + cb * dde;
+        let ddf = -c * df - kappa * f;
+        let dddf = -c * ddf - kappa * df;
+        (reach(ddf, dddf), kb * reach(e, de) + cb * reach(de, dde))
     }
 }
 
@@ -155,8 +288,8 @@ impl CompliantGrip {
         };
         // The modes are used only where they reproduce the matrix exponential, in the energy norm, to
         // MODAL_CHECK at the middle and the end of the rest of the contact (near-double roots, as for a
-        // critically damped ball on a very heavy cart, or a free cart's double zero, fail it).
-        if let Some(modes) = &compliance.modes {
+        // critically damped ball on a very heavy cart, fail it). A free cart has its closed form.
+        if let (Some(modes), None) = (&compliance.modes, &compliance.free) {
             let z0 = grip.z0.map(|x| Complex::new(x, 0.0));
             let c = modes.v_inv * z0;
             let size = grip.size(setup);
@@ -165,7 +298,7 @@ impl CompliantGrip {
                 let exact = if tau == 0.0 {
                     grip.z0
                 } else {
-                    (compliance.a * tau).exp() * grip.z0
+                    compliance.exp(tau, &grip.z0)
                 };
                 let (modal, _) = modes.at(&c, tau);
                 grip.energy_norm(setup, &(modal - exact)) <= MODAL_CHECK * size
@@ -181,10 +314,15 @@ impl CompliantGrip {
     #[inline]
     fn propagate(&self, t: f64) -> (Vector4<f64>, Vector4<f64>) {
         let tau = t - self.start.t;
+        let c = &self.compliance;
+        if let Some(free) = &c.free {
+            let [z, dz] = free.at(&self.z0, tau, c.kb, c.cb);
+            return (z, dz);
+        }
         match (&self.compliance.modes, &self.coefficients) {
             (Some(modes), Some(c)) => modes.at(c, tau),
             _ => {
-                let z = (self.compliance.a * tau).exp() * self.z0;
+                let z = self.compliance.exp(tau, &self.z0);
                 (z, self.compliance.a * z)
             }
         }
@@ -250,11 +388,60 @@ impl CompliantGrip {
     /// A bound on |F''| over the phase, and the size of F (for the rounding floor).
     pub(super) fn force_bounds(&self, setup: &Setup) -> (f64, f64) {
         let c = &self.compliance;
+        if let Some(free) = &c.free {
+            return free.bounds(&self.z0, c.kb, c.cb);
+        }
         let g = RowVector4::new(0.0, 0.0, c.kb, c.cb);
         (
             self.bound(setup, g * c.a * c.a),
             self.bound(setup, RowVector4::new(0.0, 0.0, c.kb, 0.0))
                 + self.bound(setup, RowVector4::new(0.0, 0.0, 0.0, c.cb)),
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The free cart's closed form against the exponential of its (balanced) state matrix, under-,
+    /// critically and overdamped, with its bounds holding.
+    #[test]
+    fn the_free_grip_is_the_exponential() {
+        for damping in [0.0, 0.3, 1.0, 1.0 + 1e-9, 3.0, 40.0] {
+            let params = Params {
+                stiffness: 0.0,
+                ball_stiffness: 1e6,
+                ball_damping: damping,
+                ..Params::default()
+            };
+            let setup = Setup::new(&params);
+            let compliance = Compliance::new(&params, &setup);
+            let free = compliance.free.expect("a free cart");
+            let z0 = Vector4::new(1e-3, 2.0, 3e-4, -1.5);
+            let (curvature, _) = free.bounds(&z0, compliance.kb, compliance.cb);
+            for tau in [0.0, 1e-6, 1e-4, 1e-3, 4e-3] {
+                let [z, dz] = free.at(&z0, tau, compliance.kb, compliance.cb);
+                let exact = compliance.exp(tau, &z0);
+                for i in 0..4 {
+                    let scale = z0.abs().max() + exact.abs().max();
+                    assert!(
+                        (z[i] - exact[i]).abs() <= 1e-11 * scale,
+                        "zeta {damping} tau {tau}"
+                    );
+                }
+                assert!(((compliance.a * z) - dz).abs().max() <= 1e-9 * dz.abs().max().max(1.0));
+                let h = 1e-9;
+                let rate = |t: f64| {
+                    let [_, dz] = free.at(&z0, t, compliance.kb, compliance.cb);
+                    compliance.kb * dz[2] + compliance.cb * dz[3]
+                };
+                let f2 = (rate(tau + h) - rate(tau)) / h;
+                assert!(
+                    f2.abs() <= curvature * (1.0 + 1e-6),
+                    "zeta {damping}: |F''| bound"
+                );
+            }
+        }
     }
 }
