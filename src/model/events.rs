@@ -28,12 +28,9 @@ impl<const K: usize, F: Fn(f64) -> [(f64, f64); K]> Event<K> for F {}
 /// that hovers at zero, as near the end of contact where the normal force vanishes, is not a rise.
 ///
 /// A branch that starts on its own zero (the slip of a slide that begins where a grip broke or the
-/// friction reversed, the margins of a grip at first contact) usually leaves it downward, but the bound
-/// cannot see the direction it leaves in: over a first stretch such a branch is checked at the end
-/// only, while the others are proved as everywhere else. The stretch is an eighth of a step, and no
-/// longer than sqrt(2 noise / curvature) (but a millionth of a step at least), over which a branch
-/// leaving zero tangentially cannot rise above its noise: one that leaves upward (a compliant ball's
-/// grip that breaks at once) is still caught.
+/// friction reversed, the margins of a grip at first contact) leaves it downward, the phase having been
+/// chosen so, but the bound cannot see the direction it leaves in: over the first eighth of a step such
+/// a branch is checked at the end only, while the others are proved as everywhere else.
 pub fn first_rise<const K: usize>(
     f: impl Event<K>,
     t0: f64,
@@ -41,6 +38,41 @@ pub fn first_rise<const K: usize>(
     step: f64,
     curvature: [f64; K],
     noise: [f64; K],
+) -> Option<(f64, usize)> {
+    search(f, t0, t1, step, curvature, noise, Start::Downward)
+}
+
+/// As [`first_rise`], for a phase whose branches may leave their zero upward (a compliant ball's grip,
+/// entered whenever its patch stops slipping, can break as soon as it begins, its force leaving mu N
+/// tangentially). The stretch checked at its end only is then no longer than sqrt(2 noise /
+/// curvature), over which a branch leaving zero tangentially cannot rise above its noise (and a
+/// millionth of a step at least).
+pub fn first_rise_from_tangent<const K: usize>(
+    f: impl Event<K>,
+    t0: f64,
+    t1: f64,
+    step: f64,
+    curvature: [f64; K],
+    noise: [f64; K],
+) -> Option<(f64, usize)> {
+    search(f, t0, t1, step, curvature, noise, Start::Tangent)
+}
+
+/// How a branch that starts on its zero may leave it.
+#[derive(Clone, Copy, PartialEq)]
+enum Start {
+    Downward,
+    Tangent,
+}
+
+fn search<const K: usize>(
+    f: impl Event<K>,
+    t0: f64,
+    t1: f64,
+    step: f64,
+    curvature: [f64; K],
+    noise: [f64; K],
+    start: Start,
 ) -> Option<(f64, usize)> {
     if t1 <= t0 {
         return None;
@@ -55,14 +87,17 @@ pub fn first_rise<const K: usize>(
         ends_only: at_zero,
     };
     if at_zero.contains(&true) {
-        let tangent = (0..K)
-            .filter(|&i| at_zero[i] && curvature[i] > 0.0)
-            .map(|i| (2.0 * noise[i] / curvature[i]).sqrt())
-            .fold(f64::INFINITY, f64::min);
-        let b = Point::at(
-            &f,
-            (t0 + (step / 8.0).min(tangent.max(step * 1e-6))).min(t1),
-        );
+        let window = match start {
+            Start::Downward => step / 8.0,
+            Start::Tangent => {
+                let tangent = (0..K)
+                    .filter(|&i| at_zero[i] && curvature[i] > 0.0)
+                    .map(|i| (2.0 * noise[i] / curvature[i]).sqrt())
+                    .fold(f64::INFINITY, f64::min);
+                (step / 8.0).min(tangent.max(step * 1e-6))
+            }
+        };
+        let b = Point::at(&f, (t0 + window).min(t1));
         if let Some(t) = search.first_in(&a, &b) {
             return Some(t);
         }

@@ -35,7 +35,7 @@ use super::bounce::{
 use super::cart::Cart;
 use super::chain::motion::Motion as ChainMotion;
 use super::chain::{Chain, ChainState};
-use super::events::first_rise;
+use super::events::{first_rise, first_rise_from_tangent};
 use super::params::Params;
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
@@ -421,7 +421,7 @@ fn solve_on(params: &Params, modal: bool) -> Result<Bounce, SolveError> {
                 let event = stages
                     .iter()
                     .find_map(|&(from, to, curvature, step)| {
-                        first_rise(f, from, to, step, [curvature; 2], [noise; 2])
+                        first_rise_from_tangent(f, from, to, step, [curvature; 2], [noise; 2])
                     })
                     .map(|(t, branch)| (t, if branch == 0 { 1.0 } else { -1.0 }));
                 (grip, event)
