@@ -20,41 +20,16 @@ use snapback::model::{Bounce, Params, PhaseKind, SolveError, solve};
 mod rng;
 use rng::Rng;
 
+#[path = "support/compliant.rs"]
+mod compliant_params;
+use compliant_params::random_compliant;
+
 #[path = "support/prop.rs"]
 mod prop;
 use prop::{config, log_range};
 
 /// The reference's step: a 250th of a radian of the fastest oscillation (see `step_for`).
 const PER_RADIAN: f64 = 0.004;
-
-/// Random bounces with a moderately stiff ball, as tests/compliant.rs draws them, on `chain` masses.
-fn random_params(rng: &mut Rng, chain: usize) -> Params {
-    Params {
-        angle_deg: rng.uniform(5.0, 90.0),
-        speed: rng.uniform(2.0, 30.0),
-        spin: rng.uniform(-300.0, 300.0),
-        mu: rng.uniform(0.1, 0.8),
-        duration: rng.uniform(2e-3, 8e-3),
-        ey: rng.uniform(0.3, 1.0),
-        mass: rng.uniform(0.04, 0.2),
-        radius: rng.uniform(0.02, 0.05),
-        alpha: rng.uniform(0.4, 0.67),
-        cart_mass: rng.log_uniform(3e-3, 1.0),
-        stiffness: if rng.unit() < 0.1 {
-            0.0
-        } else {
-            rng.log_uniform(1e3, 1e5)
-        },
-        cart_friction: 0.0,
-        chain: chain as f64,
-        ball_stiffness: rng.log_uniform(1e4, 1e6),
-        ball_damping: if rng.unit() < 0.2 {
-            0.0
-        } else {
-            rng.uniform(0.05, 1.5)
-        },
-    }
-}
 
 /// Random chains of 2 to 16 masses, lighter and with stiffer balls than `random_params` draws (more of
 /// them grip several times).
@@ -63,7 +38,7 @@ fn random_chain(rng: &mut Rng) -> Params {
     Params {
         cart_mass: rng.log_uniform(1e-3, 1.0),
         ball_stiffness: rng.log_uniform(1e4, 1e7),
-        ..random_params(rng, n)
+        ..random_compliant(rng, n)
     }
 }
 
@@ -180,7 +155,7 @@ fn solver_agrees(cases: &[Params]) -> (f64, usize) {
 #[test]
 fn one_mass_agrees_with_the_single_cart_reference_and_the_solver() {
     let mut rng = Rng(0x0c4a_1ace_5eed_0002);
-    let cases: Vec<Params> = (0..50).map(|_| random_params(&mut rng, 1)).collect();
+    let cases: Vec<Params> = (0..50).map(|_| random_compliant(&mut rng, 1)).collect();
     // Against the single cart's own reference.
     let mut worst: f64 = 0.0;
     for (i, p) in cases.iter().enumerate() {
@@ -225,7 +200,7 @@ fn a_free_chain_is_its_first_mass_alone() {
         let n = 2 + rng.below(15);
         let p = Params {
             stiffness: 0.0,
-            ..random_params(&mut rng, n)
+            ..random_compliant(&mut rng, n)
         };
         let r = reference(&p);
         let alone = Params {
@@ -309,7 +284,7 @@ fn the_reference_balances_energy_on_a_chain() {
             random_chain(&mut rng)
         } else {
             let n = 2 + rng.below(15);
-            random_params(&mut rng, n)
+            random_compliant(&mut rng, n)
         };
         let r = reference(&p);
         let e = r.energy;

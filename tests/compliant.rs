@@ -13,38 +13,17 @@ use snapback::model::{Params, PhaseKind, SolveError, solve};
 mod rng;
 use rng::Rng;
 
+#[path = "support/compliant.rs"]
+mod compliant_params;
+use compliant_params::random_compliant;
+
 #[path = "support/prop.rs"]
 mod prop;
 use prop::{config, log_range};
 
-/// Random bounces with a moderately stiff ball (its contact mode at most about 35 radians per contact
-/// times a few).
+/// Random bounces with a moderately stiff ball on the single cart.
 fn random_params(rng: &mut Rng) -> Params {
-    Params {
-        angle_deg: rng.uniform(5.0, 90.0),
-        speed: rng.uniform(2.0, 30.0),
-        spin: rng.uniform(-300.0, 300.0),
-        mu: rng.uniform(0.1, 0.8),
-        duration: rng.uniform(2e-3, 8e-3),
-        ey: rng.uniform(0.3, 1.0),
-        mass: rng.uniform(0.04, 0.2),
-        radius: rng.uniform(0.02, 0.05),
-        alpha: rng.uniform(0.4, 0.67),
-        cart_mass: rng.log_uniform(3e-3, 1.0),
-        stiffness: if rng.unit() < 0.1 {
-            0.0
-        } else {
-            rng.log_uniform(1e3, 1e5)
-        },
-        cart_friction: 0.0,
-        chain: 1.0,
-        ball_stiffness: rng.log_uniform(1e4, 1e6),
-        ball_damping: if rng.unit() < 0.2 {
-            0.0
-        } else {
-            rng.uniform(0.05, 1.5)
-        },
-    }
+    random_compliant(rng, 1)
 }
 
 fn compliant(ball_stiffness: f64, ball_damping: f64) -> Params {

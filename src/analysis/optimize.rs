@@ -143,17 +143,7 @@ pub fn optimize(
     } else {
         span.at(best, scan)
     };
-    let bounce = span.solve(base, value)?;
-    let objective_value = objective
-        .of(&bounce.outcome)
-        .expect("the optimum has a defined objective");
-    Ok(Optimum {
-        value,
-        objective_value,
-        bounce,
-        span,
-        exhaustive: false,
-    })
+    optimum(base, span, objective, value, false)
 }
 
 /// The quantity minimised: the objective, negated to maximise; an undefined objective counts as the
@@ -205,6 +195,17 @@ fn exhaustive(
         .map(|&value| cost_at(base, &span, objective, minimize, value))
         .collect::<Result<_, _>>()?;
     let value = values[best_of(&costs, objective, &span)?];
+    optimum(base, span, objective, value, true)
+}
+
+/// The bounce at the optimum `value`, with its objective.
+fn optimum(
+    base: &Params,
+    span: Span,
+    objective: Objective,
+    value: f64,
+    exhaustive: bool,
+) -> Result<Optimum, AnalysisError> {
     let bounce = span.solve(base, value)?;
     let objective_value = objective
         .of(&bounce.outcome)
@@ -214,6 +215,6 @@ fn exhaustive(
         objective_value,
         bounce,
         span,
-        exhaustive: true,
+        exhaustive,
     })
 }

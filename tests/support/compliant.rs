@@ -1,0 +1,35 @@
+//! Random compliant-ball bounces, shared by the compliant ball's tests on the cart and on a chain.
+
+use snapback::model::Params;
+
+use super::rng::Rng;
+
+/// Random bounces with a moderately stiff ball (its contact mode at most about 35 radians per contact
+/// times a few) on `chain` masses; 10 % of the carts are free (k = 0).
+pub fn random_compliant(rng: &mut Rng, chain: usize) -> Params {
+    Params {
+        angle_deg: rng.uniform(5.0, 90.0),
+        speed: rng.uniform(2.0, 30.0),
+        spin: rng.uniform(-300.0, 300.0),
+        mu: rng.uniform(0.1, 0.8),
+        duration: rng.uniform(2e-3, 8e-3),
+        ey: rng.uniform(0.3, 1.0),
+        mass: rng.uniform(0.04, 0.2),
+        radius: rng.uniform(0.02, 0.05),
+        alpha: rng.uniform(0.4, 0.67),
+        cart_mass: rng.log_uniform(3e-3, 1.0),
+        stiffness: if rng.unit() < 0.1 {
+            0.0
+        } else {
+            rng.log_uniform(1e3, 1e5)
+        },
+        cart_friction: 0.0,
+        chain: chain as f64,
+        ball_stiffness: rng.log_uniform(1e4, 1e6),
+        ball_damping: if rng.unit() < 0.2 {
+            0.0
+        } else {
+            rng.uniform(0.05, 1.5)
+        },
+    }
+}
