@@ -35,7 +35,7 @@ use super::bounce::{
 use super::cart::Cart;
 use super::chain::motion::Motion as ChainMotion;
 use super::chain::{Chain, ChainState};
-use super::events::{first_rise, first_rise_from_tangent};
+use super::events::first_rise_from_tangent;
 use super::params::Params;
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
@@ -375,7 +375,7 @@ fn solve_on(params: &Params, modal: bool) -> Result<Bounce, SolveError> {
                 let early = if slide.stretch.damped {
                     let curvature = slip_curvature + slide.stretch.third(w, t0);
                     let step = setup.event_step(fastest.max(slide.stretch.lambda));
-                    first_rise(f, t0, split, step, [curvature], [noise])
+                    first_rise_from_tangent(f, t0, split, step, [curvature], [noise])
                 } else {
                     None
                 };
@@ -383,7 +383,7 @@ fn solve_on(params: &Params, modal: bool) -> Result<Bounce, SolveError> {
                     .or_else(|| {
                         let curvature = slip_curvature + slide.stretch.third(w, split);
                         let step = setup.event_step(fastest);
-                        first_rise(f, split, end, step, [curvature], [noise])
+                        first_rise_from_tangent(f, split, end, step, [curvature], [noise])
                     })
                     .map(|(t, _)| (t, 0.0));
                 (CompliantMotion::Slide(slide), event)
