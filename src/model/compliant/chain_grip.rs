@@ -23,7 +23,7 @@
 //! otherwise (near-double roots) the grip is evaluated through the matrix exponential of its state
 //! matrix, exactly but slowly.
 
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, OnceLock};
 
 use nalgebra::{Cholesky, Complex, DMatrix, DVector};
 
@@ -91,6 +91,8 @@ pub struct GripModes {
     a: DMatrix<f64>,
     /// L, the Cholesky factor of K (`None` if K is not positive definite, as for k = 0).
     lower: Option<DMatrix<f64>>,
+    /// For the exponential: a step h with |Ã h|₁ <= 1 and exp(Ã h), made when a grip first needs it.
+    checkpoint: OnceLock<(f64, DMatrix<f64>)>,
     /// An upper bound on the fastest rate in the grip, rad/s.
     pub fastest: f64,
 }
@@ -143,6 +145,7 @@ impl GripModes {
             modes: None,
             a,
             lower,
+            checkpoint: OnceLock::new(),
             fastest,
         };
         if grip.lower.is_some() {
@@ -408,6 +411,19 @@ impl GripModes {
         &self.chain
     }
 
+    /// The exponential's step h and exp(Ã h).
+    fn checkpoint(&self) -> &(f64, DMatrix<f64>) {
+        self.checkpoint.get_or_init(|| {
+            let h = 1.0
+                / self
+                    .a
+                    .column_iter()
+                    .map(|c| c.lp_norm(1))
+                    .fold(0.0, f64::max);
+            (h, (&self.a * h).exp())
+        })
+    }
+
     /// z̃ = T z for z = (u, Q, u', Q').
     fn to_energy(&self, z: &[f64]) -> DVector<f64> {
         let dof = self.n + 1;
@@ -479,6 +495,8 @@ pub struct ChainGrip {
     z0: Vec<f64>,
     /// The weighted modal coefficients of z0, when the modes reproduce it.
     coefficients: Option<Vec<C64>>,
+    /// Without them, z̃ at the start and after every step h of the exponential, as far as asked for.
+    checkpoints: Arc<Mutex<Vec<DVector<f64>>>>,
 }
 
 impl ChainGrip {
@@ -501,6 +519,7 @@ impl ChainGrip {
             start,
             z0,
             coefficients,
+            checkpoints: Arc::new(Mutex::new(Vec::new())),
         }
     }
 
@@ -528,13 +547,42 @@ impl ChainGrip {
                 dz[..=n].copy_from_slice(&z[n + 1..]);
             }
             _ => {
-                let zt = (&g.a * tau).exp() * g.to_energy(&self.z0);
+                let zt = self.exponential(tau);
                 let dzt = &g.a * &zt;
                 z.copy_from_slice(&g.energy_to_state(&zt));
                 dz.copy_from_slice(&g.energy_to_state(&dzt));
             }
         }
         (z, dz)
+    }
+
+    /// z̃ = exp(Ã τ) z̃0: exp(Ã h) applied k times from the start (each result kept for the next call),
+    /// then the Taylor series of exp(Ã δ) applied to that, δ = τ - k h < h, |Ã δ| <= 1.
+    fn exponential(&self, tau: f64) -> DVector<f64> {
+        let (h, step) = self.modes.checkpoint();
+        let k = (tau.max(0.0) / h).floor() as usize;
+        let base = {
+            let mut points = self.checkpoints.lock().unwrap_or_else(|e| e.into_inner());
+            if points.is_empty() {
+                points.push(self.modes.to_energy(&self.z0));
+            }
+            while points.len() <= k {
+                let next = step * points.last().expect("the start");
+                points.push(next);
+            }
+            points[k].clone()
+        };
+        let delta = tau - k as f64 * h;
+        let mut sum = base.clone();
+        let mut term = base;
+        for m in 1..40 {
+            term = (&self.modes.a * &term) * (delta / m as f64);
+            sum += &term;
+            if term.norm() <= f64::EPSILON * sum.norm() {
+                break;
+            }
+        }
+        sum
     }
 
     /// The ball, the first mass, the force and the stretch at `t`.
