@@ -621,13 +621,12 @@ impl ChainGrip {
                 (z[n + 1], force, g.kb * de + g.cb * dde, e, de, dde, x1, v1)
             }
         };
-        // m_eff (u' - u0') = -∫F dt.
-        let impulse = -setup.m_eff * (du - self.z0[n + 1]);
+        let (vx, omega) = self.ball(setup, du);
         Point {
             state: State {
                 t,
-                vx: self.start.vx - impulse / setup.m,
-                omega: self.start.omega + impulse * setup.r / setup.inertia,
+                vx,
+                omega,
                 x: x1,
                 v: v1,
             },
@@ -641,22 +640,31 @@ impl ChainGrip {
     }
 
     /// The ball and the whole chain at `t`, and the stretch there.
-    pub fn full(&self, setup: &Setup, t: f64) -> (ChainState, f64) {
-        let point = self.at(setup, t);
+    /// The ball's (v_x, omega) once its contact point moves at `du`: m_eff (u' - u0') = -∫F dt.
+    fn ball(&self, setup: &Setup, du: f64) -> (f64, f64) {
+        let impulse = -setup.m_eff * (du - self.z0[self.modes.n + 1]);
+        (
+            self.start.vx - impulse / setup.m,
+            self.start.omega + impulse * setup.r / setup.inertia,
+        )
+    }
+
+    /// The ball and the whole chain at `t`.
+    pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
         let (z, _) = self.propagate(t);
         let n = self.modes.n;
         let slide = &self.modes.chain.slide;
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         q[..n].copy_from_slice(&z[1..=n]);
         dq[..n].copy_from_slice(&z[n + 2..]);
-        let state = ChainState {
+        let (vx, omega) = self.ball(setup, z[n + 1]);
+        ChainState {
             t,
-            vx: point.state.vx,
-            omega: point.state.omega,
+            vx,
+            omega,
             x: slide.expand(&q),
             v: slide.expand(&dq),
-        };
-        (state, point.e)
+        }
     }
 
     /// The stages of the event search over the rest of the contact, (from, to, bound on |F''|, step),
@@ -675,25 +683,24 @@ impl ChainGrip {
         let cuts = (1..=10)
             .map(|k| t0 + k as f64 * stage)
             .take_while(|&t| t < end);
-        let (_, size, _) = self.force_bounds(setup, t0);
-        let bounds = |from: f64| {
-            let (curvature, terms, fastest) = self.force_bounds(setup, from);
+        let stage_from = |from: f64, (curvature, terms, fastest): (f64, f64, f64)| {
             let rate = if terms > 0.0 {
                 (curvature / terms).sqrt().min(fastest)
             } else {
                 0.0
             };
-            (curvature, setup.event_step(rate))
+            (from, end, curvature, setup.event_step(rate))
         };
+        let first = self.force_bounds(setup, t0);
+        let size = first.1;
+        let mut stages = vec![stage_from(t0, first)];
         // A cut pays for itself only where the bound has fallen by half since the stage began.
-        let (curvature, step) = bounds(t0);
-        let mut stages = vec![(t0, end, curvature, step)];
         for cut in cuts {
-            let (curvature, step) = bounds(cut);
+            let next = stage_from(cut, self.force_bounds(setup, cut));
             let current = stages.last_mut().expect("one stage at least");
-            if curvature < 0.5 * current.2 {
+            if next.2 < 0.5 * current.2 {
                 current.1 = cut;
-                stages.push((cut, end, curvature, step));
+                stages.push(next);
             }
         }
         (stages, size)

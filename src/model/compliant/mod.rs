@@ -199,7 +199,7 @@ impl CompliantMotion {
                 rigid: Rigid::Chain(motion),
                 ..
             }) => Some(motion.chain().energy(&motion.full(setup, t))),
-            CompliantMotion::ChainGrip(g) => Some(g.modes.chain().energy(&g.full(setup, t).0)),
+            CompliantMotion::ChainGrip(g) => Some(g.modes.chain().energy(&g.full(setup, t))),
             _ => None,
         }
     }
@@ -441,7 +441,7 @@ fn solve_on(params: &Params, modal: bool) -> Result<Bounce, SolveError> {
                 rigid: Rigid::Chain(chain),
                 ..
             }) => chain.full(&setup, t1),
-            CompliantMotion::ChainGrip(grip) => grip.full(&setup, t1).0,
+            CompliantMotion::ChainGrip(grip) => grip.full(&setup, t1),
             _ => ChainState::from_contact(&state),
         };
         if t1 > t0 {
