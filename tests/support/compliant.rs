@@ -1,7 +1,9 @@
 //! Random compliant-ball bounces, shared by the compliant ball's tests on the cart and on a chain.
 
+use proptest::prelude::*;
 use snapback::model::Params;
 
+use super::prop::log_range;
 use super::rng::Rng;
 
 /// Random bounces with a moderately stiff ball (its contact mode at most about 35 radians per contact
@@ -32,4 +34,47 @@ pub fn random_compliant(rng: &mut Rng, chain: usize) -> Params {
             rng.uniform(0.05, 1.5)
         },
     }
+}
+
+/// Random valid compliant balls over the property tests' ranges, with the cart's (mass, stiffness, number
+/// of masses) drawn from `cart`.
+pub fn compliant_strategy(
+    cart: impl Strategy<Value = (f64, f64, usize)>,
+) -> impl Strategy<Value = Params> {
+    let ball = (0.01f64..0.5, 0.01f64..0.1, 0.3f64..0.8);
+    let throw = (
+        prop_oneof![1.0f64..=90.0, Just(90.0)],
+        0.5f64..50.0,
+        -500.0f64..500.0,
+    );
+    let contact = (0.0f64..1.2, 1e-3f64..20e-3, 0.0f64..=1.0);
+    let compliance = (
+        log_range(1e3, 1e8),
+        prop_oneof![Just(0.0), Just(1.0), 0.0f64..3.0, log_range(1e-12, 1e-2)],
+    );
+    (ball, throw, contact, cart, compliance).prop_map(
+        |(
+            (mass, radius, alpha),
+            (angle_deg, speed, spin),
+            (mu, duration, ey),
+            (cart_mass, stiffness, n),
+            (kb, zeta),
+        )| Params {
+            angle_deg,
+            speed,
+            spin,
+            mu,
+            duration,
+            ey,
+            mass,
+            radius,
+            alpha,
+            cart_mass,
+            stiffness,
+            cart_friction: 0.0,
+            chain: n as f64,
+            ball_stiffness: kb,
+            ball_damping: zeta,
+        },
+    )
 }
