@@ -3,8 +3,8 @@
 use serde::Serialize;
 
 use super::cart::Cart;
-use super::chain::{ChainMotion, solve_chain};
-use super::compliant::{CompliantMotion, solve_compliant};
+use super::chain::{ChainMotion, solve_chain_cancellable};
+use super::compliant::{CompliantMotion, solve_compliant_cancellable};
 use super::events::first_rise;
 use super::grip::Grip;
 use super::params::{ParamError, Params};
@@ -238,6 +238,9 @@ pub enum SolveError {
     TooFast { radians: f64 },
     #[error("the bounce switched between sliding and gripping more than {MAX_TRANSITIONS} times")]
     TooManyPhases,
+    /// The caller's cancellation check said the solve is no longer wanted.
+    #[error("the solve was cancelled")]
+    Cancelled,
     #[error(
         "string friction on the cart (--cart-friction) is modelled for the single cart only, not for a \
          chain of {chain} masses: set --cart-friction 0 or --chain 1"
@@ -268,12 +271,22 @@ pub(super) const ROUNDING: f64 = 1e-12;
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
 /// located by root finding on the exact expressions.
 pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
+    solve_cancellable(params, &|| false)
+}
+
+/// [`solve`], abandoned with [`SolveError::Cancelled`] as soon as `cancelled` returns true: it is asked
+/// before every phase, so a caller (the explorer's worker, a headless command on Ctrl-C) can drop a solve
+/// that is no longer wanted.
+pub fn solve_cancellable(
+    params: &Params,
+    cancelled: &impl Fn() -> bool,
+) -> Result<Bounce, SolveError> {
     params.validate()?;
     if params.ball_stiffness > 0.0 {
-        return solve_compliant(params);
+        return solve_compliant_cancellable(params, cancelled);
     }
     if params.chain > 1.0 {
-        return solve_chain(params);
+        return solve_chain_cancellable(params, cancelled);
     }
     let setup = Setup::new(params);
     let radians = setup.omega_slide.max(setup.omega_grip) * setup.duration;
@@ -295,6 +308,9 @@ pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
     let mut cause = Cause::Start;
     let mut phases = Vec::with_capacity(8);
     for _ in 0..MAX_TRANSITIONS {
+        if cancelled() {
+            return Err(SolveError::Cancelled);
+        }
         let t0 = state.t;
         let motion = match ball {
             Ball::Slide(dir) => Motion::Slide(Slide::new(&setup, state, dir, cart)),
@@ -684,5 +700,49 @@ impl Bounce {
     /// True when the ball slides for the whole contact.
     pub fn slides_throughout(&self) -> bool {
         self.phases.iter().all(|p| p.kind == PhaseKind::Slide)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use std::cell::Cell;
+
+    use super::*;
+
+    /// A check that says "cancel" from its `n`th call on, counting the calls.
+    fn cancel_from(n: usize, calls: &Cell<usize>) -> impl Fn() -> bool + '_ {
+        move || {
+            calls.set(calls.get() + 1);
+            calls.get() >= n
+        }
+    }
+
+    #[test]
+    fn cancellation_is_asked_between_phases_on_every_model() {
+        let base = Params {
+            cart_mass: 0.001,
+            stiffness: 9554.0,
+            ..Params::default()
+        };
+        for params in [
+            base,
+            Params { chain: 4.0, ..base },
+            Params {
+                ball_stiffness: 1e6,
+                ball_damping: 0.5,
+                ..base
+            },
+        ] {
+            let whole = solve(&params).unwrap();
+            assert!(whole.phases.len() >= 3);
+            let calls = Cell::new(0);
+            let never = solve_cancellable(&params, &cancel_from(usize::MAX, &calls)).unwrap();
+            assert_eq!(never.outcome, whole.outcome);
+            assert!(calls.get() >= whole.phases.len());
+            let calls = Cell::new(0);
+            let cancelled = solve_cancellable(&params, &cancel_from(2, &calls));
+            assert_eq!(cancelled.unwrap_err(), SolveError::Cancelled);
+            assert_eq!(calls.get(), 2, "stops at the first check that says so");
+        }
     }
 }

@@ -15,7 +15,10 @@ pub mod slide;
 pub mod transition;
 pub mod units;
 
-pub use bounce::{BallPhase, Bounce, Energy, Outcome, Phase, PhaseKind, Sample, SolveError, solve};
+pub use bounce::{
+    BallPhase, Bounce, Energy, Outcome, Phase, PhaseKind, Sample, SolveError, solve,
+    solve_cancellable,
+};
 pub use cart::Cart;
 pub use params::{PARAMS, ParamError, ParamId, ParamSpec, Params};
 pub use setup::State;

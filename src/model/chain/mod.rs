@@ -21,7 +21,7 @@ use super::bounce::{
     ROUNDING, SolveError, finish,
 };
 use super::cart::Cart;
-use super::compliant::solve_compliant;
+use super::compliant::solve_compliant_cancellable;
 use super::events::first_rise;
 use super::params::Params;
 use super::setup::{Setup, State};
@@ -132,9 +132,17 @@ pub type ChainMotion = Arc<Motion>;
 /// Solves one bounce on a chain of `params.chain` masses, for any N including 1 (where it reproduces the
 /// single-cart solver to rounding; [`super::solve`] sends N = 1 to the single cart's own path).
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
+    solve_chain_cancellable(params, &|| false)
+}
+
+/// [`solve_chain`], abandoned when `cancelled` returns true (asked before every phase).
+pub fn solve_chain_cancellable(
+    params: &Params,
+    cancelled: &impl Fn() -> bool,
+) -> Result<Bounce, SolveError> {
     params.validate()?;
     if params.ball_stiffness > 0.0 {
-        return solve_compliant(params);
+        return solve_compliant_cancellable(params, cancelled);
     }
     if params.cart_friction > 0.0 {
         return Err(SolveError::ChainStringFriction {
@@ -166,6 +174,9 @@ pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     let mut cause = Cause::Start;
     let mut phases = Vec::with_capacity(4);
     for _ in 0..MAX_TRANSITIONS {
+        if cancelled() {
+            return Err(SolveError::Cancelled);
+        }
         let t0 = state.t;
         let dir = match ball {
             Ball::Slide(dir) => dir,

@@ -262,7 +262,15 @@ enum Support {
 /// spring (k > 0) every grip is solved by [`ChainGrip`], the single cart being a chain of one mass; a
 /// free cart (k = 0) has a double zero root there, and its grips are solved by [`CompliantGrip`].
 pub fn solve_compliant(params: &Params) -> Result<Bounce, SolveError> {
-    solve_on(params, params.stiffness > 0.0)
+    solve_compliant_cancellable(params, &|| false)
+}
+
+/// [`solve_compliant`], abandoned when `cancelled` returns true (asked before every phase).
+pub fn solve_compliant_cancellable(
+    params: &Params,
+    cancelled: &impl Fn() -> bool,
+) -> Result<Bounce, SolveError> {
+    solve_on(params, params.stiffness > 0.0, cancelled)
 }
 
 /// The compliant ball on the single cart (the chain's length ignored) with every grip solved by
@@ -275,10 +283,15 @@ pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
             ..*params
         },
         false,
+        &|| false,
     )
 }
 
-fn solve_on(params: &Params, modal: bool) -> Result<Bounce, SolveError> {
+fn solve_on(
+    params: &Params,
+    modal: bool,
+    cancelled: &impl Fn() -> bool,
+) -> Result<Bounce, SolveError> {
     if params.cart_friction > 0.0 {
         return Err(SolveError::StringFrictionCompliantBall);
     }
@@ -335,6 +348,9 @@ fn solve_on(params: &Params, modal: bool) -> Result<Bounce, SolveError> {
     let mut from_zero = false;
     let mut phases = Vec::with_capacity(8);
     for _ in 0..MAX_TRANSITIONS {
+        if cancelled() {
+            return Err(SolveError::Cancelled);
+        }
         let t0 = state.t;
         let last = std::cell::Cell::new(None::<Point>);
         let speeds = incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
