@@ -479,7 +479,7 @@ fn solve_and_check(p: &Params) -> Result<(), TestCaseError> {
         Ok(b) => b,
         Err(SolveError::TooManyPhases) if p.ball_damping < 0.1 => return Ok(()),
         Err(SolveError::BallTooFast { radians } | SolveError::TooFast { radians }) => {
-            prop_assert!(radians > snapback::model::bounce::MAX_RADIANS);
+            prop_assert!(radians > snapback::model::error::MAX_RADIANS);
             return Ok(());
         }
         Err(e) => panic!("{e}"),

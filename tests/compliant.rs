@@ -299,7 +299,7 @@ proptest! {
             Err(SolveError::TooManyPhases) if p.ball_damping < 0.1 => return Ok(()),
             // A contact mode too fast to resolve is refused with a message.
             Err(SolveError::BallTooFast { radians }) => {
-                prop_assert!(radians > snapback::model::bounce::MAX_RADIANS);
+                prop_assert!(radians > snapback::model::error::MAX_RADIANS);
                 return Ok(());
             }
             Err(e) => panic!("{e}"),
@@ -376,7 +376,7 @@ fn one_link_of_the_chain_is_the_single_cart() {
         if p.stiffness == 0.0 {
             continue;
         }
-        let Ok(chain) = snapback::model::compliant::solve_compliant_on_cart(&p) else {
+        let Ok(chain) = snapback::model::solve::solve_compliant_on_cart(&p) else {
             continue;
         };
         assert_eq!(

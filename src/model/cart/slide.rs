@@ -1,8 +1,8 @@
 //! The sliding phase, Eqs. (1)-(3): friction of magnitude mu N opposing the slip.
 
-use super::cart::Cart;
-use super::oscillator::{detuned, forced, free, free_given, step};
-use super::setup::{Setup, State};
+use super::super::contact::Cart;
+use super::super::oscillator::{detuned, forced, free, free_given, step};
+use super::super::setup::{Setup, State};
 
 /// A sliding phase from `start`, with the slip's sign `dir` (+1: the contact point moves forward
 /// relative to the cart and the friction on the ball, F = dir mu N, acts backward).

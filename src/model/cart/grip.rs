@@ -1,8 +1,8 @@
 //! The grip phase, Eqs. (4)-(6): the contact point moves with the cart, held by static friction.
 
-use super::cart::Cart;
-use super::oscillator::{free, step};
-use super::setup::{Setup, State};
+use super::super::contact::Cart;
+use super::super::oscillator::{free, step};
+use super::super::setup::{Setup, State};
 
 /// A grip phase from `start`.
 #[derive(Clone, Copy, Debug)]
