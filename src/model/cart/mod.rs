@@ -134,7 +134,7 @@ impl Contact for SingleCart {
             0.0
         };
         let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
-        let forces = setup.mu * setup.n0 + setup.k * state.x.abs() + setup.cart_friction;
+        let forces = setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
         // The state at the last time an event function was evaluated.
         let last = Cell::new(*state);
         let event = match (motion, cart) {
@@ -178,7 +178,7 @@ impl Contact for SingleCart {
                     last.set(s);
                     let slip = slide.slip_event(setup, &s, friction, slip_offset);
                     let push = friction - setup.k * s.x;
-                    let push_rate = slide.dir * setup.mu * setup.n0 * setup.w * (setup.w * t).cos();
+                    let push_rate = slide.dir * setup.friction_limit_rate(t);
                     [
                         slip,
                         (push - setup.cart_friction, push_rate),

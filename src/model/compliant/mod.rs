@@ -117,7 +117,7 @@ impl CompliantSlide {
         Point {
             state,
             friction,
-            friction_rate: self.dir() * setup.mu * setup.n0 * setup.w * (setup.w * t).cos(),
+            friction_rate: self.dir() * setup.friction_limit_rate(t),
             e,
             de,
             dde,
@@ -341,7 +341,7 @@ impl Contact for CompliantBall {
         // How the contact starts: rolling grips; with a dashpot the patch takes the whole slip at once;
         // without, the spring's rate k_b slip0 must beat the friction limit's rate mu N0 w.
         let ball = if slip0.abs() <= ROLLING * self.incoming
-            || (spring.cb == 0.0 && spring.kb * slip0.abs() <= setup.mu * setup.n0 * setup.w)
+            || (spring.cb == 0.0 && spring.kb * slip0.abs() <= setup.peak_friction() * setup.w)
         {
             Ball::Grip
         } else {
@@ -409,7 +409,7 @@ impl Contact for CompliantBall {
         cause: Cause,
     ) -> Found<Point> {
         let (t0, end) = (state.contact.t, setup.duration);
-        let (w, mu, n0) = (setup.w, setup.mu, setup.n0);
+        let (w, peak) = (setup.w, setup.peak_friction());
         let s = &state.contact;
         let last = Cell::new(None::<Point>);
         let speeds = self.incoming + s.vx.abs() + setup.r * s.omega.abs() + s.v.abs();
@@ -451,7 +451,7 @@ impl Contact for CompliantBall {
                     .map(|(t, _)| (t, Cause::SlipZero))
             }
             grip => {
-                let margin_curvature = mu * n0 * w * w;
+                let margin_curvature = peak * w * w;
                 // Stages of the search: (from, to, curvature, step), and the force's rounding.
                 let (stages, noise) = match grip {
                     CompliantMotion::ChainGrip(grip) => {
@@ -462,13 +462,13 @@ impl Contact for CompliantBall {
                                 (from, to, curvature + margin_curvature, step)
                             })
                             .collect();
-                        (stages, ROUNDING * (mu * n0 + size))
+                        (stages, ROUNDING * (peak + size))
                     }
                     CompliantMotion::Grip(grip) => {
                         let (curvature, size) = grip.force_bounds(setup);
                         let step = setup.event_step(grip.compliance.fastest);
                         let stage = (t0, end, curvature + margin_curvature, step);
-                        (vec![stage], ROUNDING * (mu * n0 + EXP_ROUNDING * size))
+                        (vec![stage], ROUNDING * (peak + EXP_ROUNDING * size))
                     }
                     CompliantMotion::Slide(_) => unreachable!("matched above"),
                 };
