@@ -56,5 +56,5 @@ where
         cause = next_cause;
         mode = model.next(setup, &mut state, mode, cause);
     }
-    Err(SolveError::TooManyPhases)
+    Err(SolveError::TooManyPhases { hint: "" })
 }

@@ -17,8 +17,13 @@ pub enum SolveError {
          (lower the stiffness, raise the cart mass or shorten the impact)"
     )]
     TooFast { radians: f64 },
-    #[error("the bounce switched between sliding and gripping more than {MAX_TRANSITIONS} times")]
-    TooManyPhases,
+    #[error(
+        "the bounce switched between sliding and gripping more than {MAX_TRANSITIONS} times{hint}"
+    )]
+    TooManyPhases {
+        /// What would calm it, where the model knows (empty otherwise).
+        hint: &'static str,
+    },
     /// The caller's cancellation check said the solve is no longer wanted.
     #[error("the solve was cancelled")]
     Cancelled,
@@ -33,8 +38,14 @@ pub enum SolveError {
     )]
     StringFrictionCompliantBall,
     #[error(
-        "the ball's contact spring is too stiff to resolve: its fastest rate times T = {radians:.3e} rad \
-         exceeds {MAX_RADIANS:e} (lower --ball-stiffness or --ball-damping)"
+        "the ball's contact {part} is too fast to resolve: the grip's fastest rate times T = {radians:.3e} \
+         rad exceeds {MAX_RADIANS:e} ({advice})"
     )]
-    BallTooFast { radians: f64 },
+    BallTooFast {
+        radians: f64,
+        /// `spring` or `dashpot`: the larger share of the rate.
+        part: &'static str,
+        /// The parameters that would make the bounce solvable.
+        advice: String,
+    },
 }

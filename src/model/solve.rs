@@ -25,7 +25,13 @@ pub fn solve_cancellable(
     params.validate()?;
     if params.ball_stiffness > 0.0 {
         let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
-        let (phases, last) = run(&model, &setup, cancelled)?;
+        let (phases, last) = run(&model, &setup, cancelled).map_err(|e| match e {
+            SolveError::TooManyPhases { .. } => SolveError::TooManyPhases {
+                hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, or \
+                       lower --ball-stiffness)",
+            },
+            e => e,
+        })?;
         return Ok(finish(params, setup, phases, last));
     }
     let setup = Setup::new(params);

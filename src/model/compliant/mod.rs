@@ -17,7 +17,7 @@
 //!   [`ChainGrip`] on a chain). The grip breaks when |F| reaches mu N, into a slide the way F points.
 //!
 //! Chatter: an undamped stiff ball may switch many times; every phase advances time and the solver stops
-//! after [`super::error::MAX_TRANSITIONS`] with [`SolveError::TooManyPhases`].
+//! after [`super::error::MAX_TRANSITIONS`] with `SolveError::TooManyPhases`.
 
 mod cart_grip;
 mod chain_grip;
@@ -40,6 +40,7 @@ use super::events::first_rise_from_tangent;
 use super::params::Params;
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
+use super::units::brief;
 use cart_grip::EXP_ROUNDING;
 
 /// The ball's contact spring and dashpot.
@@ -315,9 +316,7 @@ impl CompliantBall {
         }
         let ball_radians = ball_fastest * setup.duration;
         if ball_radians > MAX_RADIANS {
-            return Err(SolveError::BallTooFast {
-                radians: ball_radians,
-            });
+            return Err(too_fast_ball(params, &setup, &spring, ball_radians));
         }
         let model = CompliantBall {
             support,
@@ -326,6 +325,85 @@ impl CompliantBall {
             incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
         };
         Ok((model, setup))
+    }
+}
+
+/// The refusal of a ball whose grip is too fast to resolve, naming what would help. The grip's fastest
+/// rate is bounded by sqrt(X + k_b r) + c_b r, r = 1/m_eff + 1/m_1 the inverse reduced mass of the ball
+/// and the mass it touches (the cart, or the chain's first link), X the cart's or chain's own squared
+/// rate. The advice names the values that bring it within [`MAX_RADIANS`]: a softer ball (c_b =
+/// 2 zeta sqrt(k_b m_eff) falls with it), less damping, or a heavier light mass where even an infinite
+/// one would do. A stiffer or more damped ball never helps.
+fn too_fast_ball(params: &Params, setup: &Setup, spring: &BallSpring, radians: f64) -> SolveError {
+    let links = params.chain.max(1.0);
+    // The mass the ball touches (the setup's cart is already one link where the chain's springs are off).
+    let first = if setup.cart_mass == params.cart_mass {
+        setup.cart_mass / links
+    } else {
+        setup.cart_mass
+    };
+    let r = 1.0 / setup.m_eff + 1.0 / first;
+    let (kb, cb, t) = (spring.kb, spring.cb, setup.duration);
+    let limit = 0.999 * MAX_RADIANS / t;
+    let own = ((radians / t - cb * r).powi(2) - kb * r).max(0.0);
+    let rate = |kb: f64, cb: f64, r: f64| (own + kb * r).sqrt() + cb * r;
+    let mut advice = Vec::new();
+    if own.sqrt() < limit {
+        // The largest k_b at this zeta: the rate rises with sqrt(k_b), so bisect on it.
+        let per_root = 2.0 * params.ball_damping * setup.m_eff.sqrt();
+        let (mut low, mut high) = (0.0, kb.sqrt());
+        for _ in 0..200 {
+            let mid = 0.5 * (low + high);
+            if rate(mid * mid, per_root * mid, r) < limit {
+                low = mid;
+            } else {
+                high = mid;
+            }
+        }
+        let share = (kb * r).sqrt();
+        advice.push((
+            share,
+            format!("--ball-stiffness below {:.2e} N/m", low * low),
+        ));
+        let spring_only = (own + kb * r).sqrt();
+        if cb > 0.0 && spring_only < limit {
+            let zeta = params.ball_damping * (limit - spring_only) / (cb * r);
+            advice.push((cb * r, format!("--ball-damping below {}", brief(zeta, 3))));
+        }
+    }
+    // With the lighter mass infinite, only the other remains in r.
+    let (lighter, other) = if first < setup.m_eff {
+        (first, setup.m_eff)
+    } else {
+        (setup.m_eff, first)
+    };
+    if rate(kb, cb, 1.0 / other) < limit {
+        let heavier = if lighter == first && links > 1.0 {
+            "a heavier --cart-mass or fewer --chain links"
+        } else if lighter == first {
+            "a heavier --cart-mass"
+        } else {
+            "a heavier ball (--mass)"
+        };
+        advice.push((0.0, heavier.to_string()));
+    }
+    let part = if cb * r >= (kb * r).sqrt() {
+        "dashpot"
+    } else {
+        "spring"
+    };
+    // The larger share first.
+    advice.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let advice = if advice.is_empty() {
+        "shorten the impact (--duration)".to_string()
+    } else {
+        let names: Vec<String> = advice.into_iter().map(|(_, text)| text).collect();
+        names.join(", or ")
+    };
+    SolveError::BallTooFast {
+        radians,
+        part,
+        advice: format!("try {advice}"),
     }
 }
 
