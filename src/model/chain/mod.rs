@@ -14,11 +14,13 @@
 pub mod modes;
 pub mod motion;
 
+use std::cell::RefCell;
 use std::sync::{Arc, OnceLock};
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise;
+use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::setup::{Setup, State};
 use modes::{MAX, Modes};
@@ -38,7 +40,28 @@ pub struct Chain {
     m_eff: f64,
 }
 
+thread_local! {
+    static LAST_CHAIN: Slot<[u64; 4], Arc<Chain>> = const { RefCell::new(None) };
+}
+
 impl Chain {
+    /// The chain for `params`, shared with the last bounce solved on this thread if it had the same one.
+    pub fn shared(params: &Params, setup: &Setup) -> Arc<Chain> {
+        reuse(&LAST_CHAIN, Chain::key(params, setup), || {
+            Arc::new(Chain::new(params, setup))
+        })
+    }
+
+    /// Everything a chain is built from, exactly.
+    pub fn key(params: &Params, setup: &Setup) -> [u64; 4] {
+        [
+            params.chain.to_bits(),
+            params.cart_mass.to_bits(),
+            params.stiffness.to_bits(),
+            setup.m_eff.to_bits(),
+        ]
+    }
+
     pub fn new(params: &Params, setup: &Setup) -> Chain {
         let n = params.chain as usize;
         let link_mass = params.cart_mass / n as f64;
@@ -142,7 +165,7 @@ impl ChainOfMasses {
                 chain: params.chain as usize,
             });
         }
-        let chain = Arc::new(Chain::new(params, setup));
+        let chain = Chain::shared(params, setup);
         let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
         if radians > MAX_RADIANS {
             return Err(SolveError::TooFast { radians });

@@ -29,7 +29,7 @@ pub use cart_grip::{Compliance, CompliantGrip};
 pub use chain_grip::{ChainGrip, GripModes};
 pub use stretch::Stretch;
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 use super::cart::Slide;
 use super::chain::motion::Motion as ChainMotion;
@@ -37,6 +37,7 @@ use super::chain::{Chain, ChainState};
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise_from_tangent;
+use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
@@ -249,6 +250,13 @@ impl CompliantMotion {
     }
 }
 
+thread_local! {
+    /// The grip's modes of the last bounce on this thread, by its chain and the ball's spring and
+    /// dashpot.
+    static LAST_GRIP_MODES: Slot<([u64; 4], u64, u64), Arc<GripModes>> =
+        const { RefCell::new(None) };
+}
+
 /// What the ball touches: the single cart, or a chain with the modes of the ball gripping it.
 enum Support {
     Cart(Box<Compliance>),
@@ -300,8 +308,15 @@ impl CompliantBall {
         };
         let spring = BallSpring::new(params, &setup);
         let support = if modal {
-            let chain = Arc::new(Chain::new(params, &setup));
-            let modes = Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb));
+            let chain = Chain::shared(params, &setup);
+            let key = (
+                Chain::key(params, &setup),
+                spring.kb.to_bits(),
+                spring.cb.to_bits(),
+            );
+            let modes = reuse(&LAST_GRIP_MODES, key, || {
+                Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb))
+            });
             Support::Chain { chain, modes }
         } else {
             Support::Cart(Box::new(Compliance::new(params, &setup)))
