@@ -73,7 +73,7 @@ fn man_pages_are_roff_with_every_flag() {
     }
     let sweep = stdout(&snapback(&["man", "sweep"]));
     assert!(sweep.contains(".TH snapback-sweep 1"), "{sweep}");
-    for flag in [r"\-\-vary", r"\-\-steps", "csv"] {
+    for flag in [r"\-\-vary", r"\-\-steps", "jsonl"] {
         assert!(sweep.contains(flag), "snapback-sweep(1) lacks {flag}");
     }
 }

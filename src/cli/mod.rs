@@ -38,7 +38,7 @@ pub enum Commands {
     Tui(tui::TuiArgs),
     /// List the presets (use one with --preset NAME on any command).
     Presets(presets::PresetsArgs),
-    /// Solve one bounce per value of a parameter and print the outcomes as CSV or JSON.
+    /// Solve one bounce per value of a parameter and print the outcomes as CSV, JSON or JSON Lines.
     Sweep(sweep::SweepArgs),
     /// The angle below which the ball slides for the whole contact: Eq. (7) and the full model.
     CriticalAngle(critical_angle::CriticalAngleArgs),
