@@ -26,6 +26,14 @@ fn sweep_cli(args: &[&str]) -> String {
     String::from_utf8(out.stdout).unwrap()
 }
 
+/// The first column of a CSV sweep: the swept values as printed.
+fn swept_values(csv: &str) -> Vec<&str> {
+    csv.lines()
+        .skip(1)
+        .map(|l| l.split(',').next().unwrap())
+        .collect()
+}
+
 #[test]
 fn streamed_json_is_the_pretty_array_of_the_rows() {
     let span = Span::parse("angle", "10", "90", false).unwrap();
@@ -80,11 +88,7 @@ fn swept_values_print_without_float_noise() {
     let csv = sweep_cli(&[
         "--vary", "angle", "--from", "0.1", "--to", "90", "--steps", "900",
     ]);
-    let values: Vec<&str> = csv
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').next().unwrap())
-        .collect();
+    let values = swept_values(&csv);
     assert_eq!(values.len(), 900);
     for (i, value) in values.iter().enumerate() {
         let tenths = i + 1;
@@ -106,19 +110,11 @@ fn swept_values_print_without_float_noise() {
         "5",
         "--log",
     ]);
-    let values: Vec<&str> = log
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').next().unwrap())
-        .collect();
+    let values = swept_values(&log);
     assert_eq!(values, ["100", "1000", "10000", "100000", "1000000"]);
     // A value that is no short decimal keeps every digit.
     let thirds = sweep_cli(&["--vary", "mu", "--from", "0", "--to", "1", "--steps", "4"]);
-    let values: Vec<&str> = thirds
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').next().unwrap())
-        .collect();
+    let values = swept_values(&thirds);
     assert_eq!(
         values,
         ["0", "0.3333333333333333", "0.6666666666666666", "1"]
@@ -130,11 +126,7 @@ fn the_widest_span_sweeps_without_overflow() {
     let csv = sweep_cli(&[
         "--vary", "spin", "--from", "-1e308", "--to", "1e308", "--steps", "3",
     ]);
-    let values: Vec<&str> = csv
-        .lines()
-        .skip(1)
-        .map(|l| l.split(',').next().unwrap())
-        .collect();
+    let values = swept_values(&csv);
     assert_eq!(values, ["-1e308", "0", "1e308"]);
     let span = Span::parse("spin", "-1.7e308", "1.7e308", false).unwrap();
     let values = span.values(1001);

@@ -97,11 +97,12 @@ impl Span {
         } else {
             1.0
         };
-        let sum = (self.from * scale) * weight_from + (self.to * scale) * weight_to;
-        let value = sum / intervals / scale;
-        let error =
-            2.0 * f64::EPSILON * (value.abs() + big * weight_from.min(weight_to) / intervals);
-        (value, error)
+        let (from, to) = (self.from * scale, self.to * scale);
+        let value = (from * weight_from + to * weight_to) / intervals / scale;
+        // Each end's own rounding and that of the two products, the sum and the quotient, on the
+        // size of the terms (larger than the value where the ends' signs differ).
+        let terms = (from.abs() * weight_from + to.abs() * weight_to) / intervals / scale;
+        (value, 2.0 * f64::EPSILON * terms)
     }
 
     /// The `i`-th of `n` geometrically spaced values, with a bound on its rounding error (exp carries
