@@ -5,7 +5,7 @@
 //! A `console` block holds commands, each on a line starting with `$ `, each followed by the output it
 //! prints (stdout and stderr together). In the output, a line `...` stands for any number of lines and
 //! `[..]` for any text within a line. The commands of one block run in `sh`, in order, in one fresh
-//! directory, with the binary first on `PATH`.
+//! directory, with the binary first on `PATH`, in the C locale.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -122,6 +122,8 @@ fn every_console_capture_matches_the_binary() {
                 .current_dir(&dir)
                 .env("PATH", &path)
                 .env("NO_COLOR", "1")
+                // Numbers as the README prints them (a point, not a comma), whatever the machine's locale.
+                .env("LC_ALL", "C")
                 .output()
                 .expect("sh runs");
             let actual = String::from_utf8_lossy(&out.stdout);
