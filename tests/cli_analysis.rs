@@ -273,6 +273,33 @@ fn critical_angle_prints_eq7_and_the_full_model() {
 }
 
 #[test]
+fn critical_angle_reports_the_first_grip_beside_it() {
+    let (code, out, _) = run(&["critical-angle", "--preset", "light-1g"]);
+    assert_eq!(code, 0);
+    assert!(
+        out.contains("full model, this cart     32.00 deg")
+            && out.contains("first grip, this cart     32.82 deg"),
+        "{out}"
+    );
+    let (code, out, _) = run(&["critical-angle", "--chain", "8", "--format", "json"]);
+    assert_eq!(code, 0);
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    let full = doc["full_model_deg"].as_f64().unwrap();
+    let grip = doc["first_grip_deg"].as_f64().unwrap();
+    assert!(
+        (full - 33.29).abs() < 0.01 && (grip - 33.87).abs() < 0.01,
+        "{doc}"
+    );
+    assert_eq!(doc["full_model"]["regime"], "at");
+    assert_eq!(doc["first_grip"]["deg"].as_f64(), Some(grip));
+    let (code, out, _) = run(&["critical-angle", "--mu", "0", "--format", "json"]);
+    assert_eq!(code, 0);
+    let doc: Value = serde_json::from_str(&out).unwrap();
+    assert!(doc["first_grip_deg"].is_null());
+    assert_eq!(doc["first_grip"]["regime"], "always-slides");
+}
+
+#[test]
 fn optimize_finds_the_stiffness_for_the_most_spin() {
     let (code, out, _) = run(&[
         "optimize",
