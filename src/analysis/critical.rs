@@ -65,7 +65,7 @@ const SCAN_STEP: f64 = 0.05;
 const BLOCK: usize = 128;
 
 /// The full model's two thresholds for the cart of `p` (its angle is ignored).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Thresholds {
     /// The critical angle as Eq. (7) means it: the largest theta1 below which the ball slides one way
     /// for the whole contact ([`crate::model::Bounce::slides_throughout`]).
