@@ -36,6 +36,11 @@ pub struct Energy {
     pub residual: f64,
 }
 
+/// A sum from +0.0: nothing lost prints as 0, never -0 (Rust's float `sum` starts from -0.0).
+fn add(sum: f64, x: f64) -> f64 {
+    sum + x
+}
+
 /// The energy budget of a solved bounce (see [`Bounce::energy`]).
 pub(super) fn energy_budget(
     params: &Params,
@@ -59,7 +64,7 @@ pub(super) fn energy_budget(
             .iter()
             .filter(|p| p.cart != Cart::Stuck)
             .map(|p| (p.state_at(setup, p.end).x - p.initial().x).abs())
-            .sum::<f64>();
+            .fold(0.0, add);
     let friction_loss = phases
         .iter()
         .filter(|p| p.kind == PhaseKind::Slide)
@@ -72,7 +77,7 @@ pub(super) fn energy_budget(
                 integrate(|t| p.friction_power(setup, t), p.start, p.end, panel)
             }
         })
-        .sum();
+        .fold(0.0, add);
     fn compliant(p: &Phase) -> Option<&CompliantMotion> {
         match &p.motion {
             Motion::Compliant(c) => Some(c.as_ref()),
@@ -95,7 +100,7 @@ pub(super) fn energy_budget(
                 p.end,
             )
         })
-        .sum();
+        .fold(0.0, add);
     let ball_spring = phases
         .last()
         .and_then(|p| compliant(p).map(|c| (p, c)))
