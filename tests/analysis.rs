@@ -60,7 +60,7 @@ fn sweep_csv_round_trips() {
     let lines: Vec<&str> = text.lines().collect();
     assert_eq!(
         lines[0],
-        "angle_deg,omega2,vx2,vy2,theta2_deg,ex,phases,slides_throughout"
+        "angle_deg,omega2,vx2,vy2,theta2_deg,ex,phases,slides_throughout,cart_stuck,stretch,patch_slip"
     );
     assert_eq!(lines.len(), steps + 1);
     for (line, row) in lines[1..].iter().zip(&rows) {
@@ -70,6 +70,9 @@ fn sweep_csv_round_trips() {
         assert_eq!(cells[5].parse::<f64>().ok(), row.ex);
         assert_eq!(cells[6], row.phases);
         assert_eq!(cells[7], row.slides_throughout.to_string());
+        assert_eq!(cells[8], row.cart_stuck.to_string());
+        assert_eq!(cells[9].parse::<f64>().ok(), row.stretch);
+        assert_eq!(cells[10].parse::<f64>().ok(), row.patch_slip);
     }
 }
 

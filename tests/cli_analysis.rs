@@ -40,11 +40,11 @@ fn sweep_csv_has_the_contract_columns_and_every_step() {
     let lines: Vec<&str> = out.lines().collect();
     assert_eq!(
         lines[0],
-        "angle_deg,omega2,vx2,vy2,theta2_deg,ex,phases,slides_throughout"
+        "angle_deg,omega2,vx2,vy2,theta2_deg,ex,phases,slides_throughout,cart_stuck,stretch,patch_slip"
     );
     assert_eq!(lines.len(), 10);
     assert!(lines[1].starts_with("10,") && lines[9].starts_with("90,"));
-    assert!(lines[1].ends_with(",slide,true"), "{}", lines[1]);
+    assert!(lines[1].ends_with(",slide,true,false,,"), "{}", lines[1]);
     assert!(lines[6].contains(",slide-grip-slide,false"), "{}", lines[6]);
 }
 
@@ -119,11 +119,14 @@ fn sweep_rows_equal_single_simulate_runs() {
         assert_eq!(
             keys,
             [
+                "cart_stuck",
                 "ex",
                 "omega2",
+                "patch_slip",
                 "phases",
                 "slides_throughout",
                 "stiffness_N_m",
+                "stretch",
                 "theta2_deg",
                 "vx2",
                 "vy2"

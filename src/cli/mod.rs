@@ -46,7 +46,7 @@ pub enum Commands {
     Optimize(optimize::OptimizeArgs),
     /// Check every number the paper prints (assets/claims.md) against the model.
     Reproduce(reproduce::ReproduceArgs),
-    /// Draw the paper's Fig. 2 or Fig. 3 as SVG.
+    /// Draw the paper's Fig. 2 or Fig. 3 as SVG, at the given parameters.
     Figure(figure::FigureArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     Completions(completions::CompletionsArgs),

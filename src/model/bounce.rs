@@ -54,6 +54,10 @@ pub struct Sample {
     pub kind: PhaseKind,
     /// True while string friction holds the cart still.
     pub cart_stuck: bool,
+    /// A compliant ball's stretch e, m (0 for a rigid ball).
+    pub stretch: f64,
+    /// The slip of the ball's contact patch on the cart, m/s (for a rigid ball, the slip itself).
+    pub patch_slip: f64,
 }
 
 /// A solved bounce.
@@ -110,6 +114,8 @@ impl Bounce {
     pub fn sample_in(&self, index: usize, t: f64) -> Sample {
         let phase = &self.phases[index];
         let s = phase.state_at(&self.setup, t);
+        let slip = self.setup.slip(&s);
+        let patch = phase.patch_at(&self.setup, t);
         Sample {
             t,
             normal: self.setup.normal(t),
@@ -118,10 +124,12 @@ impl Bounce {
             v: s.v,
             vx: s.vx,
             omega: s.omega,
-            slip: self.setup.slip(&s),
+            slip,
             phase: index,
             kind: phase.kind,
             cart_stuck: phase.cart == Cart::Stuck,
+            stretch: patch.map_or(0.0, |(e, _)| e),
+            patch_slip: patch.map_or(slip, |(_, p)| p),
         }
     }
 
@@ -191,6 +199,18 @@ impl Bounce {
             .map(|p| p.kind.name())
             .collect::<Vec<_>>()
             .join("-")
+    }
+
+    /// True when string friction holds the cart still at some time in the contact.
+    pub fn cart_ever_stuck(&self) -> bool {
+        self.phases.iter().any(|p| p.cart == Cart::Stuck)
+    }
+
+    /// A compliant ball's stretch e (m) and its patch's slip on the cart (m/s) as it leaves; `None` for
+    /// a rigid ball.
+    pub fn final_patch(&self) -> Option<(f64, f64)> {
+        let last = self.phases.last()?;
+        last.patch_at(&self.setup, last.end)
     }
 
     /// True when the ball slides one way for the whole contact: every phase a slide with the slip sign
