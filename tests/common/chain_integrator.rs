@@ -13,6 +13,7 @@
 
 use snapback::model::Params;
 
+#[allow(dead_code)] // not every test file reads every field
 #[derive(Clone, Copy, Debug)]
 pub struct Numerical {
     pub vx2: f64,
@@ -26,6 +27,8 @@ pub struct Numerical {
     pub phases: usize,
     /// Whether string friction held the first mass still at some time.
     pub stuck: bool,
+    /// Whether the ball gripped at any time.
+    pub gripped: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -281,6 +284,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     let mut t = 0.0;
     let mut phases = 1;
     let mut stuck = cart == Cart::Stuck;
+    let mut gripped = ball == Ball::Grip;
     // An event function right after a transition sits on zero; ignore it for a few nanoseconds.
     let mut guard_until = 0.0;
     while t < end {
@@ -313,6 +317,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         let ball_fired = model.events(mode, t, &y).0;
         mode = model.next(mode, ball_fired, t, &mut y);
         stuck |= mode.1 == Cart::Stuck;
+        gripped |= mode.0 == Ball::Grip;
         phases += 1;
         guard_until = t + 1e-9;
     }
@@ -324,5 +329,6 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         x1: y[2],
         phases,
         stuck,
+        gripped,
     }
 }
