@@ -191,8 +191,11 @@ impl Motion {
                     (x_free + drive * g, v_free + drive * dg)
                 }
             };
-            if self.push != 0.0 {
-                // The string friction switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω².
+        }
+        if self.push != 0.0 {
+            // The string friction switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω².
+            for j in 0..modes.n {
+                let omega = modes.omega[j];
                 let (s, c) = (omega * tau).sin_cos();
                 let (x_step, v_step) = step(s, c, omega, tau);
                 let drive = modes.shape[0][j] * self.push;
