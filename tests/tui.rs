@@ -308,13 +308,18 @@ fn q_esc_and_ctrl_c_quit() {
 }
 
 #[test]
-fn a_small_terminal_gets_a_notice_and_q_still_quits() {
-    let (app, screen) = explore(79, 24, vec![key(KeyCode::Right)]);
+fn a_small_terminal_gets_a_notice_ignores_parameter_keys_and_q_and_ctrl_c_still_quit() {
+    // Keys that would act blind behind the notice are ignored.
+    let (app, screen) = explore(79, 24, vec![key(KeyCode::Right), key(KeyCode::Tab)]);
     assert!(
         screen.contains("terminal too small: need 80 x 24"),
         "{screen}"
     );
-    assert_eq!(app.params.angle_deg, 61.0);
+    assert_eq!(app.params.angle_deg, 60.0);
+    assert_eq!(app.view, View::Contact);
+    assert!(!app.quit);
+    let (app, _) = explore(79, 24, vec![ctrl('c')]);
+    assert!(app.quit);
     let (app, screen) = explore(60, 10, vec![key(KeyCode::Char('q'))]);
     assert!(app.quit);
     assert!(

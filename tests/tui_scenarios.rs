@@ -412,7 +412,11 @@ fn the_baseline_gives_the_cores_differences() {
     let base = solve(&Params::default()).unwrap().outcome;
     let now = solve(&app.params).unwrap().outcome;
     assert_eq!(app.params.cart_mass, 0.005);
-    let deltas = app.baseline.as_ref().unwrap().deltas(&app.bounce);
+    let deltas = app
+        .baseline
+        .as_ref()
+        .unwrap()
+        .deltas(&app.solved.as_ref().unwrap().bounce);
     assert_eq!(deltas.omega2, now.omega2 - base.omega2);
     assert_eq!(deltas.ex, Some(now.ex.unwrap() - base.ex.unwrap()));
     let d_omega2 = format!("{:+.1} rad/s", now.omega2 - base.omega2);

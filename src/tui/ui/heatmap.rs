@@ -15,6 +15,7 @@ use ratatui::widgets::{Block, Borders, Paragraph};
 
 use crate::tui::app::App;
 use crate::tui::heatmap::{MASS_RANGE, MASSES, STIFFNESS_RANGE, STIFFNESSES, cell_of};
+use crate::tui::solved::Solved;
 
 /// The colour scale, low to high.
 const RAMP: [Color; 8] = [
@@ -56,7 +57,7 @@ fn log_fraction(value: f64, range: [f64; 2]) -> f64 {
     (value / range[0]).ln() / (range[1] / range[0]).ln()
 }
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
     let theme = &app.theme;
     let map = &app.heatmap;
     let wide = area.width >= 90;
@@ -193,7 +194,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         }
         None => scale.push(Span::styled("(computing)", theme.dim())),
     }
-    let omega2 = app.bounce.outcome.omega2;
+    let omega2 = solved.bounce.outcome.omega2;
     let here = match (current, wide) {
         ((Some(_), Some(_)), true) => format!(
             "+ now {omega2:.1} (M {}, k {})   ",

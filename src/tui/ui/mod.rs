@@ -20,6 +20,8 @@
 //! ```
 //!
 //! help.rs draws its overlay on top, and picker.rs the preset picker; below [`MIN_WIDTH`] x [`MIN_HEIGHT`] only a notice is drawn.
+//! Panels whose answer is still being computed on the worker are drawn dimmed with a "solving…" mark
+//! (stale.rs), or with the mark alone before the first answer.
 
 mod baseline;
 mod charts;
@@ -31,6 +33,7 @@ mod params;
 pub mod picker;
 pub mod plot;
 pub mod schematic;
+mod stale;
 mod status;
 mod sweep;
 pub mod theme;
@@ -48,6 +51,11 @@ use super::app::{App, Mode, View};
 pub const MIN_WIDTH: u16 = 80;
 pub const MIN_HEIGHT: u16 = 24;
 
+/// True when a screen of `area` is large enough for the layout (else only a notice is drawn).
+pub fn fits(area: Rect) -> bool {
+    area.width >= MIN_WIDTH && area.height >= MIN_HEIGHT
+}
+
 /// Where each part of the screen goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Regions {
@@ -62,7 +70,7 @@ pub struct Regions {
 
 /// The layout of a screen of `area`; `None` below the smallest size.
 pub fn regions(area: Rect, app: &App) -> Option<Regions> {
-    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+    if !fits(area) {
         return None;
     }
     let status_height = status::height(app, area.width);
@@ -109,7 +117,7 @@ pub fn time_at(area: Rect, app: &App, column: u16, row: u16) -> Option<f64> {
     if app.view != View::Contact || app.mode == Mode::Help {
         return None;
     }
-    charts::time_at(regions.view, app, column, row)
+    charts::time_at(regions.view, app, app.solved.as_deref()?, column, row)
 }
 
 /// Draws the whole screen.
@@ -120,14 +128,41 @@ pub fn draw(frame: &mut Frame, app: &App) {
         return;
     };
     params::render(frame, regions.params, app);
-    outcome::render(frame, regions.outcome, app);
-    if let Some(schematic) = regions.schematic {
-        schematic::render(frame, schematic, app);
-    }
-    match app.view {
-        View::Contact => charts::render(frame, regions.view, app),
-        View::Sweep => sweep::render(frame, regions.view, app),
-        View::Heatmap => heatmap::render(frame, regions.view, app),
+    let bounce_panels = [Some(regions.outcome), regions.schematic];
+    let view_stale = match app.view {
+        View::Sweep => app.stale() || app.sweeps_stale(),
+        View::Contact | View::Heatmap => app.stale(),
+    };
+    match app.solved.as_deref() {
+        Some(solved) => {
+            outcome::render(frame, regions.outcome, app, solved);
+            if let Some(schematic) = regions.schematic {
+                schematic::render(frame, schematic, app, solved);
+            }
+            match (app.view, app.sweeps.as_deref()) {
+                (View::Contact, _) => charts::render(frame, regions.view, app, solved),
+                (View::Sweep, Some(sweeps)) => {
+                    sweep::render(frame, regions.view, app, solved, sweeps)
+                }
+                (View::Sweep, None) => stale::pending(frame, regions.view, app),
+                (View::Heatmap, _) => heatmap::render(frame, regions.view, app, solved),
+            }
+            if app.stale() {
+                for panel in bounce_panels.into_iter().flatten() {
+                    stale::dim(frame, panel, app);
+                }
+            }
+            let drawn = app.view != View::Sweep || app.sweeps.is_some();
+            if view_stale && drawn {
+                stale::dim(frame, regions.view, app);
+            }
+        }
+        None => {
+            for panel in bounce_panels.into_iter().flatten() {
+                stale::pending(frame, panel, app);
+            }
+            stale::pending(frame, regions.view, app);
+        }
     }
     status::render(frame, regions.status, app, regions.schematic.is_some());
     // Overlays cover everything above the status line.

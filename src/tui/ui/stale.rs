@@ -1,0 +1,37 @@
+//! Panels whose answer is pending on the worker: what they showed stays, dimmed, with `solving…` on
+//! their top row until the answer comes; before any answer, the mark alone in a bordered box.
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::style::{Modifier, Style};
+use ratatui::text::{Line, Span};
+use ratatui::widgets::{Block, Paragraph};
+
+use crate::tui::app::App;
+
+/// The mark on a pending panel.
+pub const SOLVING: &str = " solving… ";
+
+/// Dims what `area` shows and writes the mark at the right of its top row.
+pub fn dim(frame: &mut Frame, area: Rect, app: &App) {
+    let buf = frame.buffer_mut();
+    buf.set_style(area, Style::new().add_modifier(Modifier::DIM));
+    let width = SOLVING.chars().count() as u16;
+    if area.width > width + 2 {
+        buf.set_span(
+            area.right() - width - 1,
+            area.y,
+            &Span::styled(SOLVING, app.theme.key()),
+            width,
+        );
+    }
+}
+
+/// A box with the mark, where nothing has been solved yet.
+pub fn pending(frame: &mut Frame, area: Rect, app: &App) {
+    let block = Block::bordered();
+    frame.render_widget(
+        Paragraph::new(Line::styled(SOLVING, app.theme.key())).block(block),
+        area,
+    );
+}
