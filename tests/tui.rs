@@ -371,6 +371,7 @@ fn no_color_draws_without_colours() {
     let theme = Theme {
         color: false,
         marker: Marker::Braille,
+        ascii: false,
     };
     for events in [
         vec![],
@@ -403,6 +404,7 @@ fn dot_and_block_markers_draw_without_braille() {
         let theme = Theme {
             color: true,
             marker,
+            ascii: false,
         };
         let (_, terminal) = explore_with(theme, 160, 48, vec![]);
         let screen = text(&terminal);

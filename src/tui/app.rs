@@ -200,7 +200,15 @@ pub struct App {
     pub heatmap: Heatmap,
     /// The workers and their answers so far.
     solver: Solver,
+    /// When the parameters or the view last changed: pending panels are marked stale only once an
+    /// answer has taken [`STALE_AFTER`], so a quick answer costs no dimmed frame.
+    changed_at: Instant,
+    /// True while pending panels are drawn dimmed.
+    pub stale_marked: bool,
 }
+
+/// How long an answer may take before the panels waiting for it are dimmed.
+pub const STALE_AFTER: Duration = Duration::from_millis(150);
 
 impl App {
     /// An explorer on `params`, with the incidence angle selected; fails only if the parameters are out
@@ -230,6 +238,8 @@ impl App {
             dir: std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
             last_file: None,
             solver: Solver::default(),
+            changed_at: Instant::now(),
+            stale_marked: false,
         };
         app.want();
         Ok(app)
@@ -255,11 +265,16 @@ impl App {
         }
     }
 
-    /// Takes what the workers have sent; true if anything on screen changed.
+    /// Takes what the workers have sent, and marks panels stale whose answer is overdue; true if anything
+    /// on screen changed.
     pub fn poll(&mut self) -> bool {
         let arrived = self.solver.collect();
         let heatmap = self.heatmap.poll();
-        self.take(arrived) || heatmap
+        let taken = self.take(arrived);
+        let marked = self.solver.busy() && self.changed_at.elapsed() >= STALE_AFTER;
+        let flipped = marked != self.stale_marked;
+        self.stale_marked = marked;
+        taken || heatmap || flipped
     }
 
     /// Waits until every answer asked for has come, or `patience` has passed; true if all came. For tests
@@ -330,6 +345,7 @@ impl App {
                 self.cursor = self.cursor.clamp(0.0, new);
                 self.solved = Some(solved);
                 self.settled_history = self.history.clone();
+                self.stale_marked &= self.solver.busy();
             }
             Err(reason) => {
                 self.message = Some(Message {
@@ -427,6 +443,7 @@ impl App {
             Action::ResetAll => self.try_apply(self.start),
             Action::NextView => {
                 self.view = self.view.next();
+                self.changed_at = Instant::now();
                 self.want();
             }
             Action::CursorStep { forward } => {
@@ -547,6 +564,7 @@ impl App {
     /// business; `unchanged` names what a refusal leaves as it was (`value` or `parameters`).
     pub(super) fn set_params(&mut self, params: Params, unchanged: &'static str) {
         self.params = params;
+        self.changed_at = Instant::now();
         self.unchanged = unchanged;
         self.want();
     }

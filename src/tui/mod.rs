@@ -13,6 +13,8 @@ pub mod baseline;
 pub mod heatmap;
 pub mod history;
 pub mod keys;
+pub mod locale;
+pub mod output;
 pub mod playback;
 pub mod scenarios;
 pub mod solved;
@@ -241,6 +243,10 @@ pub struct Options {
     pub marker: Marker,
     /// False to draw without colours (NO_COLOR).
     pub color: bool,
+    /// Write ASCII only (a locale that is not UTF-8, or `--ascii`).
+    pub ascii: bool,
+    /// Frames a second while the bounce plays.
+    pub fps: u32,
 }
 
 /// Why the explorer could not run.
@@ -264,12 +270,19 @@ pub fn open(options: Options) -> Result<(), OpenError> {
     if !io::stdout().is_terminal() {
         return Err(OpenError::NotATerminal);
     }
+    // Braille is not ASCII: dots stand in for it.
+    let marker = match options.marker {
+        Marker::Braille if options.ascii => Marker::Dot,
+        marker => marker,
+    };
     let theme = Theme {
         color: options.color,
-        marker: options.marker,
+        marker,
+        ascii: options.ascii,
     };
     let mut app = App::new(options.params, theme)?;
-    let mut session = terminal::Session::start()?;
+    app.frame = Duration::from_secs_f64(1.0 / f64::from(options.fps.max(1)));
+    let mut session = terminal::Session::start(options.ascii)?;
     run(
         &mut session.terminal,
         &mut app,

@@ -20,8 +20,8 @@
 //! ```
 //!
 //! help.rs draws its overlay on top, and picker.rs the preset picker; below [`MIN_WIDTH`] x [`MIN_HEIGHT`] only a notice is drawn.
-//! Panels whose answer is still being computed on the worker are drawn dimmed with a "solving…" mark
-//! (stale.rs), or with the mark alone before the first answer.
+//! Panels whose answer takes longer than [`crate::tui::app::STALE_AFTER`] are marked "solving…" and the
+//! outcome dimmed (stale.rs); before the first answer they hold the mark alone.
 
 mod baseline;
 mod charts;
@@ -129,6 +129,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
     };
     params::render(frame, regions.params, app);
     let bounce_panels = [Some(regions.outcome), regions.schematic];
+    let stale = app.stale() && app.stale_marked;
     let view_stale = match app.view {
         View::Sweep => app.stale() || app.sweeps_stale(),
         View::Contact | View::Heatmap => app.stale(),
@@ -147,14 +148,15 @@ pub fn draw(frame: &mut Frame, app: &App) {
                 (View::Sweep, None) => stale::pending(frame, regions.view, app),
                 (View::Heatmap, _) => heatmap::render(frame, regions.view, app, solved),
             }
-            if app.stale() {
-                for panel in bounce_panels.into_iter().flatten() {
-                    stale::dim(frame, panel, app);
+            if stale {
+                stale::dim(frame, regions.outcome, app);
+                if let Some(schematic) = regions.schematic {
+                    stale::mark(frame, schematic, app);
                 }
             }
             let drawn = app.view != View::Sweep || app.sweeps.is_some();
-            if view_stale && drawn {
-                stale::dim(frame, regions.view, app);
+            if view_stale && drawn && app.stale_marked {
+                stale::mark(frame, regions.view, app);
             }
         }
         None => {

@@ -1,5 +1,7 @@
-//! Panels whose answer is pending on the worker: what they showed stays, dimmed, with `solving…` on
-//! their top row until the answer comes; before any answer, the mark alone in a bordered box.
+//! Panels whose answer is pending on the worker: what they showed stays, with `solving…` on their top
+//! row until the answer comes, and the outcome's numbers dimmed (only those: dimming the charts would
+//! repaint every cell of them twice, a burden on a slow link); before any answer, the mark alone in a
+//! bordered box.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -12,10 +14,17 @@ use crate::tui::app::App;
 /// The mark on a pending panel.
 pub const SOLVING: &str = " solving… ";
 
-/// Dims what `area` shows and writes the mark at the right of its top row.
+/// Dims what `area` shows and marks it.
 pub fn dim(frame: &mut Frame, area: Rect, app: &App) {
+    frame
+        .buffer_mut()
+        .set_style(area, Style::new().add_modifier(Modifier::DIM));
+    mark(frame, area, app);
+}
+
+/// Writes the mark at the right of the top row of `area`.
+pub fn mark(frame: &mut Frame, area: Rect, app: &App) {
     let buf = frame.buffer_mut();
-    buf.set_style(area, Style::new().add_modifier(Modifier::DIM));
     let width = SOLVING.chars().count() as u16;
     if area.width > width + 2 {
         buf.set_span(

@@ -14,6 +14,8 @@ pub struct Theme {
     pub color: bool,
     /// The marker the charts draw with (braille, dot or block).
     pub marker: Marker,
+    /// True when the terminal gets ASCII only: key names are written as words (`Space`, `hjkl`).
+    pub ascii: bool,
 }
 
 impl Default for Theme {
@@ -21,6 +23,7 @@ impl Default for Theme {
         Theme {
             color: true,
             marker: Marker::Braille,
+            ascii: false,
         }
     }
 }
