@@ -281,10 +281,12 @@ fn the_help_overlay_lists_every_key() {
             assert!(screen.contains(&keys_label(binding)), "{binding:?}");
         }
     }
-    // Esc closes the overlay without quitting; a second Esc quits.
-    let (app, _) = explore(80, 24, vec![key(KeyCode::Char('?')), key(KeyCode::Esc)]);
-    assert_eq!(app.mode, Mode::Normal);
-    assert!(!app.quit);
+    // Esc and q close the overlay without quitting; a second Esc quits.
+    for close in [KeyCode::Esc, KeyCode::Char('q')] {
+        let (app, _) = explore(80, 24, vec![key(KeyCode::Char('?')), key(close)]);
+        assert_eq!(app.mode, Mode::Normal);
+        assert!(!app.quit);
+    }
     let (app, _) = explore(
         80,
         24,

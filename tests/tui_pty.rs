@@ -1,6 +1,6 @@
 //! The real binary in a real pseudo-terminal (portable-pty, see `support/pty.rs`): it opens, answers keys
 //! and quits with status 0; it never waits for a solve; it stays within its byte budget; signals restore
-//! the terminal; a non-UTF-8 locale gets pure ASCII. Without a
+//! the terminal; a non-UTF-8 locale gets pure ASCII; stray escape sequences swallow no key. Without a
 //! terminal it refuses with status 2.
 //!
 //! Bounds on time here are generous (a loaded 2-core CI machine must pass them); the precise figures
@@ -61,6 +61,33 @@ fn a_bad_starting_value_is_a_usage_error() {
         .args(["tui", "--marker", "sparkle"])
         .assert()
         .code(2);
+}
+
+#[test]
+fn a_stray_escape_sequence_swallows_no_key() {
+    // (A lone ESC is the Esc key, which quits: not a stray.)
+    for stray in [
+        &b"\x1b[?"[..],
+        b"\x1b[<",
+        b"\x1b[200~",
+        b"\x1bO",
+        b"\x1b[1;",
+    ] {
+        let mut pty = Pty::spawn(&[], &[], 120, 40);
+        pty.wait_for("the first frame", opened);
+        pty.send(stray);
+        std::thread::sleep(Duration::from_millis(100));
+        pty.send(b"l");
+        pty.wait_for("the angle to step after the stray bytes", |s| {
+            s.contains("61.0 deg")
+        });
+        // Ctrl-C right behind another stray prefix, in the same write.
+        let mut keys = stray.to_vec();
+        keys.push(3);
+        pty.send(&keys);
+        let status = pty.exit(pty::PATIENCE).expect("Ctrl-C quits");
+        assert!(status.success(), "{stray:?}: {status:?}");
+    }
 }
 
 /// The two slow cases of issue 13 and the default.

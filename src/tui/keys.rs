@@ -115,7 +115,8 @@ const fn bind(
 
 use Key::{Ctrl, Plain, Shift};
 
-/// The keys of the explorer (also while the help overlay is open, where Esc closes the overlay instead).
+/// The keys of the explorer (also while the help overlay is open, where q and Esc close the overlay
+/// instead).
 pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Up), Plain(KeyCode::Char('k'))],
@@ -247,7 +248,7 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Char('q')), Plain(KeyCode::Esc), Ctrl('c')],
         Action::Quit,
-        "quit (Esc closes this help first)",
+        "quit (in this help, q and Esc close it)",
         hint("q", "quit"),
     ),
     bind(
@@ -413,7 +414,12 @@ pub fn action_for(event: &KeyEvent, mode: &Mode) -> Option<Action> {
     if event.kind == KeyEventKind::Release {
         return None;
     }
-    if *mode == Mode::Help && Plain(KeyCode::Esc).matches(event) {
+    // In the help, q and Esc close it rather than quit.
+    if *mode == Mode::Help
+        && [Plain(KeyCode::Esc), Plain(KeyCode::Char('q'))]
+            .iter()
+            .any(|k| k.matches(event))
+    {
         return Some(Action::CloseHelp);
     }
     let bound = bindings(mode)

@@ -10,8 +10,10 @@
 
 pub mod app;
 pub mod baseline;
+pub mod decode;
 pub mod heatmap;
 pub mod history;
+pub mod input;
 pub mod keys;
 pub mod locale;
 pub mod output;
@@ -27,15 +29,16 @@ pub mod worker;
 
 use std::collections::VecDeque;
 use std::io::{self, IsTerminal};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use crossterm::event::{self, Event, MouseButton, MouseEvent, MouseEventKind};
+use crossterm::event::{Event, MouseButton, MouseEvent, MouseEventKind};
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
 pub use app::{Action, App, Mode, View};
+pub use input::TerminalEvents;
 pub use terminal::FrameSync;
 use ui::theme::Theme;
 
@@ -73,38 +76,6 @@ pub trait EventSource {
     /// step then sees the answers to the one before.
     fn settles(&self) -> bool {
         false
-    }
-}
-
-/// The terminal's events and the wall clock. Idle, it blocks until an event arrives, so an idle
-/// explorer uses no CPU; playing, or while an answer is awaited, it also wakes on a timer.
-#[derive(Debug, Default)]
-pub struct TerminalEvents {
-    /// When the last tick was, while waking on a timer.
-    last_tick: Option<Instant>,
-}
-
-impl EventSource for TerminalEvents {
-    fn next_input(&mut self, wait: Option<Duration>) -> io::Result<Option<Input>> {
-        let Some(wait) = wait else {
-            self.last_tick = None;
-            return event::read().map(|e| Some(Input::Event(e)));
-        };
-        let last = *self.last_tick.get_or_insert_with(Instant::now);
-        let left = (last + wait).saturating_duration_since(Instant::now());
-        if event::poll(left)? {
-            return event::read().map(|e| Some(Input::Event(e)));
-        }
-        let now = Instant::now();
-        self.last_tick = Some(now);
-        Ok(Some(Input::Tick(now - last)))
-    }
-
-    fn ready_input(&mut self) -> io::Result<Option<Input>> {
-        if event::poll(Duration::ZERO)? {
-            return event::read().map(|e| Some(Input::Event(e)));
-        }
-        Ok(None)
     }
 }
 
@@ -283,10 +254,7 @@ pub fn open(options: Options) -> Result<(), OpenError> {
     let mut app = App::new(options.params, theme)?;
     app.frame = Duration::from_secs_f64(1.0 / f64::from(options.fps.max(1)));
     let mut session = terminal::Session::start(options.ascii)?;
-    run(
-        &mut session.terminal,
-        &mut app,
-        &mut TerminalEvents::default(),
-    )?;
+    let mut events = TerminalEvents::start()?;
+    run(&mut session.terminal, &mut app, &mut events)?;
     Ok(())
 }

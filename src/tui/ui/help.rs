@@ -74,5 +74,5 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         }
     }
     let title = Span::styled(" help ", theme.title());
-    overlay::render(frame, area, width, title, " ? or Esc closes ", lines);
+    overlay::render(frame, area, width, title, " ?, q or Esc closes ", lines);
 }
