@@ -198,7 +198,7 @@ fn a_rejected_edit_shows_why_and_keeps_the_value() {
         assert_eq!(app.mode, Mode::Normal);
         let status = screen.lines().last().unwrap();
         assert!(
-            status.starts_with("--angle must be in (0, 90] deg; got 95 (value unchanged)"),
+            status.starts_with("incidence angle θ1 must be in (0, 90] deg; got 95"),
             "{status}"
         );
         assert!(line_with(&screen, "incidence angle").contains("60.0 deg"));
@@ -214,7 +214,7 @@ fn a_rejected_edit_shows_why_and_keeps_the_value() {
         let (app, screen) = explore(160, 48, events);
         assert_eq!(app.params, Params::default());
         assert!(
-            line_with(&screen, reason).starts_with("--angle: "),
+            line_with(&screen, reason).starts_with("incidence angle θ1: "),
             "{screen}"
         );
     }
@@ -443,4 +443,19 @@ fn snapshots_of_the_default_screens() {
         let (_, sweep) = explore(w, h, vec![key(KeyCode::Tab)]);
         insta::assert_snapshot!(format!("sweep_{w}x{h}"), sweep);
     }
+}
+
+#[test]
+fn masses_of_a_kilogram_and_more_show_in_kg() {
+    // From the angle down to the cart mass (after the ball's stiffness and damping), then typed.
+    let mut events = vec![key(KeyCode::Down); 11];
+    events.push(key(KeyCode::Enter));
+    events.extend(typed("10kg"));
+    events.push(key(KeyCode::Enter));
+    let (app, screen) = explore(160, 48, events);
+    assert_eq!(app.params.cart_mass, 10.0);
+    assert!(
+        line_with(&screen, "cart mass").contains("10.000 kg"),
+        "{screen}"
+    );
 }

@@ -546,7 +546,11 @@ impl App {
                 params.set(spec.id, value);
                 self.try_apply(params);
             }
-            Err(e) => self.refuse(e.to_string()),
+            // The core names the command-line flag; the panel's name is what the user sees here.
+            Err(e) => self.refuse(e.to_string().replace(
+                &format!("--{}", spec.flag),
+                &format!("{} {}", spec.label, spec.symbol),
+            )),
         }
     }
 

@@ -44,6 +44,7 @@ use ratatui::text::Line;
 use ratatui::widgets::Paragraph;
 
 pub use charts::fixed;
+pub use params::shown;
 
 use super::app::{App, Mode, View};
 

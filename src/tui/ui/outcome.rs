@@ -116,7 +116,7 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
     let o = &b.outcome;
     let e = &solved.energy;
     let label = |short: &'static str, long: &'static str| {
-        let text = if wide { long } else { short };
+        let text = theme.words(if wide { long } else { short });
         Span::styled(
             format!("{text:<w$}", w = if wide { 18 } else { 9 }),
             theme.dim(),

@@ -25,12 +25,13 @@ pub fn dim(frame: &mut Frame, area: Rect, app: &App) {
 /// Writes the mark at the right of the top row of `area`.
 pub fn mark(frame: &mut Frame, area: Rect, app: &App) {
     let buf = frame.buffer_mut();
-    let width = SOLVING.chars().count() as u16;
+    let text = app.theme.words(SOLVING);
+    let width = text.chars().count() as u16;
     if area.width > width + 2 {
         buf.set_span(
             area.right() - width - 1,
             area.y,
-            &Span::styled(SOLVING, app.theme.key()),
+            &Span::styled(text, app.theme.key()),
             width,
         );
     }
@@ -40,7 +41,7 @@ pub fn mark(frame: &mut Frame, area: Rect, app: &App) {
 pub fn pending(frame: &mut Frame, area: Rect, app: &App) {
     let block = Block::bordered();
     frame.render_widget(
-        Paragraph::new(Line::styled(SOLVING, app.theme.key())).block(block),
+        Paragraph::new(Line::styled(app.theme.words(SOLVING), app.theme.key())).block(block),
         area,
     );
 }
