@@ -1,7 +1,9 @@
 //! The command line: clap definitions and the headless commands. `main` only parses and dispatches.
 
+mod completions;
 mod critical_angle;
 mod figure;
+mod man;
 mod optimize;
 mod params_args;
 mod presets;
@@ -36,7 +38,7 @@ pub enum Commands {
     Tui(tui::TuiArgs),
     /// List the presets (use one with --preset NAME on any command).
     Presets(presets::PresetsArgs),
-    /// Solve one bounce per value of a parameter and print the outcomes as CSV or JSON.
+    /// Solve one bounce per value of a parameter and print the outcomes as CSV, JSON or JSON Lines.
     Sweep(sweep::SweepArgs),
     /// The angle below which the ball slides for the whole contact: Eq. (7) and the full model.
     CriticalAngle(critical_angle::CriticalAngleArgs),
@@ -44,8 +46,12 @@ pub enum Commands {
     Optimize(optimize::OptimizeArgs),
     /// Check every number the paper prints (assets/claims.md) against the model.
     Reproduce(reproduce::ReproduceArgs),
-    /// Draw the paper's Fig. 2 or Fig. 3 as SVG.
+    /// Draw the paper's Fig. 2 or Fig. 3 as SVG, at the given parameters.
     Figure(figure::FigureArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    Completions(completions::CompletionsArgs),
+    /// Print the manual page (roff): snapback(1), or snapback-COMMAND(1) for one command.
+    Man(man::ManArgs),
 }
 
 /// A failure to report: the message for stderr and the exit status.
@@ -76,6 +82,8 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Optimize(args)) => optimize::run(&args),
         Some(Commands::Reproduce(args)) => reproduce::run(&args),
         Some(Commands::Figure(args)) => figure::run(&args),
+        Some(Commands::Completions(args)) => completions::run(&args),
+        Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),
     };
     match result {
