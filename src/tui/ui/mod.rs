@@ -129,7 +129,6 @@ pub fn draw(frame: &mut Frame, app: &App) {
         return;
     };
     params::render(frame, regions.params, app);
-    let bounce_panels = [Some(regions.outcome), regions.schematic];
     let stale = app.stale() && app.stale_marked;
     let view_stale = match app.view {
         View::Sweep => app.stale() || app.sweeps_stale(),
@@ -146,7 +145,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
                 (View::Sweep, Some(sweeps)) => {
                     sweep::render(frame, regions.view, app, solved, sweeps)
                 }
-                (View::Sweep, None) => stale::pending(frame, regions.view, app),
+                (View::Sweep, None) => stale::pending(frame, regions.view, app, app.view.name()),
                 (View::Heatmap, _) => heatmap::render(frame, regions.view, app, solved),
             }
             if stale {
@@ -161,10 +160,11 @@ pub fn draw(frame: &mut Frame, app: &App) {
             }
         }
         None => {
-            for panel in bounce_panels.into_iter().flatten() {
-                stale::pending(frame, panel, app);
+            stale::pending(frame, regions.outcome, app, "outcome");
+            if let Some(schematic) = regions.schematic {
+                stale::pending(frame, schematic, app, "schematic");
             }
-            stale::pending(frame, regions.view, app);
+            stale::pending(frame, regions.view, app, app.view.name());
         }
     }
     status::render(frame, regions.status, app, regions.schematic.is_some());

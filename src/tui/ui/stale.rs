@@ -37,9 +37,12 @@ pub fn mark(frame: &mut Frame, area: Rect, app: &App) {
     }
 }
 
-/// A box with the mark, where nothing has been solved yet.
-pub fn pending(frame: &mut Frame, area: Rect, app: &App) {
-    let block = Block::bordered();
+/// A box titled `title` with the mark, where nothing has been solved yet.
+pub fn pending(frame: &mut Frame, area: Rect, app: &App, title: &str) {
+    let block = Block::bordered().title(Span::styled(
+        format!(" {} ", app.theme.words(title)),
+        app.theme.title(),
+    ));
     frame.render_widget(
         Paragraph::new(Line::styled(app.theme.words(SOLVING), app.theme.key())).block(block),
         area,
