@@ -459,3 +459,35 @@ fn masses_of_a_kilogram_and_more_show_in_kg() {
         "{screen}"
     );
 }
+
+#[test]
+fn a_long_chattering_contact_keeps_labels_inside_the_charts_and_the_outcome_short() {
+    // T = 5 s: hundreds of phases, and y labels as wide as their column.
+    let params = Params {
+        duration: 5.0,
+        ..Params::default()
+    };
+    let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
+    let mut app = App::new(params, Theme::default()).unwrap();
+    run(
+        &mut terminal,
+        &mut app,
+        &mut Scripted::from(Vec::<Event>::new()),
+    )
+    .unwrap();
+    let screen = text(&terminal);
+    assert!(app.solved.as_ref().unwrap().bounce.phases.len() > 100);
+    // The left column's right border (column 42 at 160 wide) is whole down to the status line.
+    for (row, line) in screen.lines().take(47).enumerate() {
+        let border = line.chars().nth(42).unwrap();
+        assert!("│┐┘┤".contains(border), "row {row}: {line}\n{screen}");
+    }
+    // The phase sequence is cut short with its count.
+    let phases = app.solved.as_ref().unwrap().bounce.phases.len();
+    assert!(
+        screen.contains(&format!(
+            "slide-grip-slide-grip-slide-grip-… ({phases} phases)"
+        )),
+        "{screen}"
+    );
+}

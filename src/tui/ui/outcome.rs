@@ -58,6 +58,21 @@ pub fn timeline(bounce: &Bounce, theme: &Theme) -> Vec<Span<'static>> {
     spans
 }
 
+/// The sequence of phases, `slide-grip-slide`; past [`LISTED_PHASES`] the first of them and the count,
+/// so that a chattering grip of hundreds of phases keeps the panel short.
+fn summary(bounce: &Bounce) -> String {
+    let all = bounce.phase_summary();
+    let kinds: Vec<&str> = all.split('-').collect();
+    if kinds.len() <= LISTED_PHASES {
+        return all;
+    }
+    format!(
+        "{}-… ({} phases)",
+        kinds[..LISTED_PHASES].join("-"),
+        kinds.len()
+    )
+}
+
 /// Rows a line of text takes when wrapped at word boundaries into `width` columns.
 fn wrapped_rows(line: &Line, width: usize) -> usize {
     let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
@@ -150,7 +165,7 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
             ]),
             Line::from(vec![
                 label("phases", "phases (ms)"),
-                Span::styled(b.phase_summary(), theme.dim()),
+                Span::styled(summary(b), theme.dim()),
             ]),
             Line::from(timeline(b, theme)),
         ]
