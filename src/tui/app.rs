@@ -189,6 +189,10 @@ pub struct App {
     pub dir: PathBuf,
     /// The scenario file last opened or saved, as typed, offered by the next prompt.
     pub last_file: Option<String>,
+    /// The parameters as that file holds them: quitting with others asks once.
+    pub(super) file_params: Option<Params>,
+    /// True after a quit that was asked about: the next quit goes.
+    quit_asked: bool,
     /// The time cursor, s, in `[0, T]`: the charts' vertical line, their readouts and the schematic.
     pub cursor: f64,
     /// True while the bounce plays in slow motion.
@@ -237,6 +241,8 @@ impl App {
             baseline: None,
             dir: std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
             last_file: None,
+            file_params: None,
+            quit_asked: false,
             solver: Solver::default(),
             changed_at: Instant::now(),
             stale_marked: false,
@@ -415,6 +421,8 @@ impl App {
     /// Applies one action; any change of parameters re-solves and recomputes everything shown.
     pub fn update(&mut self, action: Action) {
         self.message = None;
+        // Only a quit right after the question quits.
+        self.quit_asked &= action == Action::Quit;
         match action {
             Action::SelectPrevious => {
                 self.selected = (self.selected + PARAMS.len() - 1) % PARAMS.len();
@@ -491,7 +499,7 @@ impl App {
                     Mode::Help
                 }
             }
-            Action::Quit => self.quit = true,
+            Action::Quit => self.quit_or_ask(),
             Action::OpenPicker
             | Action::PickerUp
             | Action::PickerDown
@@ -511,6 +519,22 @@ impl App {
             | Action::ClearBaseline
             | Action::Export => self.update_scenarios(action),
         }
+    }
+
+    /// Quits, unless the parameters differ from the scenario file last opened or saved and this is the
+    /// first quit since: then it says so once, and the next quit goes.
+    fn quit_or_ask(&mut self) {
+        let unsaved = self.file_params.is_some_and(|p| p != self.params);
+        if !unsaved || self.quit_asked {
+            self.quit = true;
+            return;
+        }
+        self.quit_asked = true;
+        let file = self.last_file.clone().unwrap_or_default();
+        self.message = Some(Message {
+            text: format!("changes since {file} are not saved: quit again to quit, s saves"),
+            tone: Tone::Info,
+        });
     }
 
     fn step(&mut self, up: bool, coarse: bool) {

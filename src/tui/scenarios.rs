@@ -223,7 +223,10 @@ impl App {
             _ => "Saved from the snapback explorer".to_string(),
         };
         match Scenario::from_params(&name, &description, &self.params).save(path) {
-            Ok(()) => self.info(format!("saved {}", path.display())),
+            Ok(()) => {
+                self.file_params = Some(self.params);
+                self.info(format!("saved {}", path.display()));
+            }
             Err(e) => self.error(format!("not saved: {e}")),
         }
     }
@@ -231,6 +234,11 @@ impl App {
     fn submit_open(&mut self, typed: &str) {
         if typed.is_empty() {
             self.error("open: no file name given".into());
+            return;
+        }
+        // Standard input is the terminal the explorer reads its keys from.
+        if crate::input::is_stdin(Path::new(typed)) {
+            self.error("open: the explorer reads its keys from standard input; give a file".into());
             return;
         }
         // `what-if` opens what-if.toml when there is no file called what-if.
@@ -241,6 +249,7 @@ impl App {
         match load(&self.resolve(&name), &name) {
             Ok(scenario) => {
                 self.last_file = Some(name.clone());
+                self.file_params = Some(scenario.apply(Params::default()));
                 let what = if scenario.description.is_empty() {
                     format!("opened {name}")
                 } else {
