@@ -10,6 +10,7 @@ use std::time::Duration;
 
 use rayon::prelude::*;
 
+use super::peak::{self, Peak};
 use super::worker::Worker;
 use crate::model::{ParamId, Params, SolveError, solve_cancellable};
 
@@ -114,6 +115,21 @@ pub struct Heatmap {
     pub rows: Vec<Option<Vec<Option<f64>>>>,
     /// Started on the first request.
     worker: Option<RowWorker>,
+    /// The best point, refined from the best cell once the map is complete ([`peak`]).
+    pub peak: Option<Peak>,
+    /// The refinement asked for (its generation), until it answers.
+    refining: Option<u64>,
+    /// Started when the first map is complete.
+    refiner: Option<PeakWorker>,
+}
+
+/// The worker that refines the best cell: a job is the parameters and the cell.
+type PeakWorker = Worker<(Params, usize, usize), Option<Peak>>;
+
+fn spawn_refiner() -> PeakWorker {
+    Worker::spawn("peak", |(params, i, j): (Params, usize, usize), job| {
+        job.send(peak::refine(&params, i, j, &|| job.cancelled()));
+    })
 }
 
 impl Heatmap {
@@ -126,6 +142,11 @@ impl Heatmap {
         }
         self.requested = Some(key);
         self.rows = vec![None; STIFFNESSES];
+        self.peak = None;
+        self.refining = None;
+        if let Some(refiner) = &self.refiner {
+            refiner.cancel();
+        }
         self.generation = self.worker.get_or_insert_with(spawn).submit(key);
         true
     }
@@ -149,7 +170,41 @@ impl Heatmap {
         for row in arrived {
             changed |= self.accept(row);
         }
-        changed
+        self.refine() || changed
+    }
+
+    /// Asks for the peak once the map is complete, and takes it when it comes; true if it came.
+    fn refine(&mut self) -> bool {
+        let (Some(params), Some((i, j, _))) = (self.requested, self.best()) else {
+            return false;
+        };
+        if self.rows.iter().any(Option::is_none) {
+            return false;
+        }
+        let refiner = self.refiner.get_or_insert_with(spawn_refiner);
+        match self.refining {
+            None if self.peak.is_none() => {
+                self.refining = Some(refiner.submit((params, i, j)));
+                false
+            }
+            Some(generation) => {
+                let answer = refiner.try_iter().filter(|(g, _)| *g == generation).last();
+                match answer {
+                    Some((_, peak)) => {
+                        self.refining = None;
+                        // A cell the core refuses has no peak: the cell stands.
+                        self.peak = Some(peak.unwrap_or(Peak {
+                            mass: mass(i),
+                            stiffness: stiffness(j),
+                            omega2: self.at(i, j).unwrap_or(f64::NAN),
+                        }));
+                        true
+                    }
+                    None => false,
+                }
+            }
+            None => false,
+        }
     }
 
     /// Waits up to `timeout` for a row, and takes it and any others that have arrived; true if the map
@@ -163,9 +218,9 @@ impl Heatmap {
         self.poll() || changed
     }
 
-    /// True while a requested map is not complete.
+    /// True while a requested map, or its peak, is not complete.
     pub fn pending(&self) -> bool {
-        self.requested.is_some() && self.rows.iter().any(Option::is_none)
+        self.requested.is_some() && (self.rows.iter().any(Option::is_none) || self.peak.is_none())
     }
 
     /// How many rows are in.

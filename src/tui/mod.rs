@@ -17,6 +17,7 @@ pub mod input;
 pub mod keys;
 pub mod locale;
 pub mod output;
+pub mod peak;
 pub mod playback;
 pub mod scenarios;
 pub mod solved;

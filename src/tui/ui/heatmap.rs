@@ -1,5 +1,6 @@
 //! The heatmap view: rebound spin omega2 over cart mass M (across, log) and spring stiffness k (up, log)
-//! for the other parameters as they are, with the current (M, k) marked `+` and the best cell so far `*`,
+//! for the other parameters as they are, with the current (M, k) marked `+` and the best `*` (the best
+//! cell so far, then the peak refined from it by Brent's method, [`crate::tui::peak`]),
 //! and a colour scale beneath. Cells fill in row by row as the worker thread solves them.
 //!
 //! With colour, each character shows two cells one above the other (`▀`, the upper in the foreground
@@ -133,8 +134,22 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
         };
         cell.set_symbol(symbol).set_style(style);
     };
-    let best = map.best();
-    if let Some((i, j, _)) = best {
+    // The refined peak once it is known, else the best cell so far.
+    let best = match map.peak {
+        Some(peak) => cell_of(peak.mass, MASS_RANGE, MASSES)
+            .zip(cell_of(peak.stiffness, STIFFNESS_RANGE, STIFFNESSES))
+            .map(|(i, j)| (i, j, peak.omega2, peak.mass, peak.stiffness)),
+        None => map.best().map(|(i, j, w)| {
+            (
+                i,
+                j,
+                w,
+                crate::tui::heatmap::mass(i),
+                crate::tui::heatmap::stiffness(j),
+            )
+        }),
+    };
+    if let Some((i, j, ..)) = best {
         place(buf, i, j, "*");
     }
     let current = (
@@ -205,11 +220,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
         _ => format!("+ now {omega2:.1}, off the map  "),
     };
     let marks = match best {
-        Some((i, j, w)) => format!(
+        Some((_, _, w, m, k)) => format!(
             "{here}* best {w:.1}{} {}, {}",
             if wide { " at M" } else { ":" },
-            grams(crate::tui::heatmap::mass(i)),
-            kilo(crate::tui::heatmap::stiffness(j))
+            grams(m),
+            kilo(k)
         ),
         None => here,
     };
