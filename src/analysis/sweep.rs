@@ -22,10 +22,17 @@ pub struct Row {
     /// The phases in order, e.g. `slide-grip-slide`.
     pub phases: String,
     pub slides_throughout: bool,
+    /// True when string friction holds the cart still at some time in the contact.
+    pub cart_stuck: bool,
+    /// A compliant ball's stretch e as it leaves, m (`None` for a rigid ball).
+    pub stretch: Option<f64>,
+    /// The slip of a compliant ball's contact patch on the cart as it leaves, m/s (`None` for a rigid
+    /// ball).
+    pub patch_slip: Option<f64>,
 }
 
 /// The columns after the varied value's.
-pub const COLUMNS: [&str; 7] = [
+pub const COLUMNS: [&str; 10] = [
     "omega2",
     "vx2",
     "vy2",
@@ -33,6 +40,9 @@ pub const COLUMNS: [&str; 7] = [
     "ex",
     "phases",
     "slides_throughout",
+    "cart_stuck",
+    "stretch",
+    "patch_slip",
 ];
 
 /// One bounce per value of `span` (`steps` values, ends included), on all cores, in order. For a
@@ -69,6 +79,9 @@ pub fn row(base: &Params, span: &Span, value: f64) -> Result<Row, AnalysisError>
         ex: o.ex,
         phases: bounce.phase_summary(),
         slides_throughout: bounce.slides_throughout(),
+        cart_stuck: bounce.cart_ever_stuck(),
+        stretch: bounce.final_patch().map(|(e, _)| e),
+        patch_slip: bounce.final_patch().map(|(_, slip)| slip),
     })
 }
 
@@ -189,11 +202,16 @@ fn csv_line(text: &mut String, r: &Row) {
     }
     text.push(',');
     text.push_str(&r.phases);
-    text.push_str(if r.slides_throughout {
-        ",true\n"
-    } else {
-        ",false\n"
-    });
+    for flag in [r.slides_throughout, r.cart_stuck] {
+        text.push_str(if flag { ",true" } else { ",false" });
+    }
+    for x in [r.stretch, r.patch_slip] {
+        text.push(',');
+        if let Some(x) = x {
+            push_number(text, &mut digits, x);
+        }
+    }
+    text.push('\n');
 }
 
 /// A number in its shortest round-trip form: plain (`10`, `0.3`) from 1e-5 to 1e16, else with an
@@ -219,6 +237,9 @@ pub fn object(column: &str, r: &Row) -> serde_json::Value {
     object.insert("ex".into(), r.ex.into());
     object.insert("phases".into(), r.phases.clone().into());
     object.insert("slides_throughout".into(), r.slides_throughout.into());
+    object.insert("cart_stuck".into(), r.cart_stuck.into());
+    object.insert("stretch".into(), r.stretch.into());
+    object.insert("patch_slip".into(), r.patch_slip.into());
     serde_json::Value::Object(object)
 }
 

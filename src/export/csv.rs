@@ -1,11 +1,11 @@
-//! CSV of a sampled time series, SI units: `t,N,F,X,V,vx,omega,slip,phase`.
+//! CSV of a sampled time series, SI units: `t,N,F,X,V,vx,omega,slip,phase,cart_stuck,stretch,patch_slip`.
 
 use std::fmt::Write;
 
 use crate::model::Sample;
 
 /// The header line of [`series`].
-pub const HEADER: &str = "t,N,F,X,V,vx,omega,slip,phase";
+pub const HEADER: &str = "t,N,F,X,V,vx,omega,slip,phase,cart_stuck,stretch,patch_slip";
 
 /// The samples as CSV with a header line.
 pub fn series(samples: &[Sample]) -> String {
@@ -15,7 +15,7 @@ pub fn series(samples: &[Sample]) -> String {
     for s in samples {
         let _ = writeln!(
             out,
-            "{},{},{},{},{},{},{},{},{}",
+            "{},{},{},{},{},{},{},{},{},{},{},{}",
             s.t,
             s.normal,
             s.friction,
@@ -24,7 +24,10 @@ pub fn series(samples: &[Sample]) -> String {
             s.vx,
             s.omega,
             s.slip,
-            s.kind.name()
+            s.kind.name(),
+            s.cart_stuck,
+            s.stretch,
+            s.patch_slip
         );
     }
     out
