@@ -488,3 +488,25 @@ fn a_long_chattering_contact_keeps_labels_inside_the_charts_and_the_outcome_shor
         "{screen}"
     );
 }
+
+#[test]
+fn the_help_scrolls_to_its_end_at_80_x_24_and_arrows_do_not_step_behind_it() {
+    // Opened, the help starts with the keys; the selected parameter's notes are below the fold.
+    let (_, screen) = explore(80, 24, vec![key(KeyCode::Char('?'))]);
+    assert!(screen.contains("Keys"), "{screen}");
+    assert!(!screen.contains("(--angle)"), "{screen}");
+    // Scrolled down, they come into view; the arrows scrolled and changed nothing.
+    let mut events = vec![key(KeyCode::Char('?'))];
+    events.extend(vec![key(KeyCode::Down); 60]);
+    let (app, screen) = explore(80, 24, events);
+    assert!(screen.contains("(--angle)"), "{screen}");
+    assert!(screen.contains("While typing a value"), "{screen}");
+    assert_eq!(app.selected, 0);
+    assert_eq!(app.params, Params::default());
+    // And back up to the top.
+    let mut events = vec![key(KeyCode::Char('?'))];
+    events.extend(vec![key(KeyCode::Down); 60]);
+    events.extend(vec![key(KeyCode::Char('k')); 200]);
+    let (_, screen) = explore(80, 24, events);
+    assert!(screen.contains("Keys"), "{screen}");
+}

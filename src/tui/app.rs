@@ -96,6 +96,10 @@ pub enum Action {
     },
     ToggleHelp,
     CloseHelp,
+    /// Scroll the help a row down or up.
+    ScrollHelp {
+        down: bool,
+    },
     Quit,
     /// Open the preset picker.
     OpenPicker,
@@ -193,6 +197,8 @@ pub struct App {
     pub(super) file_params: Option<Params>,
     /// True after a quit that was asked about: the next quit goes.
     quit_asked: bool,
+    /// Rows the help is scrolled down by (the overlay stops at its last row).
+    pub help_scroll: u16,
     /// The time cursor, s, in `[0, T]`: the charts' vertical line, their readouts and the schematic.
     pub cursor: f64,
     /// True while the bounce plays in slow motion.
@@ -210,6 +216,9 @@ pub struct App {
     /// True while pending panels are drawn dimmed.
     pub stale_marked: bool,
 }
+
+/// The most the help scrolls: more than its rows on the narrowest screen.
+const HELP_SCROLL_LIMIT: u16 = 80;
 
 /// How long an answer may take before the panels waiting for it are dimmed.
 pub const STALE_AFTER: Duration = Duration::from_millis(150);
@@ -243,6 +252,7 @@ impl App {
             last_file: None,
             file_params: None,
             quit_asked: false,
+            help_scroll: 0,
             solver: Solver::default(),
             changed_at: Instant::now(),
             stale_marked: false,
@@ -493,11 +503,19 @@ impl App {
                 }
             }
             Action::ToggleHelp => {
+                self.help_scroll = 0;
                 self.mode = if self.mode == Mode::Help {
                     Mode::Normal
                 } else {
                     Mode::Help
                 }
+            }
+            Action::ScrollHelp { down } => {
+                self.help_scroll = if down {
+                    (self.help_scroll + 1).min(HELP_SCROLL_LIMIT)
+                } else {
+                    self.help_scroll.saturating_sub(1)
+                };
             }
             Action::Quit => self.quit_or_ask(),
             Action::OpenPicker

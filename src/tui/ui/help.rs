@@ -72,15 +72,10 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     ];
 
     let width = area.width.saturating_sub(2).min(100);
-    // Keys come first; on a short screen the sections after them are left out whole, in this order (the
-    // status line shows the prompt's keys while typing).
-    let text_width = width.saturating_sub(2);
-    let room = area.height.saturating_sub(2);
-    for section in [prompt, notes] {
-        if overlay::rows(&lines, text_width) + overlay::rows(&section, text_width) <= room {
-            lines.extend(section);
-        }
-    }
+    // Keys come first, then the prompt's and the parameter's notes; on a short screen the arrows scroll.
+    lines.extend(prompt);
+    lines.extend(notes);
     let title = Span::styled(" help ", theme.title());
-    overlay::render(frame, area, width, title, " ?, q or Esc closes ", lines);
+    let footer = theme.words(" ↑↓ scroll · ?, q or Esc closes ").into_owned();
+    overlay::render(frame, area, width, title, footer, lines, app.help_scroll);
 }
