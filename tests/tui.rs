@@ -510,3 +510,29 @@ fn the_help_scrolls_to_its_end_at_80_x_24_and_arrows_do_not_step_behind_it() {
     let (_, screen) = explore(80, 24, events);
     assert!(screen.contains("Keys"), "{screen}");
 }
+
+#[test]
+fn a_start_the_solver_refuses_opens_and_says_so() {
+    // A 1 mg cart on a 1 MN/m spring oscillates too fast to resolve: in range, but refused.
+    let params = Params {
+        cart_mass: 1e-6,
+        stiffness: 1e9,
+        ..Params::default()
+    };
+    let mut terminal = Terminal::new(TestBackend::new(80, 24)).unwrap();
+    let mut app = App::new(params, Theme::default()).unwrap();
+    run(
+        &mut terminal,
+        &mut app,
+        &mut Scripted::from(vec![key(KeyCode::Right)]),
+    )
+    .unwrap();
+    let screen = text(&terminal);
+    assert!(screen.contains("oscillates too fast"), "{screen}");
+    assert!(
+        screen.contains("refused: the status line says why"),
+        "{screen}"
+    );
+    assert!(!screen.contains("solving"), "{screen}");
+    assert!(app.solved.is_none());
+}

@@ -316,6 +316,11 @@ impl App {
         }
     }
 
+    /// True while the bounce or the sweeps asked for have not come yet.
+    pub fn solving(&self) -> bool {
+        self.solver.busy()
+    }
+
     /// True while something asked for has not come yet: the event loop then wakes now and then to take it.
     pub fn busy(&self) -> bool {
         self.solver.busy() || self.heatmap.pending()

@@ -37,14 +37,19 @@ pub fn mark(frame: &mut Frame, area: Rect, app: &App) {
     }
 }
 
-/// A box titled `title` with the mark, where nothing has been solved yet.
+/// What a box says when the core refused the bounce and there is none to show.
+pub const REFUSED: &str = " refused: the status line says why ";
+
+/// A box titled `title` with the mark, where nothing has been solved yet (or, once the core has refused
+/// the bounce, that it did).
 pub fn pending(frame: &mut Frame, area: Rect, app: &App, title: &str) {
+    let text = if app.solving() { SOLVING } else { REFUSED };
     let block = Block::bordered().title(Span::styled(
         format!(" {} ", app.theme.words(title)),
         app.theme.title(),
     ));
     frame.render_widget(
-        Paragraph::new(Line::styled(app.theme.words(SOLVING), app.theme.key())).block(block),
+        Paragraph::new(Line::styled(app.theme.words(text), app.theme.key())).block(block),
         area,
     );
 }
