@@ -5,8 +5,10 @@ use serde::Serialize;
 use super::cart::Cart;
 use super::chain::{ChainMotion, solve_chain_cancellable};
 use super::compliant::{CompliantMotion, solve_compliant_cancellable};
+use super::events::Stall;
 use super::events::first_rise;
 use super::grip::Grip;
+use super::limits::{self, Unsolvable};
 use super::params::{ParamError, Params};
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
@@ -256,6 +258,14 @@ pub enum SolveError {
          exceeds {MAX_RADIANS:e} (lower --ball-stiffness or --ball-damping)"
     )]
     BallTooFast { radians: f64 },
+    #[error(transparent)]
+    Unsolvable(#[from] Unsolvable),
+    #[error(transparent)]
+    Stalled(#[from] Stall),
+    #[error(
+        "{quantity} is not a finite number: the parameters are beyond what f64 carries through"
+    )]
+    NotFinite { quantity: &'static str },
 }
 
 /// The largest number of cart radians per contact the solver accepts (about 16 000 oscillations).
@@ -281,6 +291,10 @@ pub fn solve_cancellable(
     params: &Params,
     cancelled: &impl Fn() -> bool,
 ) -> Result<Bounce, SolveError> {
+    limits::bounded(params, || solve_single(params, cancelled))
+}
+
+fn solve_single(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Bounce, SolveError> {
     params.validate()?;
     if params.ball_stiffness > 0.0 {
         return solve_compliant_cancellable(params, cancelled);

@@ -7,6 +7,7 @@ pub mod chain;
 pub mod compliant;
 pub mod events;
 pub mod grip;
+pub mod limits;
 pub mod oscillator;
 pub mod params;
 pub mod quadrature;

@@ -23,6 +23,7 @@ use super::bounce::{
 use super::cart::Cart;
 use super::compliant::solve_compliant_cancellable;
 use super::events::first_rise;
+use super::limits;
 use super::params::Params;
 use super::setup::{Setup, State};
 use super::transition::{Ball, Cause};
@@ -140,6 +141,10 @@ pub fn solve_chain_cancellable(
     params: &Params,
     cancelled: &impl Fn() -> bool,
 ) -> Result<Bounce, SolveError> {
+    limits::bounded(params, || solve_links(params, cancelled))
+}
+
+fn solve_links(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Bounce, SolveError> {
     params.validate()?;
     if params.ball_stiffness > 0.0 {
         return solve_compliant_cancellable(params, cancelled);

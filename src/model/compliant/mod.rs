@@ -36,6 +36,7 @@ use super::cart::Cart;
 use super::chain::motion::Motion as ChainMotion;
 use super::chain::{Chain, ChainState};
 use super::events::first_rise_from_tangent;
+use super::limits;
 use super::params::Params;
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
@@ -288,6 +289,14 @@ pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
 }
 
 fn solve_on(
+    params: &Params,
+    modal: bool,
+    cancelled: &impl Fn() -> bool,
+) -> Result<Bounce, SolveError> {
+    limits::bounded(params, || solve_modal(params, modal, cancelled))
+}
+
+fn solve_modal(
     params: &Params,
     modal: bool,
     cancelled: &impl Fn() -> bool,

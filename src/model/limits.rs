@@ -1,0 +1,267 @@
+//! What the solver can finish. Every value in a parameter's range is valid input, but f64 carries a
+//! bounce through only while its scales stay clear of overflow, underflow and rounding. So a solve is
+//! bounded ([`bounded`]): each parameter is checked against the range that can be solved, a lightly
+//! damped ball against the relaxation its dashpot can resolve, the event searches run within a work
+//! budget, and the outcome must be finite.
+
+use super::bounce::{Bounce, SolveError};
+use super::events;
+use super::params::{ParamId, Params, spec};
+use super::units;
+
+/// A parameter value whose bounce f64 cannot resolve: the message names the flag, the range that can
+/// be solved and the value given.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("--{flag} must be in {range} to be solved ({why}); got {given}")]
+pub struct Unsolvable {
+    pub flag: &'static str,
+    pub range: String,
+    pub given: String,
+    pub why: &'static str,
+}
+
+/// The magnitudes a parameter can be solved with: zero where its range allows it, or between `smallest`
+/// and `largest`.
+struct Solvable {
+    id: ParamId,
+    smallest: f64,
+    largest: f64,
+}
+
+/// Why the scales are bounded.
+const SCALES: &str = "beyond, the bounce's forces and rates leave what f64 resolves";
+
+/// The dimensional scales of the ball, the impact and the cart, and the pure numbers that multiply
+/// them. Within these, every product the solver forms stays below 1e200 in size and above 1e-200.
+const SOLVABLE: &[Solvable] = &[
+    Solvable {
+        id: ParamId::Speed,
+        smallest: 1e-15,
+        largest: 1e15,
+    },
+    Solvable {
+        id: ParamId::Spin,
+        smallest: 0.0,
+        largest: 1e15,
+    },
+    Solvable {
+        id: ParamId::Mu,
+        smallest: 0.0,
+        largest: 1e6,
+    },
+    Solvable {
+        id: ParamId::Duration,
+        smallest: 1e-15,
+        largest: 1e15,
+    },
+    Solvable {
+        id: ParamId::Mass,
+        smallest: 1e-15,
+        largest: 1e15,
+    },
+    Solvable {
+        id: ParamId::Radius,
+        smallest: 1e-15,
+        largest: 1e15,
+    },
+    Solvable {
+        id: ParamId::Alpha,
+        smallest: 1e-6,
+        largest: 1e6,
+    },
+    Solvable {
+        id: ParamId::CartMass,
+        smallest: 1e-15,
+        largest: 1e15,
+    },
+    Solvable {
+        id: ParamId::Stiffness,
+        smallest: 0.0,
+        largest: 1e30,
+    },
+    Solvable {
+        id: ParamId::CartFriction,
+        smallest: 0.0,
+        largest: 1e30,
+    },
+    Solvable {
+        id: ParamId::BallStiffness,
+        smallest: 0.0,
+        largest: 1e30,
+    },
+];
+
+/// The most decay times 1/lambda of a damped ball's stretch (lambda = k_b/c_b) that one contact may
+/// hold: the slide's event search steps on that scale while the transient lasts, and a step must stay
+/// far above the rounding of t.
+pub const MAX_RELAXATIONS: f64 = 1e15;
+
+/// Event evaluations per solve on the single cart: about a second of the costliest model's work.
+const BUDGET: u64 = 1_000_000;
+
+/// The work budget of one solve: [`BUDGET`] evaluations on the single cart, fewer on a chain, whose
+/// evaluations cost more with its length.
+pub fn budget(params: &Params) -> u64 {
+    let links = params.chain.clamp(1.0, 16.0) as u64;
+    BUDGET * 3 / (links + 2)
+}
+
+/// Runs `solve` for `params` bounded: refused up front when a parameter is outside what can be solved,
+/// within its work budget, and refused when the outcome is not finite.
+pub fn bounded(
+    params: &Params,
+    solve: impl FnOnce() -> Result<Bounce, SolveError>,
+) -> Result<Bounce, SolveError> {
+    params.validate()?;
+    check(params)?;
+    let bounce = events::metered(budget(params), solve)??;
+    finite(&bounce)?;
+    Ok(bounce)
+}
+
+/// Checks every parameter against the range that can be solved, and a damped ball's relaxation.
+pub fn check(params: &Params) -> Result<(), Unsolvable> {
+    for limit in SOLVABLE {
+        let value = params.get(limit.id);
+        let size = value.abs();
+        let zero_ok = spec(limit.id).range.contains(0.0);
+        let ok = (size == 0.0 && zero_ok) || (size >= limit.smallest && size <= limit.largest);
+        if !ok {
+            return Err(refusal(limit, value));
+        }
+    }
+    relaxation(params)
+}
+
+/// The message for `value` outside `limit`.
+fn refusal(limit: &Solvable, value: f64) -> Unsolvable {
+    let spec = spec(limit.id);
+    let unit = spec.dimension.base_symbol();
+    let largest = number(limit.largest);
+    let range = if spec.range.contains(-1.0) {
+        format!("[-{largest}, {largest}]")
+    } else if limit.smallest == 0.0 {
+        format!("[0, {largest}]")
+    } else {
+        format!("[{}, {largest}]", number(limit.smallest))
+    };
+    Unsolvable {
+        flag: spec.flag,
+        range: format!("{range} {unit}").trim_end().to_string(),
+        given: format!("{} {unit}", number(value)).trim_end().to_string(),
+        why: SCALES,
+    }
+}
+
+/// A damped ball's stretch relaxes at lambda = k_b/c_b = sqrt(k_b/m_eff)/(2 zeta); lambda T must stay
+/// within [`MAX_RELAXATIONS`], which bounds zeta from below (zero, an undamped ball, is solved apart).
+fn relaxation(params: &Params) -> Result<(), Unsolvable> {
+    let zeta = params.ball_damping;
+    if params.ball_stiffness == 0.0 || zeta == 0.0 {
+        return Ok(());
+    }
+    let m_eff = params.mass * params.alpha / (1.0 + params.alpha);
+    let smallest =
+        (params.ball_stiffness / m_eff).sqrt() * params.duration / (2.0 * MAX_RELAXATIONS);
+    if zeta >= smallest {
+        return Ok(());
+    }
+    let spec = spec(ParamId::BallDamping);
+    Err(Unsolvable {
+        flag: spec.flag,
+        range: format!("{{0}} or [{}, 10]", units::brief(smallest, 3)),
+        given: number(zeta),
+        why: "a lighter damping relaxes the ball's stretch faster than the impact's time can resolve",
+    })
+}
+
+/// The shortest text that reads back as `value`, in exponent form outside ordinary magnitudes.
+fn number(value: f64) -> String {
+    if value == 0.0 || (1e-4..1e9).contains(&value.abs()) {
+        format!("{value}")
+    } else {
+        format!("{value:e}")
+    }
+}
+
+/// Refuses an outcome that is not a finite number.
+fn finite(bounce: &Bounce) -> Result<(), SolveError> {
+    let o = &bounce.outcome;
+    let values = [
+        ("the rebound spin", o.omega2),
+        ("the rebound velocity along the surface", o.vx2),
+        ("the rebound velocity away from the surface", o.vy2),
+        ("the rebound speed", o.speed2),
+        ("the rebound angle", o.theta2_deg),
+        ("e_x", o.ex.unwrap_or(0.0)),
+        ("the roll ratio", o.roll_ratio.unwrap_or(0.0)),
+    ];
+    match values.iter().find(|(_, v)| !v.is_finite()) {
+        Some(&(quantity, _)) => Err(SolveError::NotFinite { quantity }),
+        None => Ok(()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_defaults_and_the_paper_are_solvable() {
+        assert_eq!(check(&Params::default()), Ok(()));
+    }
+
+    #[test]
+    fn a_value_beyond_the_scales_is_refused_with_its_range() {
+        let p = Params {
+            speed: 1e160,
+            ..Params::default()
+        };
+        assert_eq!(
+            check(&p).unwrap_err().to_string(),
+            format!("--speed must be in [1e-15, 1e15] m/s to be solved ({SCALES}); got 1e160 m/s")
+        );
+        let p = Params {
+            spin: -1e308,
+            ..Params::default()
+        };
+        let message = check(&p).unwrap_err().to_string();
+        assert!(
+            message.starts_with("--spin must be in [-1e15, 1e15] rad/s"),
+            "{message}"
+        );
+    }
+
+    #[test]
+    fn a_lightly_damped_ball_is_refused_but_an_undamped_one_is_not() {
+        let ball = Params {
+            ball_stiffness: 1e5,
+            ..Params::default()
+        };
+        assert_eq!(check(&ball), Ok(()));
+        let light = Params {
+            ball_damping: 1e-20,
+            ..ball
+        };
+        let message = check(&light).unwrap_err().to_string();
+        assert!(
+            message.starts_with("--ball-damping must be in {0} or [5.56e-15, 10]"),
+            "{message}"
+        );
+        let enough = Params {
+            ball_damping: 1e-14,
+            ..ball
+        };
+        assert_eq!(check(&enough), Ok(()));
+    }
+
+    #[test]
+    fn a_chain_gets_a_smaller_budget() {
+        let chain = Params {
+            chain: 16.0,
+            ..Params::default()
+        };
+        assert_eq!(budget(&Params::default()), BUDGET);
+        assert!(budget(&chain) < BUDGET / 5);
+    }
+}
