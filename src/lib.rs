@@ -8,5 +8,6 @@ pub mod analysis;
 pub mod cli;
 pub mod export;
 pub mod model;
+pub mod output;
 pub mod scenario;
 pub mod tui;

@@ -13,7 +13,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde::Deserialize;
 use toml::Spanned;
@@ -21,6 +21,7 @@ use toml::Spanned;
 use crate::model::Params;
 use crate::model::params::{PARAMS, ParamError, spec_named};
 use crate::model::units;
+use crate::output::{self, Replace};
 
 /// A named set of parameter values.
 #[derive(Clone, Debug, PartialEq)]
@@ -96,6 +97,8 @@ pub enum ScenarioError {
         #[source]
         source: std::io::Error,
     },
+    #[error(transparent)]
+    Write(#[from] output::WriteError),
     #[error("{origin}:{line}: {message}")]
     Invalid {
         origin: String,
@@ -246,32 +249,15 @@ impl Scenario {
         out
     }
 
-    /// Writes the scenario to `path` atomically: a temporary file beside it, then a rename, so an
-    /// existing file is never left truncated.
+    /// Writes the scenario to `path` through [`output::write`]: never replacing a read-only file, a
+    /// device or a symlink, and never leaving a half-written file.
     pub fn save(&self, path: &Path) -> Result<(), ScenarioError> {
-        write_atomically(path, self.to_toml().as_bytes()).map_err(|source| ScenarioError::Io {
-            path: path.display().to_string(),
-            source,
-        })
+        Ok(output::write(
+            path,
+            self.to_toml().as_bytes(),
+            Replace::Writable,
+        )?)
     }
-}
-
-/// Writes `bytes` to a temporary file next to `path` and renames it into place.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"))?;
-    let mut temporary = PathBuf::from(path);
-    temporary.set_file_name(format!(
-        ".{}.{}.tmp",
-        file_name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = std::fs::write(&temporary, bytes).and_then(|()| std::fs::rename(&temporary, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temporary);
-    }
-    result
 }
 
 /// A short text for a value of parameter `key` in its people unit, e.g. `10.00 g`.

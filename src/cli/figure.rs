@@ -1,13 +1,15 @@
 //! `snapback figure fig2|fig3 --out FILE.svg`: the paper's Fig. 2 or Fig. 3 as SVG.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
 
-use super::{Failure, ParamArgs, emit};
+use super::{Failure, ParamArgs};
 use crate::analysis::figures::Which;
-use crate::export::svg;
+use crate::export::svg::{self, SvgError};
 use crate::model::Params;
+use crate::output::{Replace, WriteError};
 
 #[derive(Clone, Debug, Args)]
 pub struct FigureArgs {
@@ -17,9 +19,13 @@ pub struct FigureArgs {
     /// fig2 (omega2 against theta1, six curves) or fig3 (F, X and omega against t at 60 deg).
     #[arg(value_name = "FIGURE")]
     pub which: String,
-    /// The SVG file to write.
+    /// The SVG file to write: a symlink is written through, a device or FIFO written into, `-` is
+    /// standard output. A read-only file is kept unless --force is given.
     #[arg(long, value_name = "FILE.svg")]
     pub out: PathBuf,
+    /// Replace --out even when it is a read-only file (it stays read-only).
+    #[arg(long)]
+    pub force: bool,
 }
 
 pub fn run(args: &FigureArgs) -> Result<(), Failure> {
@@ -29,6 +35,20 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         .apply(Params::default())
         .map_err(Failure::usage)?;
     let figure = which.data(&base).map_err(Failure::usage)?;
-    svg::write(&figure, &args.out).map_err(Failure::usage)?;
-    emit(&format!("wrote {}\n", args.out.display()))
+    let replace = if args.force {
+        Replace::Any
+    } else {
+        Replace::Writable
+    };
+    match svg::write(&figure, &args.out, replace) {
+        Err(e @ SvgError::Write(WriteError::ReadOnly { .. })) => {
+            Err(Failure::usage(format!("{e} (--force replaces it)")))
+        }
+        Err(e) => Err(Failure::usage(e)),
+        // Said on stderr: stdout may be where the figure went (`--out -`, `--out /dev/stdout`).
+        Ok(()) => {
+            let _ = writeln!(std::io::stderr(), "wrote {}", args.out.display());
+            Ok(())
+        }
+    }
 }
