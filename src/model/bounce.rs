@@ -279,9 +279,10 @@ pub(super) const ROLLING: f64 = 1e-12;
 pub(super) const ROUNDING: f64 = 1e-12;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
-/// located by root finding on the exact expressions.
+/// located by root finding on the exact expressions. Cancelled once the process is interrupted
+/// ([`limits::interrupt`]).
 pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
-    solve_cancellable(params, &|| false)
+    solve_cancellable(params, &limits::interrupted)
 }
 
 /// [`solve`], abandoned with [`SolveError::Cancelled`] as soon as `cancelled` returns true: it is asked

@@ -79,6 +79,11 @@ pub fn metered<T>(budget: u64, solve: impl FnOnce() -> T) -> Result<T, Stall> {
     stall.map_or(Ok(result), Err)
 }
 
+/// True while a metered solve runs on this thread.
+pub fn metering() -> bool {
+    METER.get().armed
+}
+
 /// Records one evaluation at `t`.
 fn spend(t: f64) {
     let mut meter = METER.get();

@@ -2,7 +2,10 @@
 //! bounce through only while its scales stay clear of overflow, underflow and rounding. So a solve is
 //! bounded ([`bounded`]): each parameter is checked against the range that can be solved, a lightly
 //! damped ball against the relaxation its dashpot can resolve, the event searches run within a work
-//! budget, and the outcome must be finite.
+//! budget, and the outcome must be finite. A headless command can interrupt every solve of the process
+//! ([`interrupt`], on Ctrl-C) and follow how many have been solved ([`solved`]).
+
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use super::bounce::{Bounce, SolveError};
 use super::events;
@@ -106,9 +109,42 @@ pub fn budget(params: &Params) -> u64 {
     BUDGET * 3 / (links + 2)
 }
 
+/// Set once the process is told to stop (Ctrl-C in a headless command).
+static INTERRUPTED: AtomicBool = AtomicBool::new(false);
+/// Bounces solved by this process.
+static SOLVED: AtomicU64 = AtomicU64::new(0);
+
+/// Makes every solve of this process, running or to come, end with [`SolveError::Cancelled`] at its
+/// next check. Async-signal-safe (one atomic store), so a signal handler may call it.
+pub fn interrupt() {
+    INTERRUPTED.store(true, Ordering::Relaxed);
+}
+
+/// True once [`interrupt`] was called: the cancellation check of [`super::solve`].
+pub fn interrupted() -> bool {
+    INTERRUPTED.load(Ordering::Relaxed)
+}
+
+/// How many bounces this process has solved (or refused) so far.
+pub fn solved() -> u64 {
+    SOLVED.load(Ordering::Relaxed)
+}
+
 /// Runs `solve` for `params` bounded: refused up front when a parameter is outside what can be solved,
 /// within its work budget, and refused when the outcome is not finite.
 pub fn bounded(
+    params: &Params,
+    solve: impl FnOnce() -> Result<Bounce, SolveError>,
+) -> Result<Bounce, SolveError> {
+    let outermost = !events::metering();
+    let bounce = checked(params, solve);
+    if outermost {
+        SOLVED.fetch_add(1, Ordering::Relaxed);
+    }
+    bounce
+}
+
+fn checked(
     params: &Params,
     solve: impl FnOnce() -> Result<Bounce, SolveError>,
 ) -> Result<Bounce, SolveError> {
