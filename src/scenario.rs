@@ -120,6 +120,19 @@ struct RawScenario {
     params: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
 }
 
+/// The key of the line holding byte `offset` (`speed` in `speed = 5`, `params` in `[params]`), for a
+/// parser's message that does not name it.
+fn key_at(text: &str, offset: usize) -> Option<&str> {
+    let start = text.get(..offset)?.rfind('\n').map_or(0, |i| i + 1);
+    let line = text[start..].lines().next()?;
+    let key = match line.split_once('=') {
+        Some((key, _)) => key,
+        None => line.trim().trim_start_matches('[').trim_end_matches(']'),
+    };
+    let key = key.trim().trim_matches(['"', '\'']);
+    (!key.is_empty() && key.len() <= 64).then_some(key)
+}
+
 /// 1-based line of byte `offset` in `text`.
 fn line_of(text: &str, offset: usize) -> usize {
     1 + text[..offset.min(text.len())]
@@ -139,7 +152,11 @@ impl Scenario {
         };
         let raw: RawScenario = toml::from_str(text).map_err(|e| {
             let offset = e.span().map_or(0, |s| s.start);
-            invalid(offset, None, e.message().trim_end().to_string())
+            let message = e.message().trim_end();
+            match key_at(text, offset) {
+                Some(key) => invalid(offset, Some(key), format!("{key}: {message}")),
+                None => invalid(offset, None, message.to_string()),
+            }
         })?;
         let mut values = BTreeMap::new();
         for (key, value) in &raw.params {

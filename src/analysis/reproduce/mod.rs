@@ -4,6 +4,8 @@
 
 mod checks;
 
+use std::fmt;
+
 use serde::Serialize;
 
 use crate::model::Params;
@@ -21,6 +23,10 @@ pub enum Status {
     Close,
     /// Further off; the row says why, with evidence the model computes.
     Differs,
+    /// The model gives no finite value under these parameters (no critical angle, no grip, ...); the
+    /// note says why.
+    #[serde(rename = "not-computed")]
+    NotComputed,
 }
 
 impl Status {
@@ -29,6 +35,7 @@ impl Status {
             Status::Reproduced => "reproduced",
             Status::Close => "close",
             Status::Differs => "differs",
+            Status::NotComputed => "not computed",
         }
     }
 }
@@ -75,12 +82,20 @@ impl Row {
         let decimals = printed.split_once('.').map_or(0, |(_, frac)| frac.len());
         let precision = 0.5 * 10f64.powi(-(decimals as i32));
         let difference = computed - paper;
-        let status = if difference.abs() <= precision * (1.0 + 1e-9) {
+        let status = if !computed.is_finite() {
+            Status::NotComputed
+        } else if difference.abs() <= precision * (1.0 + 1e-9) {
             Status::Reproduced
         } else if difference.abs() <= CLOSE * paper.abs() {
             Status::Close
         } else {
             Status::Differs
+        };
+        let note = if status == Status::NotComputed {
+            "not computed: the model has no such value under these parameters (no critical angle, no \
+             grip or no crossover where the paper's case has one)"
+        } else {
+            ""
         };
         Row {
             id,
@@ -89,7 +104,7 @@ impl Row {
             computed,
             unit,
             status,
-            note: String::new(),
+            note: note.to_string(),
             difference,
             printed,
             explained: false,
@@ -114,15 +129,28 @@ impl Row {
         self
     }
 
-    /// The computed value with two more decimals than the paper prints.
+    /// The computed value with two more decimals than the paper prints (`none` when not computed).
     pub fn computed_text(&self) -> String {
         let decimals = self.printed.split_once('.').map_or(0, |(_, f)| f.len()) + 2;
-        format!("{:.*}", decimals, self.computed)
+        format!("{:.*}", decimals, Num(self.computed))
     }
 
     /// True unless the row differs without a demonstrated reason.
     pub fn accounted_for(&self) -> bool {
         self.status != Status::Differs || self.explained
+    }
+}
+
+/// A number in a note or a table: as formatted, or `none` where the model gives no finite value.
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_finite() {
+            fmt::Display::fmt(&self.0, f)
+        } else {
+            f.write_str("none")
+        }
     }
 }
 
@@ -142,7 +170,9 @@ impl Report {
 
     /// True when every claim is checked and every row is reproduced, close or explained.
     pub fn complete(&self) -> bool {
-        self.missing.is_empty() && self.unexplained().is_empty()
+        self.missing.is_empty()
+            && self.unexplained().is_empty()
+            && self.count(Status::NotComputed) == 0
     }
 
     pub fn count(&self, status: Status) -> usize {
