@@ -7,6 +7,7 @@
 pub mod analysis;
 pub mod cli;
 pub mod export;
+pub mod input;
 pub mod model;
 pub mod output;
 pub mod scenario;

@@ -65,6 +65,12 @@ pub fn write(path: &Path, bytes: &[u8], replace: Replace) -> Result<(), WriteErr
     }
 }
 
+/// True for standard output (`-`) and an existing device, FIFO or socket: a destination written as a
+/// stream, whose name says nothing of the format written to it.
+pub fn is_stream(path: &Path) -> bool {
+    path == Path::new("-") || fs::metadata(path).is_ok_and(|m| !m.is_file() && !m.is_dir())
+}
+
 fn io_error(path: &Path, source: io::Error) -> WriteError {
     WriteError::Io {
         path: path.to_path_buf(),

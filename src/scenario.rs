@@ -18,6 +18,7 @@ use std::path::Path;
 use serde::Deserialize;
 use toml::Spanned;
 
+use crate::input;
 use crate::model::Params;
 use crate::model::params::{PARAMS, ParamError, spec_named};
 use crate::model::units;
@@ -207,13 +208,19 @@ impl Scenario {
         })
     }
 
-    /// Reads a scenario file.
+    /// Reads a scenario file, or standard input for `-` (named `<stdin>` in errors); see
+    /// [`input::read_text`] for the bounds.
     pub fn load(path: &Path) -> Result<Self, ScenarioError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
-            path: path.display().to_string(),
+        let origin = if input::is_stdin(path) {
+            input::STDIN_NAME.to_string()
+        } else {
+            path.display().to_string()
+        };
+        let text = input::read_text(path).map_err(|source| ScenarioError::Io {
+            path: origin.clone(),
             source,
         })?;
-        Self::parse(&text, &path.display().to_string())
+        Self::parse(&text, &origin)
     }
 
     /// A scenario that sets every parameter to its value in `params`.

@@ -339,7 +339,8 @@ fn a_chain_sweep_lands_on_whole_numbers_or_is_refused() {
     assert!(out.is_empty(), "no header before the refusal");
     // Every other parameter sweeps at any count.
     let angle = Span::parse("angle", "10", "80", false).unwrap();
-    assert_eq!(values(&angle, 4)[1], 10.0 + 70.0 / 3.0);
+    // A third of the way, correctly rounded: (2 x 10 + 80) / 3.
+    assert_eq!(values(&angle, 4)[1], 100.0 / 3.0);
 }
 
 #[test]

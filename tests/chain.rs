@@ -6,7 +6,7 @@
 mod chain_integrator;
 
 use proptest::prelude::*;
-use snapback::model::chain::solve_chain;
+use snapback::model::solve::solve_chain;
 use snapback::model::{Params, PhaseKind, SolveError, solve};
 
 #[path = "support/rng.rs"]

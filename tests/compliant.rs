@@ -196,7 +196,7 @@ fn an_undamped_stiff_ball_chatters_but_does_not_stall() {
                 let e = b.energy();
                 assert!(e.residual.abs() < 1e-10, "k_b = {kb}: {e:?}");
             }
-            Err(e) => assert_eq!(e, SolveError::TooManyPhases),
+            Err(e) => assert!(matches!(e, SolveError::TooManyPhases { .. }), "{e}"),
         }
         assert!(started.elapsed().as_secs_f64() < 20.0);
     }
@@ -296,10 +296,10 @@ proptest! {
         let b = match solve(&p) {
             Ok(b) => b,
             // An undamped stiff ball may chatter past the cap: refused, never stalled.
-            Err(SolveError::TooManyPhases) if p.ball_damping < 0.1 => return Ok(()),
+            Err(SolveError::TooManyPhases { .. }) if p.ball_damping < 0.1 => return Ok(()),
             // A contact mode too fast to resolve is refused with a message.
-            Err(SolveError::BallTooFast { radians }) => {
-                prop_assert!(radians > snapback::model::bounce::MAX_RADIANS);
+            Err(SolveError::BallTooFast { radians, .. }) => {
+                prop_assert!(radians > snapback::model::error::MAX_RADIANS);
                 return Ok(());
             }
             Err(e) => panic!("{e}"),
@@ -376,7 +376,7 @@ fn one_link_of_the_chain_is_the_single_cart() {
         if p.stiffness == 0.0 {
             continue;
         }
-        let Ok(chain) = snapback::model::compliant::solve_compliant_on_cart(&p) else {
+        let Ok(chain) = snapback::model::solve::solve_compliant_on_cart(&p) else {
             continue;
         };
         assert_eq!(
@@ -437,5 +437,61 @@ fn a_slide_that_should_grip_at_once_does() {
     assert!(e.residual.abs() < 1e-10, "{e:?}");
     for s in &b.series(2000) {
         assert!(s.friction.abs() <= p.mu * s.normal * (1.0 + 1e-9) + 1e-8 * p.mu * b.setup.n0);
+    }
+}
+
+/// A ball too fast to resolve is refused with advice that works: each value it names solves.
+#[test]
+fn a_refused_ball_names_values_that_solve() {
+    let cases = [
+        Params {
+            ball_stiffness: 1e13,
+            ..Params::default()
+        },
+        Params {
+            chain: 16.0,
+            cart_mass: 1e-4,
+            ball_stiffness: 1e6,
+            ball_damping: 10.0,
+            ..Params::default()
+        },
+        Params {
+            ball_stiffness: 1e11,
+            ball_damping: 10.0,
+            ..Params::default()
+        },
+    ];
+    for params in cases {
+        let message = solve(&params).unwrap_err().to_string();
+        assert!(message.contains("too fast to resolve"), "{message}");
+        let named = |flag: &str| {
+            let rest = message.split(&format!("{flag} below ")).nth(1)?;
+            rest.split([' ', ',', ')']).next()?.parse::<f64>().ok()
+        };
+        let kb = named("--ball-stiffness").expect("a softer ball is always named");
+        let softer = Params {
+            ball_stiffness: 0.99 * kb,
+            ..params
+        };
+        // The spring is then resolved (an undamped one may still chatter, and says what calms it).
+        match solve(&softer) {
+            Ok(_) => {}
+            Err(e) => assert!(e.to_string().contains("raise --ball-damping"), "{e}"),
+        }
+        if let Some(zeta) = named("--ball-damping") {
+            let calmer = Params {
+                ball_damping: 0.99 * zeta,
+                ..params
+            };
+            assert!(solve(&calmer).is_ok(), "{message}: {calmer:?}");
+        }
+        if message.contains("heavier --cart-mass") {
+            let heavier = Params {
+                cart_mass: 1e3,
+                ..params
+            };
+            assert!(solve(&heavier).is_ok(), "{message}: {heavier:?}");
+        }
+        assert!(!message.contains("raise --ball"), "{message}");
     }
 }

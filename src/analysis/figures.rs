@@ -1,11 +1,12 @@
-//! The data of the paper's figures, ready to draw: Fig. 2 (omega2 against theta1 for the three carts,
-//! (a) omega1 = 0 and (b) omega1 = -100 rad/s) and Fig. 3 (F, X and omega against t at 60 deg for the
-//! three carts with omega1 = -100 rad/s).
+//! The data of the paper's figures, ready to draw, at any parameters: Fig. 3 (F, X and omega against
+//! t) at the given bounce, and Fig. 2 (omega2 against theta1) around it: the given incident spin and
+//! the comparison spin, each for the given cart and the paper's other carts. At the defaults (the
+//! paper's Fig. 3(c) case) these are the paper's figures: the three carts, omega1 = 0 and -100 rad/s.
 
-use crate::model::Params;
-use crate::model::params::{ParamId, spec};
+use crate::model::params::{PARAMS, ParamId, spec};
+use crate::model::{Params, solve};
 
-use super::cases::{CARTS, FIG3_ANGLE, SPINS};
+use super::cases::{CARTS, SPINS};
 use super::{AnalysisError, Span, sweep};
 
 /// One line of a plot: a legend label and (x, y) points.
@@ -80,21 +81,89 @@ const FIG2_STEPS: usize = 900;
 /// Samples of each Fig. 3 time series (both sides of every transition are added).
 const FIG3_SAMPLES: usize = 1001;
 
-/// Fig. 2: omega2 against theta1 for the three carts; panel (a) omega1 = 0, (b) omega1 = -100 rad/s.
+/// The parameters a figure varies itself, named in its axes, panels and legends.
+const DRAWN: [ParamId; 4] = [
+    ParamId::Angle,
+    ParamId::Spin,
+    ParamId::CartMass,
+    ParamId::Stiffness,
+];
+
+/// One curve's bounce: a legend label and the parameters.
+struct Case {
+    label: String,
+    params: Params,
+}
+
+/// The paper's carts other than `base`'s, then `base`'s own cart (labelled as the paper's where it is
+/// one), each with every other parameter of `base`.
+fn cases(base: &Params) -> Vec<Case> {
+    let given = CARTS
+        .iter()
+        .find(|c| c.mass == base.cart_mass && c.stiffness == base.stiffness);
+    let label = given.map_or_else(
+        || {
+            format!(
+                "M = {}, k = {}",
+                spec(ParamId::CartMass).show(base.cart_mass),
+                spec(ParamId::Stiffness).show(base.stiffness)
+            )
+        },
+        |c| c.label.to_string(),
+    );
+    CARTS
+        .iter()
+        .filter(|c| Some(*c) != given)
+        .map(|c| Case {
+            label: c.label.to_string(),
+            params: c.case(base, base.angle_deg, base.spin),
+        })
+        .chain([Case {
+            label,
+            params: *base,
+        }])
+        .collect()
+}
+
+/// The parameters of `base` away from their defaults, other than `shown` and those the figure
+/// draws, as `, v1 = 12.0 m/s, N = 8`; empty at the defaults.
+fn conditions(base: &Params, shown: &[ParamId]) -> String {
+    PARAMS
+        .iter()
+        .filter(|s| !DRAWN.contains(&s.id) && !shown.contains(&s.id))
+        .filter(|s| base.get(s.id) != s.default)
+        .map(|s| format!(", {} = {}", s.symbol, s.show(base.get(s.id))))
+        .collect()
+}
+
+/// Fig. 2 around `base`: omega2 against theta1, one panel for omega1 = 0 and one for the given spin
+/// (-100 rad/s when that is 0), each with the given cart and the paper's other carts.
 pub fn fig2(base: &Params) -> Result<Figure, AnalysisError> {
     let angles = Span::new(spec(ParamId::Angle), 0.1, 90.0, false)?;
-    let panels = SPINS
+    let spins = [
+        SPINS[0],
+        if base.spin == 0.0 {
+            SPINS[1]
+        } else {
+            base.spin
+        },
+    ];
+    let cases = cases(base);
+    let panels = spins
         .iter()
         .zip(["(a)", "(b)"])
         .map(|(&spin, tag)| {
-            let curves = CARTS
+            let curves = cases
                 .iter()
-                .map(|cart| {
-                    // The angle is the swept parameter; any valid start will do.
-                    let p = cart.case(base, FIG3_ANGLE, spin);
+                .map(|case| {
+                    // The angle is the swept parameter.
+                    let p = Params {
+                        spin,
+                        ..case.params
+                    };
                     let rows = sweep::sweep(&p, &angles, FIG2_STEPS)?;
                     Ok(Curve {
-                        label: cart.label.to_string(),
+                        label: case.label.clone(),
                         points: rows.iter().map(|r| (r.value, r.omega2)).collect(),
                     })
                 })
@@ -109,8 +178,10 @@ pub fn fig2(base: &Params) -> Result<Figure, AnalysisError> {
         .collect::<Result<_, AnalysisError>>()?;
     Ok(Figure {
         title: format!(
-            "Fig. 2: rebound spin ω2 against angle of incidence θ1 (v1 = {} m/s, μ = {})",
-            base.speed, base.mu
+            "Fig. 2: rebound spin ω2 against angle of incidence θ1 (v1 = {} m/s, μ = {}{})",
+            base.speed,
+            base.mu,
+            conditions(base, &[ParamId::Speed, ParamId::Mu])
         ),
         panels,
         columns: 2,
@@ -118,15 +189,20 @@ pub fn fig2(base: &Params) -> Result<Figure, AnalysisError> {
     })
 }
 
-/// Fig. 3: the friction force F, the cart displacement X and the ball's spin omega against time, at
-/// 60 deg with omega1 = -100 rad/s, for the three carts.
+/// Fig. 3 at `base`: the friction force F, the cart displacement X and the ball's spin omega against
+/// time, at the given angle and spin, for the given cart and the paper's other carts.
 pub fn fig3(base: &Params) -> Result<Figure, AnalysisError> {
-    let spin = SPINS[1];
-    let series = CARTS
-        .iter()
-        .map(|cart| {
-            let b = cart.solve(base, FIG3_ANGLE, spin)?;
-            Ok((cart.label, b.series(FIG3_SAMPLES)))
+    let series = cases(base)
+        .into_iter()
+        .map(|case| {
+            let b = solve(&case.params).map_err(|source| AnalysisError::Case {
+                case: format!(
+                    "{} at {} deg, omega1 = {} rad/s",
+                    case.label, base.angle_deg, base.spin
+                ),
+                source,
+            })?;
+            Ok((case.label, b.series(FIG3_SAMPLES)))
         })
         .collect::<Result<Vec<_>, AnalysisError>>()?;
     let panel = |title: &str, y_label: &str, y: fn(&crate::model::Sample) -> f64| Panel {
@@ -136,14 +212,17 @@ pub fn fig3(base: &Params) -> Result<Figure, AnalysisError> {
         curves: series
             .iter()
             .map(|(label, samples)| Curve {
-                label: label.to_string(),
+                label: label.clone(),
                 points: samples.iter().map(|s| (s.t * 1e3, y(s))).collect(),
             })
             .collect(),
     };
     Ok(Figure {
         title: format!(
-            "Fig. 3: θ1 = {FIG3_ANGLE} deg, ω1 = {spin} rad/s (F > 0: friction on the ball acts backward)"
+            "Fig. 3: θ1 = {} deg, ω1 = {} rad/s{} (F > 0: friction on the ball acts backward)",
+            base.angle_deg,
+            base.spin,
+            conditions(base, &[])
         ),
         panels: vec![
             panel("friction force on the ball", "F (N)", |s| s.friction),

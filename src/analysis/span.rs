@@ -60,8 +60,10 @@ impl Span {
         })
     }
 
-    /// The `i`-th of `n` values (n >= 2), ends included exactly. For a whole-number parameter a value
-    /// within rounding of a whole number is that number (a geometric 1, 2, 4, 8, 16 is exact).
+    /// The `i`-th of `n` values (n >= 2), ends included exactly, computed from the ends and the index
+    /// alone (no accumulated step) so that no value overflows; a value within its rounding error of a
+    /// short decimal is that decimal (0.3, not 0.30000000000000004). For a whole-number parameter a
+    /// value within rounding of a whole number is that number (a geometric 1, 2, 4, 8, 16 is exact).
     pub fn at(&self, i: usize, n: usize) -> f64 {
         if i == 0 {
             return self.from;
@@ -69,12 +71,46 @@ impl Span {
         if i + 1 >= n {
             return self.to;
         }
-        let value = self.from_unit(i as f64 / (n - 1) as f64);
+        let (value, error) = if self.log {
+            self.geometric(i, n)
+        } else {
+            self.linear(i, n)
+        };
+        let value =
+            short_decimal(value, error).clamp(self.from.min(self.to), self.from.max(self.to));
         if self.spec.integer {
             nearly_whole(value).unwrap_or(value)
         } else {
             value
         }
+    }
+
+    /// The `i`-th of `n` evenly spaced values as one weighted sum over one division,
+    /// (from (n-1-i) + to i) / (n-1), so whole ends give correctly rounded values; the ends are scaled
+    /// by a power of two (exactly) where the sum could overflow. With a bound on its rounding error.
+    fn linear(&self, i: usize, n: usize) -> (f64, f64) {
+        let intervals = (n - 1) as f64;
+        let (weight_from, weight_to) = ((n - 1 - i) as f64, i as f64);
+        let big = self.from.abs().max(self.to.abs());
+        let scale = if big >= f64::MAX / intervals / 2.0 {
+            OVERFLOW_SCALE
+        } else {
+            1.0
+        };
+        let (from, to) = (self.from * scale, self.to * scale);
+        let value = (from * weight_from + to * weight_to) / intervals / scale;
+        // Each end's own rounding and that of the two products, the sum and the quotient, on the
+        // size of the terms (larger than the value where the ends' signs differ).
+        let terms = (from.abs() * weight_from + to.abs() * weight_to) / intervals / scale;
+        (value, 2.0 * f64::EPSILON * terms)
+    }
+
+    /// The `i`-th of `n` geometrically spaced values, with a bound on its rounding error (exp carries
+    /// the logarithm's absolute error as a relative one).
+    fn geometric(&self, i: usize, n: usize) -> (f64, f64) {
+        let value = self.from_unit(i as f64 / (n - 1) as f64);
+        let logs = self.from.ln().abs().max(self.to.ln().abs());
+        (value, 2.0 * f64::EPSILON * (1.0 + logs) * value.abs())
     }
 
     /// Checks that `n` values of a whole-number parameter all land on whole numbers (always true of
@@ -175,13 +211,16 @@ impl Span {
             .collect())
     }
 
-    /// The value at the fraction `u` of the way from `from` (0) to `to` (1), geometric when `log`.
+    /// The value at the fraction `u` of the way from `from` (0) to `to` (1), geometric when `log`,
+    /// inside the span.
     pub fn from_unit(&self, u: f64) -> f64 {
         if self.log {
-            (self.from.ln() + (self.to.ln() - self.from.ln()) * u).exp()
+            (self.from.ln() * (1.0 - u) + self.to.ln() * u).exp()
         } else {
-            self.from + (self.to - self.from) * u
+            // Each end weighted, never their difference: nothing overflows.
+            self.from * (1.0 - u) + self.to * u
         }
+        .clamp(self.from.min(self.to), self.from.max(self.to))
     }
 
     /// `n` values from `from` to `to`, ends included.
@@ -210,6 +249,19 @@ impl Span {
             .to_string(),
             source,
         })
+    }
+}
+
+/// Scales the ends of a linear span whose weighted sum could overflow: 2^-32, exact.
+const OVERFLOW_SCALE: f64 = 1.0 / 4_294_967_296.0;
+
+/// The decimal of at most 12 significant digits nearest `value`, when it lies within `error` of it;
+/// otherwise `value`. Removes the noise of rounding (10.000000000000002 is 10) without moving a value
+/// by more than its own rounding error.
+fn short_decimal(value: f64, error: f64) -> f64 {
+    match format!("{value:.11e}").parse::<f64>() {
+        Ok(decimal) if (decimal - value).abs() <= error => decimal,
+        _ => value,
     }
 }
 

@@ -72,9 +72,20 @@ pub fn row(base: &Params, span: &Span, value: f64) -> Result<Row, AnalysisError>
     })
 }
 
-/// Why a CSV sweep stopped.
+/// How [`write`] lays the rows out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Layout {
+    /// A header line, then one line per row; an undefined `ex` is an empty field.
+    Csv,
+    /// One JSON array of objects, pretty-printed (two-space indent).
+    Json,
+    /// One compact JSON object per line.
+    JsonLines,
+}
+
+/// Why a written sweep stopped.
 #[derive(Debug, thiserror::Error)]
-pub enum CsvError {
+pub enum WriteError {
     #[error(transparent)]
     Analysis(#[from] AnalysisError),
     #[error(transparent)]
@@ -87,64 +98,126 @@ const BLOCK: usize = 1 << 16;
 /// Rows formatted per chunk on all cores.
 const CHUNK: usize = 4096;
 
-/// Solves the sweep and writes it as CSV with a header, block by block; `span.column()` names the
-/// varied value. Numbers are written in full (shortest round-trip form); an undefined `ex` is an empty
-/// field. A bounce that cannot be solved stops the sweep after the rows before its block; a `steps` that
-/// puts a whole-number parameter between whole numbers stops it before the header.
+/// Solves the sweep and writes it as CSV with a header; see [`write`].
 pub fn write_csv(
     out: &mut impl Write,
     base: &Params,
     span: &Span,
     steps: usize,
-) -> Result<(), CsvError> {
+) -> Result<(), WriteError> {
+    write(out, base, span, steps, Layout::Csv)
+}
+
+/// Solves the sweep and writes it in `layout`, block by block, in constant memory; `span.column()`
+/// names the varied value. Numbers are written in full, in their shortest round-trip form. A bounce
+/// that cannot be solved stops the sweep after the rows before its block; a `steps` that puts a
+/// whole-number parameter between whole numbers stops it before anything is written.
+pub fn write(
+    out: &mut impl Write,
+    base: &Params,
+    span: &Span,
+    steps: usize,
+    layout: Layout,
+) -> Result<(), WriteError> {
     span.check_steps("--steps", steps)?;
+    let column = span.column();
     for start in (0..steps).step_by(BLOCK) {
         let block = rows(base, span, steps, start..(start + BLOCK).min(steps))?;
-        // The header follows the first block, so a sweep of up to BLOCK bounces that fails writes nothing.
+        // The opening follows the first block, so a sweep of up to BLOCK bounces that fails writes nothing.
         if start == 0 {
-            writeln!(out, "{},{}", span.column(), COLUMNS.join(","))?;
+            match layout {
+                Layout::Csv => writeln!(out, "{column},{}", COLUMNS.join(","))?,
+                Layout::Json => out.write_all(b"[")?,
+                Layout::JsonLines => {}
+            }
         }
-        let texts: Vec<String> = block.par_chunks(CHUNK).map(format_rows).collect();
+        let texts: Vec<String> = block
+            .par_chunks(CHUNK)
+            .enumerate()
+            .map(|(k, chunk)| format_rows(chunk, &column, layout, start + k * CHUNK == 0))
+            .collect();
         for text in &texts {
             out.write_all(text.as_bytes())?;
         }
     }
+    if layout == Layout::Json {
+        out.write_all(b"\n]\n")?;
+    }
     Ok(())
 }
 
-/// CSV lines of `rows`.
-fn format_rows(rows: &[Row]) -> String {
-    let mut text = String::with_capacity(rows.len() * 120);
-    for r in rows {
-        let _ = write!(
-            text,
-            "{},{},{},{},{},",
-            r.value, r.omega2, r.vx2, r.vy2, r.theta2_deg
-        );
-        if let Some(ex) = r.ex {
-            let _ = write!(text, "{ex}");
+/// The text of `rows` in `layout`; `first` when they begin the sweep (a JSON array's first element
+/// takes no comma).
+fn format_rows(rows: &[Row], column: &str, layout: Layout, first: bool) -> String {
+    let mut text = String::with_capacity(rows.len() * 300);
+    for (k, r) in rows.iter().enumerate() {
+        match layout {
+            Layout::Csv => csv_line(&mut text, r),
+            Layout::Json => {
+                text.push_str(if first && k == 0 { "\n" } else { ",\n" });
+                let object = serde_json::to_string_pretty(&object(column, r))
+                    .expect("JSON values always serialize");
+                for (n, line) in object.lines().enumerate() {
+                    if n > 0 {
+                        text.push('\n');
+                    }
+                    text.push_str("  ");
+                    text.push_str(line);
+                }
+            }
+            Layout::JsonLines => {
+                let object = serde_json::to_string(&object(column, r))
+                    .expect("JSON values always serialize");
+                text.push_str(&object);
+                text.push('\n');
+            }
         }
-        let _ = writeln!(text, ",{},{}", r.phases, r.slides_throughout);
     }
     text
 }
 
-/// The rows as a JSON array of objects with the CSV's keys.
-pub fn json(column: &str, rows: &[Row]) -> serde_json::Value {
-    let objects = rows
-        .iter()
-        .map(|r| {
-            let mut object = serde_json::Map::with_capacity(8);
-            object.insert(column.to_string(), r.value.into());
-            object.insert("omega2".into(), r.omega2.into());
-            object.insert("vx2".into(), r.vx2.into());
-            object.insert("vy2".into(), r.vy2.into());
-            object.insert("theta2_deg".into(), r.theta2_deg.into());
-            object.insert("ex".into(), r.ex.into());
-            object.insert("phases".into(), r.phases.clone().into());
-            object.insert("slides_throughout".into(), r.slides_throughout.into());
-            serde_json::Value::Object(object)
-        })
-        .collect();
-    serde_json::Value::Array(objects)
+/// One CSV line of `r`.
+fn csv_line(text: &mut String, r: &Row) {
+    let _ = write!(
+        text,
+        "{},{},{},{},{},",
+        Number(r.value),
+        Number(r.omega2),
+        Number(r.vx2),
+        Number(r.vy2),
+        Number(r.theta2_deg)
+    );
+    if let Some(ex) = r.ex {
+        let _ = write!(text, "{}", Number(ex));
+    }
+    let _ = writeln!(text, ",{},{}", r.phases, r.slides_throughout);
+}
+
+/// A number in its shortest round-trip form: plain (`10`, `0.3`), or with an exponent (`1e308`)
+/// beyond a plain form's 16 digits.
+struct Number(f64);
+
+impl std::fmt::Display for Number {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let size = self.0.abs();
+        if size != 0.0 && !(1e-5..1e16).contains(&size) {
+            write!(f, "{:e}", self.0)
+        } else {
+            write!(f, "{}", self.0)
+        }
+    }
+}
+
+/// The row as a JSON object with the CSV's keys (`column` names the varied value).
+pub fn object(column: &str, r: &Row) -> serde_json::Value {
+    let mut object = serde_json::Map::with_capacity(8);
+    object.insert(column.to_string(), r.value.into());
+    object.insert("omega2".into(), r.omega2.into());
+    object.insert("vx2".into(), r.vx2.into());
+    object.insert("vy2".into(), r.vy2.into());
+    object.insert("theta2_deg".into(), r.theta2_deg.into());
+    object.insert("ex".into(), r.ex.into());
+    object.insert("phases".into(), r.phases.clone().into());
+    object.insert("slides_throughout".into(), r.slides_throughout.into());
+    serde_json::Value::Object(object)
 }

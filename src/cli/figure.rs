@@ -1,4 +1,5 @@
-//! `snapback figure fig2|fig3 --out FILE.svg`: the paper's Fig. 2 or Fig. 3 as SVG.
+//! `snapback figure fig2|fig3 --out FILE.svg`: the paper's Fig. 2 or Fig. 3 as SVG, at the given
+//! parameters.
 
 use std::io::Write;
 use std::path::PathBuf;
@@ -9,18 +10,18 @@ use super::{Failure, ParamArgs};
 use crate::analysis::figures::Which;
 use crate::export::svg::{self, SvgError};
 use crate::model::Params;
-use crate::output::{Replace, WriteError};
+use crate::output::{self, Replace, WriteError};
 
 #[derive(Clone, Debug, Args)]
 pub struct FigureArgs {
-    /// The ball, speed, friction and impact (default: the paper's Sec. III); the figure sets each curve's cart, angle and spin.
+    /// The bounce: Fig. 3 draws it beside the paper's other carts, Fig. 2 its omega2 against theta1 for its spin and the comparison spin (default: the paper's Fig. 3(c) case).
     #[command(flatten)]
     pub params: ParamArgs,
     /// fig2 (omega2 against theta1, six curves) or fig3 (F, X and omega against t at 60 deg).
     #[arg(value_name = "FIGURE")]
     pub which: String,
-    /// The SVG file to write: a symlink is written through, a device or FIFO written into, `-` is
-    /// standard output. A read-only file is kept unless --force is given.
+    /// The SVG file to write (SVG is the one format figure writes): a symlink is written through, a
+    /// device or FIFO written into, `-` is standard output. A read-only file is kept unless --force.
     #[arg(long, value_name = "FILE.svg")]
     pub out: PathBuf,
     /// Replace --out even when it is a read-only file (it stays read-only).
@@ -28,7 +29,23 @@ pub struct FigureArgs {
     pub force: bool,
 }
 
+/// The extensions `--out` may end in.
+const EXTENSIONS: [&str; 1] = ["svg"];
+
 pub fn run(args: &FigureArgs) -> Result<(), Failure> {
+    let extension = args
+        .out
+        .extension()
+        .map(|e| e.to_string_lossy().to_lowercase());
+    // A stream (`-`, a device, a FIFO) has no name to say its format.
+    if !output::is_stream(&args.out) && !extension.is_some_and(|e| EXTENSIONS.contains(&e.as_str()))
+    {
+        return Err(Failure::usage(format!(
+            "--out must end in .{} (the one format figure writes); got {}",
+            EXTENSIONS.join(", ."),
+            args.out.display()
+        )));
+    }
     let which = Which::parse(&args.which).map_err(Failure::usage)?;
     let base = args
         .params

@@ -1,7 +1,9 @@
 //! The command line: clap definitions and the headless commands. `main` only parses and dispatches.
 
+mod completions;
 mod critical_angle;
 mod figure;
+mod man;
 mod optimize;
 mod params_args;
 mod presets;
@@ -37,7 +39,7 @@ pub enum Commands {
     Tui(tui::TuiArgs),
     /// List the presets (use one with --preset NAME on any command).
     Presets(presets::PresetsArgs),
-    /// Solve one bounce per value of a parameter and print the outcomes as CSV or JSON.
+    /// Solve one bounce per value of a parameter and print the outcomes as CSV, JSON or JSON Lines.
     Sweep(sweep::SweepArgs),
     /// The angle below which the ball slides for the whole contact: Eq. (7) and the full model.
     CriticalAngle(critical_angle::CriticalAngleArgs),
@@ -53,6 +55,10 @@ pub enum Commands {
     Reproduce(reproduce::ReproduceArgs),
     /// Draw the paper's Fig. 2 or Fig. 3 as SVG.
     Figure(figure::FigureArgs),
+    /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
+    Completions(completions::CompletionsArgs),
+    /// Print the manual page (roff): snapback(1), or snapback-COMMAND(1) for one command.
+    Man(man::ManArgs),
 }
 
 /// A failure to report: the message for stderr and the exit status.
@@ -83,6 +89,8 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Optimize(args)) => headless(|| optimize::run(&args)),
         Some(Commands::Reproduce(args)) => headless(|| reproduce::run(&args)),
         Some(Commands::Figure(args)) => headless(|| figure::run(&args)),
+        Some(Commands::Completions(args)) => completions::run(&args),
+        Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),
     };
     match result {

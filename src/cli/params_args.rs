@@ -80,7 +80,7 @@ impl Args for ParamArgs {
                     .value_name("FILE")
                     .value_parser(clap::value_parser!(PathBuf))
                     .help_heading("Scenario")
-                    .help("start from a scenario file (TOML); parameter flags override its values"),
+                    .help("start from a scenario file (TOML; - reads standard input); parameter flags override its values"),
             );
         for spec in PARAMS {
             cmd = cmd.arg(

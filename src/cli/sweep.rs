@@ -1,11 +1,11 @@
-//! `snapback sweep`: one bounce per value of a parameter, as CSV or JSON.
+//! `snapback sweep`: one bounce per value of a parameter, as CSV, JSON or JSON Lines, streamed.
 
 use std::io::{BufWriter, Write};
 
 use clap::{Args, ValueEnum};
 
-use super::{Failure, ParamArgs, emit};
-use crate::analysis::sweep::CsvError;
+use super::{Failure, ParamArgs};
+use crate::analysis::sweep::{Layout, WriteError};
 use crate::analysis::{Span, span, sweep};
 use crate::model::Params;
 
@@ -16,6 +16,8 @@ pub enum Format {
     Csv,
     /// An array of objects with the CSV's keys.
     Json,
+    /// One object per line (JSON Lines), with the CSV's keys.
+    Jsonl,
 }
 
 #[derive(Clone, Debug, Args)]
@@ -49,30 +51,21 @@ pub fn run(args: &SweepArgs) -> Result<(), Failure> {
         .map_err(Failure::usage)?;
     let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
     let steps = span::parse_count("--steps", &args.steps, 2).map_err(Failure::usage)?;
-    match args.format {
-        Format::Csv => {
-            let stdout = std::io::stdout().lock();
-            let mut out = BufWriter::with_capacity(1 << 20, stdout);
-            let written = sweep::write_csv(&mut out, &base, &span, steps)
-                .and_then(|()| out.flush().map_err(CsvError::Io));
-            match written {
-                Err(CsvError::Analysis(e)) => Err(Failure::usage(e)),
-                // A closed pipe (`| head`) is not an error.
-                Err(CsvError::Io(e)) if e.kind() != std::io::ErrorKind::BrokenPipe => {
-                    Err(Failure {
-                        message: format!("cannot write output: {e}"),
-                        status: 1,
-                    })
-                }
-                _ => Ok(()),
-            }
-        }
-        Format::Json => {
-            let rows = sweep::sweep(&base, &span, steps).map_err(Failure::usage)?;
-            let mut text = serde_json::to_string_pretty(&sweep::json(&span.column(), &rows))
-                .expect("JSON values always serialize");
-            text.push('\n');
-            emit(&text)
-        }
+    let layout = match args.format {
+        Format::Csv => Layout::Csv,
+        Format::Json => Layout::Json,
+        Format::Jsonl => Layout::JsonLines,
+    };
+    let mut out = BufWriter::with_capacity(1 << 20, std::io::stdout().lock());
+    let written = sweep::write(&mut out, &base, &span, steps, layout)
+        .and_then(|()| out.flush().map_err(WriteError::Io));
+    match written {
+        Err(WriteError::Analysis(e)) => Err(Failure::usage(e)),
+        // A closed pipe (`| head`) is not an error.
+        Err(WriteError::Io(e)) if e.kind() != std::io::ErrorKind::BrokenPipe => Err(Failure {
+            message: format!("cannot write output: {e}"),
+            status: 1,
+        }),
+        _ => Ok(()),
     }
 }

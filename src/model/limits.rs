@@ -7,7 +7,8 @@
 
 use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
-use super::bounce::{Bounce, SolveError};
+use super::bounce::Bounce;
+use super::error::SolveError;
 use super::events;
 use super::params::{ParamId, Params, spec};
 use super::units;

@@ -1,25 +1,34 @@
 //! The simulation core: the ball-on-cart model of Cross (2010), solved exactly phase by phase.
 //! No terminal, no files, no printing: everything else calls [`solve`] and reads the [`Bounce`].
+//!
+//! The way through: [`Params`] -> [`Setup`] (everything derived once) -> a contact model ([`cart`],
+//! [`chain`], [`compliant`]), each implementing [`contact::Contact`] -> the phase [`driver`] ->
+//! [`Bounce`] (results only).
 
 pub mod bounce;
 pub mod cart;
 pub mod chain;
 pub mod compliant;
+pub mod contact;
+pub mod driver;
+pub mod energy;
+pub mod error;
 pub mod events;
-pub mod grip;
 pub mod limits;
+pub mod memo;
 pub mod oscillator;
 pub mod params;
+pub mod phase;
 pub mod quadrature;
 pub mod setup;
-pub mod slide;
-pub mod transition;
+pub mod solve;
 pub mod units;
 
-pub use bounce::{
-    BallPhase, Bounce, Energy, Outcome, Phase, PhaseKind, Sample, SolveError, solve,
-    solve_cancellable,
-};
-pub use cart::Cart;
+pub use bounce::{Bounce, Outcome, Sample};
+pub use contact::Cart;
+pub use energy::Energy;
+pub use error::SolveError;
 pub use params::{PARAMS, ParamError, ParamId, ParamSpec, Params};
-pub use setup::State;
+pub use phase::{BallPhase, Phase, PhaseKind};
+pub use setup::{Setup, State};
+pub use solve::{solve, solve_cancellable};

@@ -7,97 +7,9 @@ use serde::{Deserialize, Serialize};
 
 use super::units::{self, Dimension};
 
-/// Inputs of one bounce. SI units, except the incidence angle, in degrees measured from the surface.
-/// The defaults are the paper's Fig. 3(c) case.
-#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
-pub struct Params {
-    /// Incidence angle theta1 from the surface, degrees (90 is normal incidence).
-    pub angle_deg: f64,
-    /// Incident speed v1, m/s.
-    pub speed: f64,
-    /// Incident spin omega1, rad/s; positive is the sense sliding friction drives (topspin), negative is backspin.
-    pub spin: f64,
-    /// Coefficient of sliding friction mu between ball and cart.
-    pub mu: f64,
-    /// Impact duration T, s.
-    pub duration: f64,
-    /// Normal coefficient of restitution e_y.
-    pub ey: f64,
-    /// Ball mass m, kg.
-    pub mass: f64,
-    /// Ball radius r, m.
-    pub radius: f64,
-    /// I = alpha m r^2.
-    pub alpha: f64,
-    /// Cart mass M, kg.
-    pub cart_mass: f64,
-    /// Spring stiffness k, N/m.
-    pub stiffness: f64,
-    /// Coulomb friction on the cart, N (string-on-string friction; 0 is the paper's model).
-    #[serde(default)]
-    pub cart_friction: f64,
-    /// Number N of equal masses the cart is split into, a whole number 1..=16 (1 is the paper's single
-    /// cart): a chain of masses M/N and springs N k, touched by the ball at its first mass.
-    #[serde(default = "single_cart")]
-    pub chain: f64,
-    /// Tangential stiffness k_b of the ball's contact region, N/m; 0 = a rigid ball (the paper's model).
-    #[serde(default)]
-    pub ball_stiffness: f64,
-    /// Damping ratio zeta of the ball's contact spring, relative to its mode sqrt(k_b/m_eff):
-    /// c_b = 2 zeta sqrt(k_b m_eff).
-    #[serde(default)]
-    pub ball_damping: f64,
-}
-
 /// The default chain length for inputs written before the chain existed: the single cart.
 fn single_cart() -> f64 {
     1.0
-}
-
-impl Default for Params {
-    fn default() -> Self {
-        let mut params = Params {
-            angle_deg: 0.0,
-            speed: 0.0,
-            spin: 0.0,
-            mu: 0.0,
-            duration: 0.0,
-            ey: 0.0,
-            mass: 0.0,
-            radius: 0.0,
-            alpha: 0.0,
-            cart_mass: 0.0,
-            stiffness: 0.0,
-            cart_friction: 0.0,
-            chain: 0.0,
-            ball_stiffness: 0.0,
-            ball_damping: 0.0,
-        };
-        for spec in PARAMS {
-            params.set(spec.id, spec.default);
-        }
-        params
-    }
-}
-
-/// Names a parameter.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
-pub enum ParamId {
-    Angle,
-    Speed,
-    Spin,
-    Mu,
-    Duration,
-    Ey,
-    Mass,
-    Radius,
-    Alpha,
-    CartMass,
-    Stiffness,
-    CartFriction,
-    Chain,
-    BallStiffness,
-    BallDamping,
 }
 
 /// One end of an allowed range.
@@ -363,10 +275,54 @@ const NON_NEGATIVE: Range = Range {
     high: Bound::Unbounded,
 };
 
-/// Every parameter, in the order the explorer lists them.
-pub const PARAMS: &[ParamSpec] = &[
-    ParamSpec {
-        id: ParamId::Angle,
+/// Declares every parameter once: its field in [`Params`] (SI), its [`ParamId`], and its row of [`PARAMS`]
+/// (name, unit, range, steps, default, help), in the order the explorer lists them; `get` and `set` follow.
+macro_rules! parameters {
+    ($($(#[$attr:meta])* $field:ident: $id:ident { $($spec:tt)* },)*) => {
+        /// Inputs of one bounce. SI units, except the incidence angle, in degrees measured from the
+        /// surface. The defaults are the paper's Fig. 3(c) case.
+        #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+        pub struct Params {
+            $($(#[$attr])* pub $field: f64,)*
+        }
+
+        /// Names a parameter.
+        #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+        pub enum ParamId {
+            $($id,)*
+        }
+
+        /// Every parameter, in the order the explorer lists them.
+        pub const PARAMS: &[ParamSpec] = &[$(ParamSpec { id: ParamId::$id, $($spec)* },)*];
+
+        impl Params {
+            pub fn get(&self, id: ParamId) -> f64 {
+                match id {
+                    $(ParamId::$id => self.$field,)*
+                }
+            }
+
+            /// Sets a value without checking it; see [`Params::with`] for the checked version.
+            pub fn set(&mut self, id: ParamId, value: f64) {
+                match id {
+                    $(ParamId::$id => self.$field = value,)*
+                }
+            }
+        }
+
+        impl Default for Params {
+            fn default() -> Self {
+                Params {
+                    $($field: spec(ParamId::$id).default,)*
+                }
+            }
+        }
+    };
+}
+
+parameters! {
+    /// Incidence angle theta1 from the surface, degrees (90 is normal incidence).
+    angle_deg: Angle {
         group: Group::Ball,
         flag: "angle",
         key: "angle",
@@ -385,8 +341,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "incidence angle theta1, measured from the surface (90 = normal incidence)",
     },
-    ParamSpec {
-        id: ParamId::Speed,
+    /// Incident speed v1, m/s.
+    speed: Speed {
         group: Group::Ball,
         flag: "speed",
         key: "speed",
@@ -402,8 +358,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "incident speed v1 of the ball's centre",
     },
-    ParamSpec {
-        id: ParamId::Spin,
+    /// Incident spin omega1, rad/s; positive is the sense sliding friction drives (topspin), negative is backspin.
+    spin: Spin {
         group: Group::Ball,
         flag: "spin",
         key: "spin",
@@ -422,8 +378,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "incident spin omega1; positive = topspin (the sense sliding friction drives), negative = backspin",
     },
-    ParamSpec {
-        id: ParamId::Mu,
+    /// Coefficient of sliding friction mu between ball and cart.
+    mu: Mu {
         group: Group::Ball,
         flag: "mu",
         key: "mu",
@@ -439,8 +395,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "coefficient of sliding friction mu between ball and surface",
     },
-    ParamSpec {
-        id: ParamId::Duration,
+    /// Impact duration T, s.
+    duration: Duration {
         group: Group::Ball,
         flag: "duration",
         key: "duration",
@@ -456,8 +412,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "impact duration T; the normal force is N0 sin(pi t / T)",
     },
-    ParamSpec {
-        id: ParamId::Ey,
+    /// Normal coefficient of restitution e_y.
+    ey: Ey {
         group: Group::Ball,
         flag: "ey",
         key: "ey",
@@ -476,8 +432,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "normal coefficient of restitution e_y = v_y2 / v_y1",
     },
-    ParamSpec {
-        id: ParamId::Mass,
+    /// Ball mass m, kg.
+    mass: Mass {
         group: Group::Ball,
         flag: "mass",
         key: "mass",
@@ -493,8 +449,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "ball mass m",
     },
-    ParamSpec {
-        id: ParamId::Radius,
+    /// Ball radius r, m.
+    radius: Radius {
         group: Group::Ball,
         flag: "radius",
         key: "radius",
@@ -510,8 +466,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "ball radius r",
     },
-    ParamSpec {
-        id: ParamId::Alpha,
+    /// I = alpha m r^2.
+    alpha: Alpha {
         group: Group::Ball,
         flag: "alpha",
         key: "alpha",
@@ -527,8 +483,9 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "moment of inertia factor: I = alpha m r^2 (0.4 solid sphere, 2/3 thin shell, 0.55 tennis ball)",
     },
-    ParamSpec {
-        id: ParamId::BallStiffness,
+    /// Tangential stiffness k_b of the ball's contact region, N/m; 0 = a rigid ball (the paper's model).
+    #[serde(default)]
+    ball_stiffness: BallStiffness {
         group: Group::Ball,
         flag: "ball-stiffness",
         key: "ball_stiffness",
@@ -547,8 +504,10 @@ pub const PARAMS: &[ParamSpec] = &[
                without string friction. A stiff undamped ball does not approach the rigid ball: its force keeps \
                swinging and the grip chatters (up to 10 000 phases, then the bounce is refused)",
     },
-    ParamSpec {
-        id: ParamId::BallDamping,
+    /// Damping ratio zeta of the ball's contact spring, relative to its mode sqrt(k_b/m_eff):
+    /// c_b = 2 zeta sqrt(k_b m_eff).
+    #[serde(default)]
+    ball_damping: BallDamping {
         group: Group::Ball,
         flag: "ball-damping",
         key: "ball_damping",
@@ -569,8 +528,8 @@ pub const PARAMS: &[ParamSpec] = &[
                ignored for a rigid ball. A stiff, critically damped ball approaches the rigid ball; an \
                undamped one chatters between grip and slide",
     },
-    ParamSpec {
-        id: ParamId::CartMass,
+    /// Cart mass M, kg.
+    cart_mass: CartMass {
         group: Group::Surface,
         flag: "cart-mass",
         key: "cart_mass",
@@ -586,8 +545,8 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "mass M of the surface that moves sideways (the cart; the moving part of the strings)",
     },
-    ParamSpec {
-        id: ParamId::Stiffness,
+    /// Spring stiffness k, N/m.
+    stiffness: Stiffness {
         group: Group::Surface,
         flag: "stiffness",
         key: "stiffness",
@@ -603,8 +562,9 @@ pub const PARAMS: &[ParamSpec] = &[
         integer: false,
         help: "stiffness k of the spring that pulls the cart back (0 = a free cart)",
     },
-    ParamSpec {
-        id: ParamId::CartFriction,
+    /// Coulomb friction on the cart, N (string-on-string friction; 0 is the paper's model).
+    #[serde(default)]
+    cart_friction: CartFriction {
         group: Group::Surface,
         flag: "cart-friction",
         key: "cart_friction",
@@ -621,8 +581,10 @@ pub const PARAMS: &[ParamSpec] = &[
         help: "Coulomb friction on the cart (string-on-string friction): the cart sticks while the spring \
                and the ball push it with less than this; 0 = the paper's model",
     },
-    ParamSpec {
-        id: ParamId::Chain,
+    /// Number N of equal masses the cart is split into, a whole number 1..=16 (1 is the paper's single
+    /// cart): a chain of masses M/N and springs N k, touched by the ball at its first mass.
+    #[serde(default = "single_cart")]
+    chain: Chain {
         group: Group::Surface,
         flag: "chain",
         key: "chain",
@@ -642,7 +604,7 @@ pub const PARAMS: &[ParamSpec] = &[
         help: "number N of equal masses the cart is split into: a chain of masses M/N joined by springs N k, \
                the last tied to the wall (static stiffness k at the ball); 1 = the paper's single cart",
     },
-];
+}
 
 /// The spec of one parameter.
 pub fn spec(id: ParamId) -> &'static ParamSpec {
@@ -658,48 +620,6 @@ pub fn spec_named(name: &str) -> Option<&'static ParamSpec> {
 }
 
 impl Params {
-    pub fn get(&self, id: ParamId) -> f64 {
-        match id {
-            ParamId::Angle => self.angle_deg,
-            ParamId::Speed => self.speed,
-            ParamId::Spin => self.spin,
-            ParamId::Mu => self.mu,
-            ParamId::Duration => self.duration,
-            ParamId::Ey => self.ey,
-            ParamId::Mass => self.mass,
-            ParamId::Radius => self.radius,
-            ParamId::Alpha => self.alpha,
-            ParamId::CartMass => self.cart_mass,
-            ParamId::Stiffness => self.stiffness,
-            ParamId::CartFriction => self.cart_friction,
-            ParamId::Chain => self.chain,
-            ParamId::BallStiffness => self.ball_stiffness,
-            ParamId::BallDamping => self.ball_damping,
-        }
-    }
-
-    /// Sets a value without checking it; see [`Params::with`] for the checked version.
-    pub fn set(&mut self, id: ParamId, value: f64) {
-        let slot = match id {
-            ParamId::Angle => &mut self.angle_deg,
-            ParamId::Speed => &mut self.speed,
-            ParamId::Spin => &mut self.spin,
-            ParamId::Mu => &mut self.mu,
-            ParamId::Duration => &mut self.duration,
-            ParamId::Ey => &mut self.ey,
-            ParamId::Mass => &mut self.mass,
-            ParamId::Radius => &mut self.radius,
-            ParamId::Alpha => &mut self.alpha,
-            ParamId::CartMass => &mut self.cart_mass,
-            ParamId::Stiffness => &mut self.stiffness,
-            ParamId::CartFriction => &mut self.cart_friction,
-            ParamId::Chain => &mut self.chain,
-            ParamId::BallStiffness => &mut self.ball_stiffness,
-            ParamId::BallDamping => &mut self.ball_damping,
-        };
-        *slot = value;
-    }
-
     /// A copy with one value changed, if the value is in range.
     pub fn with(mut self, id: ParamId, value: f64) -> Result<Self, ParamError> {
         spec(id).check_value(value)?;

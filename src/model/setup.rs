@@ -75,7 +75,9 @@ impl Setup {
         }
     }
 
-    /// N(t) = N0 sin(pi t / T) during contact.
+    /// N(t) = N0 sin(pi t / T) during contact: the normal-force law, written here once. The phases' closed
+    /// forms (`cart/slide.rs`, `chain/motion.rs`, `compliant/stretch.rs`) are exact responses to the
+    /// friction it drives, mu N0 sin(w t), and take its amplitude from [`Setup::peak_friction`].
     #[inline]
     pub fn normal(&self, t: f64) -> f64 {
         if (0.0..=self.duration).contains(&t) {
@@ -85,13 +87,25 @@ impl Setup {
         }
     }
 
+    /// mu N0, the sliding friction at the peak of the normal force.
+    #[inline]
+    pub fn peak_friction(&self) -> f64 {
+        self.mu * self.n0
+    }
+
+    /// d(mu N)/dt at `t`, mu N0 w cos(w t).
+    #[inline]
+    pub fn friction_limit_rate(&self, t: f64) -> f64 {
+        self.peak_friction() * self.w * (self.w * t).cos()
+    }
+
     /// How far a grip held by static friction `force` (with rate `rate`) is from breaking at `t`, forward
     /// and backward: ±force - mu N(t), each with its rate. The grip breaks when either rises above zero.
     #[inline]
     pub fn grip_margins(&self, t: f64, force: f64, rate: f64) -> [(f64, f64); 2] {
         let (sin_wt, cos_wt) = (self.w * t).sin_cos();
-        let limit = self.mu * self.n0 * sin_wt.max(0.0);
-        let limit_rate = self.mu * self.n0 * self.w * cos_wt;
+        let limit = self.peak_friction() * sin_wt.max(0.0);
+        let limit_rate = self.peak_friction() * self.w * cos_wt;
         [
             (force - limit, rate - limit_rate),
             (-force - limit, -rate - limit_rate),

@@ -336,7 +336,7 @@ pub fn export_paths(dir: &Path, n: u32) -> (PathBuf, PathBuf) {
 
 /// A scenario file, with errors naming it as `name` (the name typed, not the full path).
 fn load(path: &Path, name: &str) -> Result<Scenario, ScenarioError> {
-    let text = std::fs::read_to_string(path).map_err(|source| ScenarioError::Io {
+    let text = crate::input::read_text(path).map_err(|source| ScenarioError::Io {
         path: name.to_string(),
         source,
     })?;

@@ -7,26 +7,22 @@
 //! gripping, the ball's effective mass m_eff rides on the first mass and the modes of that heavier chain
 //! swing freely. Transitions follow the paper's rules (grip when |F_s| <= mu N at zero slip, else the
 //! friction reverses; a broken grip slides the way F_s pulled), located by [`first_rise`] on the exact
-//! expressions with curvature bounds from the modal amplitudes. A compliant ball on the chain is solved
-//! by [`super::compliant`] (its grip is one damped modal system of ball and chain). String friction on the
-//! cart is for the single cart only: a chain with it is refused.
+//! expressions with curvature bounds from the modal amplitudes. A compliant ball on the chain is its own
+//! model, [`super::compliant`] (its grip is one damped modal system of ball and chain). String friction
+//! on the cart is for the single cart only: a chain with it is refused.
 
 pub mod modes;
 pub mod motion;
 
+use std::cell::RefCell;
 use std::sync::{Arc, OnceLock};
 
-use super::bounce::{
-    Bounce, MAX_RADIANS, MAX_TRANSITIONS, Motion as PhaseMotion, Phase, PhaseKind, ROLLING,
-    ROUNDING, SolveError, finish,
-};
-use super::cart::Cart;
-use super::compliant::solve_compliant_cancellable;
+use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, ROLLING, ROUNDING};
+use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise;
-use super::limits;
+use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::setup::{Setup, State};
-use super::transition::{Ball, Cause};
 use modes::{MAX, Modes};
 use motion::Motion;
 
@@ -44,7 +40,28 @@ pub struct Chain {
     m_eff: f64,
 }
 
+thread_local! {
+    static LAST_CHAIN: Slot<[u64; 4], Arc<Chain>> = const { RefCell::new(None) };
+}
+
 impl Chain {
+    /// The chain for `params`, shared with the last bounce solved on this thread if it had the same one.
+    pub fn shared(params: &Params, setup: &Setup) -> Arc<Chain> {
+        reuse(&LAST_CHAIN, Chain::key(params, setup), || {
+            Arc::new(Chain::new(params, setup))
+        })
+    }
+
+    /// Everything a chain is built from, exactly.
+    pub fn key(params: &Params, setup: &Setup) -> [u64; 4] {
+        [
+            params.chain.to_bits(),
+            params.cart_mass.to_bits(),
+            params.stiffness.to_bits(),
+            setup.m_eff.to_bits(),
+        ]
+    }
+
     pub fn new(params: &Params, setup: &Setup) -> Chain {
         let n = params.chain as usize;
         let link_mass = params.cart_mass / n as f64;
@@ -130,122 +147,134 @@ impl ChainState {
 /// The phase motion of a chain bounce, shared by the phase and its copies.
 pub type ChainMotion = Arc<Motion>;
 
-/// Solves one bounce on a chain of `params.chain` masses, for any N including 1 (where it reproduces the
-/// single-cart solver to rounding; [`super::solve`] sends N = 1 to the single cart's own path).
-pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
-    solve_chain_cancellable(params, &|| false)
+/// The rigid ball on a chain of `params.chain` masses, for any N including 1 (where it reproduces the
+/// single cart to rounding; [`super::solve`] sends N = 1 to the single cart's own model).
+pub struct ChainOfMasses {
+    chain: Arc<Chain>,
+    spin: f64,
+    /// |v_x1| + r |omega1|: the scale of the speeds, for the event functions' rounding.
+    incoming: f64,
 }
 
-/// [`solve_chain`], abandoned when `cancelled` returns true (asked before every phase).
-pub fn solve_chain_cancellable(
-    params: &Params,
-    cancelled: &impl Fn() -> bool,
-) -> Result<Bounce, SolveError> {
-    limits::bounded(params, || solve_links(params, cancelled))
-}
-
-fn solve_links(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Bounce, SolveError> {
-    params.validate()?;
-    if params.ball_stiffness > 0.0 {
-        return solve_compliant_cancellable(params, cancelled);
-    }
-    if params.cart_friction > 0.0 {
-        return Err(SolveError::ChainStringFriction {
-            chain: params.chain as usize,
-        });
-    }
-    let setup = Setup::new(params);
-    let chain = Arc::new(Chain::new(params, &setup));
-    let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
-    if radians > MAX_RADIANS {
-        return Err(SolveError::TooFast { radians });
-    }
-    let end = setup.duration;
-    let first = setup.initial(params.spin);
-    let mut state = ChainState {
-        t: 0.0,
-        vx: first.vx,
-        omega: first.omega,
-        x: [0.0; MAX],
-        v: [0.0; MAX],
-    };
-    let incoming = setup.vx1.abs() + setup.r * params.spin.abs();
-    let slip0 = setup.slip(&first);
-    let mut ball = if slip0.abs() <= ROLLING * incoming {
-        next(&chain, &setup, &state, Ball::Grip, Cause::Start)
-    } else {
-        Ball::Slide(slip0.signum())
-    };
-    let mut cause = Cause::Start;
-    let mut phases = Vec::with_capacity(4);
-    for _ in 0..MAX_TRANSITIONS {
-        if cancelled() {
-            return Err(SolveError::Cancelled);
+impl ChainOfMasses {
+    /// The model for `params`, refused with string friction (modelled for the single cart only) or when
+    /// the chain oscillates too fast to resolve.
+    pub fn new(params: &Params, setup: &Setup) -> Result<Self, SolveError> {
+        if params.cart_friction > 0.0 {
+            return Err(SolveError::ChainStringFriction {
+                chain: params.chain as usize,
+            });
         }
-        let t0 = state.t;
+        let chain = Chain::shared(params, setup);
+        let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
+        if radians > MAX_RADIANS {
+            return Err(SolveError::TooFast { radians });
+        }
+        Ok(ChainOfMasses {
+            chain,
+            spin: params.spin,
+            incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
+        })
+    }
+}
+
+impl Contact for ChainOfMasses {
+    type State = ChainState;
+    type Motion = ChainMotion;
+    type Probe = ();
+
+    fn start(&self, setup: &Setup) -> (ChainState, Mode) {
+        let first = setup.initial(self.spin);
+        let state = ChainState {
+            t: 0.0,
+            vx: first.vx,
+            omega: first.omega,
+            x: [0.0; MAX],
+            v: [0.0; MAX],
+        };
+        let slip0 = setup.slip(&first);
+        let ball = if slip0.abs() <= ROLLING * self.incoming {
+            next(&self.chain, setup, &state, Ball::Grip, Cause::Start)
+        } else {
+            Ball::Slide(slip0.signum())
+        };
+        (state, (ball, Cart::Moving(1)))
+    }
+
+    fn time(state: &ChainState) -> f64 {
+        state.t
+    }
+
+    fn contact(state: &ChainState) -> State {
+        state.contact()
+    }
+
+    fn motion(&self, setup: &Setup, state: &ChainState, (ball, _): Mode) -> ChainMotion {
         let dir = match ball {
             Ball::Slide(dir) => dir,
             Ball::Grip => 0.0,
         };
-        let motion = Arc::new(Motion::new(chain.clone(), &setup, state, dir));
+        Arc::new(Motion::new(self.chain.clone(), setup, *state, dir))
+    }
+
+    fn first_event(
+        &self,
+        setup: &Setup,
+        motion: &ChainMotion,
+        state: &ChainState,
+        (ball, _): Mode,
+        cause: Cause,
+    ) -> Found<()> {
+        let (t0, end) = (state.t, setup.duration);
         let event = match ball {
             Ball::Slide(dir) => {
                 // A slip that starts on its zero is measured from its start value.
                 let slip_offset = if matches!(cause, Cause::SlipZero | Cause::GripBreak(_)) {
-                    setup.slip(&motion.contact(&setup, t0).state)
+                    setup.slip(&motion.contact(setup, t0).state)
                 } else {
                     0.0
                 };
                 let f = |t: f64| {
-                    let c = motion.contact(&setup, t);
+                    let c = motion.contact(setup, t);
                     let rate = -c.friction / setup.m_eff - c.accel;
                     [(-dir * (setup.slip(&c.state) - slip_offset), -dir * rate)]
                 };
-                let (curvature, terms) = motion.slip_curvature(&setup);
-                let speeds = incoming + state.vx.abs() + setup.r * state.omega.abs() + terms;
-                let step = setup.event_step(chain.slide.fastest);
+                let (curvature, terms) = motion.slip_curvature(setup);
+                let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + terms;
+                let step = setup.event_step(self.chain.slide.fastest);
                 first_rise(f, t0, end, step, [curvature], [ROUNDING * speeds])
                     .map(|(t, _)| (t, Cause::SlipZero))
             }
             Ball::Grip => {
                 let f = |t: f64| {
-                    let c = motion.contact(&setup, t);
+                    let c = motion.contact(setup, t);
                     setup.grip_margins(t, c.friction, c.friction_rate)
                 };
-                let (curvature, terms) = motion.margin_curvature(&setup);
+                let (curvature, terms) = motion.margin_curvature(setup);
                 let noise = ROUNDING * terms;
-                let step = setup.event_step(chain.grip().fastest);
+                let step = setup.event_step(self.chain.grip().fastest);
                 first_rise(f, t0, end, step, [curvature; 2], [noise; 2]).map(|(t, branch)| {
                     let sign = if branch == 0 { 1.0 } else { -1.0 };
                     (t, Cause::GripBreak(sign))
                 })
             }
-        }
-        // A transition within rounding of the end changes nothing.
-        .filter(|&(t, _)| t < end * (1.0 - 1e-13));
-        let t1 = event.map_or(end, |(t, _)| t);
-        state = motion.full(&setup, t1);
-        if t1 > t0 {
-            phases.push(Phase {
-                kind: if dir == 0.0 {
-                    PhaseKind::Grip
-                } else {
-                    PhaseKind::Slide
-                },
-                slip_sign: dir as i8,
-                cart: Cart::Moving(1),
-                start: t0,
-                end: t1,
-                motion: PhaseMotion::Chain(motion),
-            });
-        }
-        let Some((_, next_cause)) = event else {
-            return Ok(finish(params, setup, phases, state.contact()));
         };
-        cause = next_cause;
-        ball = next(&chain, &setup, &state, ball, cause);
+        Found { event, last: None }
     }
-    Err(SolveError::TooManyPhases)
+
+    fn state_at(&self, setup: &Setup, motion: &ChainMotion, t: f64, _: Option<()>) -> ChainState {
+        motion.full(setup, t)
+    }
+
+    fn next(
+        &self,
+        setup: &Setup,
+        state: &mut ChainState,
+        (ball, cart): Mode,
+        cause: Cause,
+    ) -> Mode {
+        (next(&self.chain, setup, state, ball, cause), cart)
+    }
 }
 
 /// What the ball does after `cause`: the paper's rules, as `transition::next` has them without string

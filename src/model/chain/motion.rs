@@ -60,7 +60,7 @@ impl Motion {
         let q0 = modes.project(&start.x);
         let dq0 = modes.project(&start.v);
         let v1_start = (0..modes.n).map(|j| modes.shape[0][j] * dq0[j]).sum();
-        let force = dir * setup.mu * setup.n0;
+        let force = dir * setup.peak_friction();
         let speeds = start.vx.abs()
             + setup.r * start.omega.abs()
             + start.v[..modes.n].iter().map(|v| v.abs()).sum::<f64>();
@@ -163,7 +163,7 @@ impl Motion {
             )
         } else {
             // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
-            let force = self.dir * setup.mu * setup.n0;
+            let force = self.dir * setup.peak_friction();
             let impulse =
                 force * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / setup.w;
             let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
@@ -204,7 +204,7 @@ impl Motion {
     fn speed_bounds(&self, setup: &Setup) -> [f64; MAX] {
         let modes = self.modes();
         let w = setup.w;
-        let force = setup.mu * setup.n0;
+        let force = setup.peak_friction();
         let remaining_impulse = force * (1.0 + self.cos_wt0) / w;
         let mut bounds = [0.0; MAX];
         for (j, bound) in bounds.iter_mut().enumerate().take(modes.n) {
@@ -232,7 +232,7 @@ impl Motion {
         let modes = self.modes();
         let bounds = self.speed_bounds(setup);
         let mut curvature =
-            setup.mu * setup.n0 * setup.w * (1.0 / setup.m_eff + 1.0 / modes.mass[0]);
+            setup.peak_friction() * setup.w * (1.0 / setup.m_eff + 1.0 / modes.mass[0]);
         let mut terms = 0.0;
         for (j, bound) in bounds.iter().enumerate().take(modes.n) {
             curvature += modes.first_stiff[j].abs() * bound;
@@ -246,8 +246,8 @@ impl Motion {
     /// |F_s''| = m_eff |Σ Φ_1j Ω_j⁴ q_j| <= m_eff Σ |Φ_1j| Ω_j³ E_j; mu N'' is at most mu N0 w².
     pub fn margin_curvature(&self, setup: &Setup) -> (f64, f64) {
         let modes = self.modes();
-        let mut curvature = setup.mu * setup.n0 * setup.w * setup.w;
-        let mut terms = setup.mu * setup.n0;
+        let mut curvature = setup.peak_friction() * setup.w * setup.w;
+        let mut terms = setup.peak_friction();
         for j in 0..modes.n {
             let omega = modes.omega[j];
             let swing = (self.dq0[j].powi(2) + (omega * self.q0[j]).powi(2)).sqrt();

@@ -17,7 +17,7 @@
 //!   [`ChainGrip`] on a chain). The grip breaks when |F| reaches mu N, into a slide the way F points.
 //!
 //! Chatter: an undamped stiff ball may switch many times; every phase advances time and the solver stops
-//! after [`MAX_TRANSITIONS`] with [`SolveError::TooManyPhases`].
+//! after [`super::error::MAX_TRANSITIONS`] with `SolveError::TooManyPhases`.
 
 mod cart_grip;
 mod chain_grip;
@@ -29,19 +29,19 @@ pub use cart_grip::{Compliance, CompliantGrip};
 pub use chain_grip::{ChainGrip, GripModes};
 pub use stretch::Stretch;
 
-use super::bounce::{
-    MAX_RADIANS, MAX_TRANSITIONS, Motion, Phase, PhaseKind, ROLLING, ROUNDING, SolveError, finish,
-};
-use super::cart::Cart;
+use std::cell::{Cell, RefCell};
+
+use super::cart::Slide;
 use super::chain::motion::Motion as ChainMotion;
 use super::chain::{Chain, ChainState};
+use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, ROLLING, ROUNDING};
+use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise_from_tangent;
-use super::limits;
+use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
-use super::slide::Slide;
-use crate::model::Bounce;
+use super::units::brief;
 use cart_grip::EXP_ROUNDING;
 
 /// The ball's contact spring and dashpot.
@@ -119,7 +119,7 @@ impl CompliantSlide {
         Point {
             state,
             friction,
-            friction_rate: self.dir() * setup.mu * setup.n0 * setup.w * (setup.w * t).cos(),
+            friction_rate: self.dir() * setup.friction_limit_rate(t),
             e,
             de,
             dde,
@@ -250,6 +250,13 @@ impl CompliantMotion {
     }
 }
 
+thread_local! {
+    /// The grip's modes of the last bounce on this thread, by its chain and the ball's spring and
+    /// dashpot.
+    static LAST_GRIP_MODES: Slot<([u64; 4], u64, u64), Arc<GripModes>> =
+        const { RefCell::new(None) };
+}
+
 /// What the ball touches: the single cart, or a chain with the modes of the ball gripping it.
 enum Support {
     Cart(Box<Compliance>),
@@ -259,141 +266,265 @@ enum Support {
     },
 }
 
-/// Solves one bounce of a compliant ball on the single cart or on a chain (no string friction). With a
-/// spring (k > 0) every grip is solved by [`ChainGrip`], the single cart being a chain of one mass; a
-/// free cart (k = 0) has a double zero root there, and its grips are solved by [`CompliantGrip`].
-pub fn solve_compliant(params: &Params) -> Result<Bounce, SolveError> {
-    solve_compliant_cancellable(params, &|| false)
+/// What the compliant ball carries from phase to phase: the ball and the contact mass, the whole chain
+/// (on the single cart only its first mass is used), and the stretch e.
+#[derive(Clone, Copy, Debug)]
+pub struct CompliantState {
+    contact: State,
+    full: ChainState,
+    e: f64,
 }
 
-/// [`solve_compliant`], abandoned when `cancelled` returns true (asked before every phase).
-pub fn solve_compliant_cancellable(
-    params: &Params,
-    cancelled: &impl Fn() -> bool,
-) -> Result<Bounce, SolveError> {
-    solve_on(params, params.stiffness > 0.0, cancelled)
+/// The tangentially compliant ball on the single cart or on a chain (no string friction). With a spring
+/// (k > 0) every grip is solved by [`ChainGrip`], the single cart being a chain of one mass; a free cart
+/// (k = 0) has a double zero root there, and its grips are solved by [`CompliantGrip`].
+pub struct CompliantBall {
+    support: Support,
+    spring: BallSpring,
+    spin: f64,
+    /// |v_x1| + r |omega1|: the scale of the speeds, for the event functions' rounding.
+    incoming: f64,
 }
 
-/// The compliant ball on the single cart (the chain's length ignored) with every grip solved by
-/// [`CompliantGrip`], the cart's own 4-state system, even with a spring: an independent check of
-/// [`solve_compliant`].
-pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
-    solve_on(
-        &Params {
-            chain: 1.0,
-            ..*params
-        },
-        false,
-        &|| false,
-    )
-}
-
-fn solve_on(
-    params: &Params,
-    modal: bool,
-    cancelled: &impl Fn() -> bool,
-) -> Result<Bounce, SolveError> {
-    limits::bounded(params, || solve_modal(params, modal, cancelled))
-}
-
-fn solve_modal(
-    params: &Params,
-    modal: bool,
-    cancelled: &impl Fn() -> bool,
-) -> Result<Bounce, SolveError> {
-    if params.cart_friction > 0.0 {
-        return Err(SolveError::StringFrictionCompliantBall);
-    }
-    let links = params.chain.max(1.0);
-    // Without springs (k = 0) the chain's other masses never move: the ball meets its first mass alone.
-    let setup = if links > 1.0 && params.stiffness == 0.0 {
-        Setup::new(&Params {
-            cart_mass: params.cart_mass / links,
-            chain: 1.0,
-            ..*params
-        })
-    } else {
-        Setup::new(params)
-    };
-    let spring = BallSpring::new(params, &setup);
-    let support = if modal {
-        let chain = Arc::new(Chain::new(params, &setup));
-        let modes = Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb));
-        Support::Chain { chain, modes }
-    } else {
-        Support::Cart(Box::new(Compliance::new(params, &setup)))
-    };
-    let (cart_fastest, ball_fastest) = match &support {
-        Support::Cart(c) => (setup.omega_slide.max(setup.omega_grip), c.fastest),
-        Support::Chain { chain, modes } => (chain.slide.fastest, modes.fastest),
-    };
-    let radians = cart_fastest * setup.duration;
-    if radians > MAX_RADIANS {
-        return Err(SolveError::TooFast { radians });
-    }
-    let ball_radians = ball_fastest * setup.duration;
-    if ball_radians > MAX_RADIANS {
-        return Err(SolveError::BallTooFast {
-            radians: ball_radians,
-        });
-    }
-    let end = setup.duration;
-    let (w, mu, n0) = (setup.w, setup.mu, setup.n0);
-    let mut state = setup.initial(params.spin);
-    // The whole chain (on the single cart, only its first mass is used).
-    let mut full = ChainState::from_contact(&state);
-    let mut e = 0.0;
-    let incoming = setup.vx1.abs() + setup.r * params.spin.abs();
-    let slip0 = setup.slip(&state);
-    // How the contact starts: rolling grips; with a dashpot the patch takes the whole slip at once;
-    // without, the spring's rate k_b slip0 must beat the friction limit's rate mu N0 w.
-    let mut slide_dir = if slip0.abs() <= ROLLING * incoming
-        || (spring.cb == 0.0 && spring.kb * slip0.abs() <= mu * n0 * w)
-    {
-        None
-    } else {
-        Some(slip0.signum())
-    };
-    let mut from_zero = false;
-    let mut phases = Vec::with_capacity(8);
-    for _ in 0..MAX_TRANSITIONS {
-        if cancelled() {
-            return Err(SolveError::Cancelled);
+impl CompliantBall {
+    /// The model for `params` and the setup it runs on, refused with string friction or when the cart
+    /// or the ball's spring is too fast to resolve. `modal` solves every grip as a chain's (with a
+    /// spring); otherwise by the cart's own 4-state system, the chain's length ignored.
+    pub fn new(params: &Params, modal: bool) -> Result<(Self, Setup), SolveError> {
+        if params.cart_friction > 0.0 {
+            return Err(SolveError::StringFrictionCompliantBall);
         }
-        let t0 = state.t;
-        let last = std::cell::Cell::new(None::<Point>);
-        let speeds = incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
-        let (motion, event) = match slide_dir {
-            Some(dir) => {
-                let rigid = match &support {
+        let links = params.chain.max(1.0);
+        // Without springs (k = 0) the chain's other masses never move: the ball meets its first mass
+        // alone.
+        let setup = if links > 1.0 && params.stiffness == 0.0 {
+            Setup::new(&Params {
+                cart_mass: params.cart_mass / links,
+                chain: 1.0,
+                ..*params
+            })
+        } else {
+            Setup::new(params)
+        };
+        let spring = BallSpring::new(params, &setup);
+        let support = if modal {
+            let chain = Chain::shared(params, &setup);
+            let key = (
+                Chain::key(params, &setup),
+                spring.kb.to_bits(),
+                spring.cb.to_bits(),
+            );
+            let modes = reuse(&LAST_GRIP_MODES, key, || {
+                Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb))
+            });
+            Support::Chain { chain, modes }
+        } else {
+            Support::Cart(Box::new(Compliance::new(params, &setup)))
+        };
+        let (cart_fastest, ball_fastest) = match &support {
+            Support::Cart(c) => (setup.omega_slide.max(setup.omega_grip), c.fastest),
+            Support::Chain { chain, modes } => (chain.slide.fastest, modes.fastest),
+        };
+        let radians = cart_fastest * setup.duration;
+        if radians > MAX_RADIANS {
+            return Err(SolveError::TooFast { radians });
+        }
+        let ball_radians = ball_fastest * setup.duration;
+        if ball_radians > MAX_RADIANS {
+            return Err(too_fast_ball(params, &setup, &spring, ball_radians));
+        }
+        let model = CompliantBall {
+            support,
+            spring,
+            spin: params.spin,
+            incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
+        };
+        Ok((model, setup))
+    }
+}
+
+/// The refusal of a ball whose grip is too fast to resolve, naming what would help. The grip's fastest
+/// rate is bounded by sqrt(X + k_b r) + c_b r, r = 1/m_eff + 1/m_1 the inverse reduced mass of the ball
+/// and the mass it touches (the cart, or the chain's first link), X the cart's or chain's own squared
+/// rate. The advice names the values that bring it within [`MAX_RADIANS`]: a softer ball (c_b =
+/// 2 zeta sqrt(k_b m_eff) falls with it), less damping, or a heavier light mass where even an infinite
+/// one would do. A stiffer or more damped ball never helps.
+fn too_fast_ball(params: &Params, setup: &Setup, spring: &BallSpring, radians: f64) -> SolveError {
+    let links = params.chain.max(1.0);
+    // The mass the ball touches (the setup's cart is already one link where the chain's springs are off).
+    let first = if setup.cart_mass == params.cart_mass {
+        setup.cart_mass / links
+    } else {
+        setup.cart_mass
+    };
+    let r = 1.0 / setup.m_eff + 1.0 / first;
+    let (kb, cb, t) = (spring.kb, spring.cb, setup.duration);
+    let limit = 0.999 * MAX_RADIANS / t;
+    let own = ((radians / t - cb * r).powi(2) - kb * r).max(0.0);
+    let rate = |kb: f64, cb: f64, r: f64| (own + kb * r).sqrt() + cb * r;
+    let mut advice = Vec::new();
+    if own.sqrt() < limit {
+        // The largest k_b at this zeta: the rate rises with sqrt(k_b), so bisect on it.
+        let per_root = 2.0 * params.ball_damping * setup.m_eff.sqrt();
+        let (mut low, mut high) = (0.0, kb.sqrt());
+        for _ in 0..200 {
+            let mid = 0.5 * (low + high);
+            if rate(mid * mid, per_root * mid, r) < limit {
+                low = mid;
+            } else {
+                high = mid;
+            }
+        }
+        let share = (kb * r).sqrt();
+        advice.push((
+            share,
+            format!("--ball-stiffness below {:.2e} N/m", low * low),
+        ));
+        let spring_only = (own + kb * r).sqrt();
+        if cb > 0.0 && spring_only < limit {
+            let zeta = params.ball_damping * (limit - spring_only) / (cb * r);
+            advice.push((cb * r, format!("--ball-damping below {}", brief(zeta, 3))));
+        }
+    }
+    // With the lighter mass infinite, only the other remains in r.
+    let (lighter, other) = if first < setup.m_eff {
+        (first, setup.m_eff)
+    } else {
+        (setup.m_eff, first)
+    };
+    if rate(kb, cb, 1.0 / other) < limit {
+        let heavier = if lighter == first && links > 1.0 {
+            "a heavier --cart-mass or fewer --chain links"
+        } else if lighter == first {
+            "a heavier --cart-mass"
+        } else {
+            "a heavier ball (--mass)"
+        };
+        advice.push((0.0, heavier.to_string()));
+    }
+    let part = if cb * r >= (kb * r).sqrt() {
+        "dashpot"
+    } else {
+        "spring"
+    };
+    // The larger share first.
+    advice.sort_by(|a, b| b.0.total_cmp(&a.0));
+    let advice = if advice.is_empty() {
+        "shorten the impact (--duration)".to_string()
+    } else {
+        let names: Vec<String> = advice.into_iter().map(|(_, text)| text).collect();
+        names.join(", or ")
+    };
+    SolveError::BallTooFast {
+        radians,
+        part,
+        advice: format!("try {advice}"),
+    }
+}
+
+impl Contact for CompliantBall {
+    type State = CompliantState;
+    type Motion = CompliantMotion;
+    type Probe = Point;
+
+    fn start(&self, setup: &Setup) -> (CompliantState, Mode) {
+        let state = setup.initial(self.spin);
+        let slip0 = setup.slip(&state);
+        let spring = &self.spring;
+        // How the contact starts: rolling grips; with a dashpot the patch takes the whole slip at once;
+        // without, the spring's rate k_b slip0 must beat the friction limit's rate mu N0 w.
+        let ball = if slip0.abs() <= ROLLING * self.incoming
+            || (spring.cb == 0.0 && spring.kb * slip0.abs() <= setup.peak_friction() * setup.w)
+        {
+            Ball::Grip
+        } else {
+            Ball::Slide(slip0.signum())
+        };
+        let carried = CompliantState {
+            contact: state,
+            full: ChainState::from_contact(&state),
+            e: 0.0,
+        };
+        (carried, (ball, Cart::Moving(1)))
+    }
+
+    fn time(state: &CompliantState) -> f64 {
+        state.contact.t
+    }
+
+    fn contact(state: &CompliantState) -> State {
+        state.contact
+    }
+
+    fn motion(&self, setup: &Setup, state: &CompliantState, (ball, _): Mode) -> CompliantMotion {
+        let t0 = state.contact.t;
+        match ball {
+            Ball::Slide(dir) => {
+                let rigid = match &self.support {
                     Support::Cart(_) => {
-                        Rigid::Cart(Slide::new(&setup, state, dir, Cart::Moving(1)))
+                        Rigid::Cart(Slide::new(setup, state.contact, dir, Cart::Moving(1)))
                     }
-                    Support::Chain { chain, .. } => {
-                        Rigid::Chain(Arc::new(ChainMotion::new(chain.clone(), &setup, full, dir)))
-                    }
+                    Support::Chain { chain, .. } => Rigid::Chain(Arc::new(ChainMotion::new(
+                        chain.clone(),
+                        setup,
+                        state.full,
+                        dir,
+                    ))),
                 };
-                let slide = CompliantSlide {
+                CompliantMotion::Slide(CompliantSlide {
                     rigid,
-                    stretch: Stretch::new(&spring, &setup, dir, t0, e),
-                    spring,
-                };
+                    stretch: Stretch::new(&self.spring, setup, dir, t0, state.e),
+                    spring: self.spring,
+                })
+            }
+            Ball::Grip => {
+                match &self.support {
+                    Support::Cart(compliance) => CompliantMotion::Grip(Box::new(
+                        CompliantGrip::new(**compliance, state.contact, state.e, setup),
+                    )),
+                    Support::Chain { modes, .. } => CompliantMotion::ChainGrip(ChainGrip::new(
+                        modes.clone(),
+                        state.full,
+                        state.e,
+                        setup,
+                    )),
+                }
+            }
+        }
+    }
+
+    fn first_event(
+        &self,
+        setup: &Setup,
+        motion: &CompliantMotion,
+        state: &CompliantState,
+        _: Mode,
+        cause: Cause,
+    ) -> Found<Point> {
+        let (t0, end) = (state.contact.t, setup.duration);
+        let (w, peak) = (setup.w, setup.peak_friction());
+        let s = &state.contact;
+        let last = Cell::new(None::<Point>);
+        let speeds = self.incoming + s.vx.abs() + setup.r * s.omega.abs() + s.v.abs();
+        let event = match motion {
+            CompliantMotion::Slide(slide) => {
+                let dir = slide.dir();
                 // After a grip broke, the patch starts from rest on the cart (with a dashpot) or with
                 // the jump of e' (without): a start slip against `dir` is rounding, and counts as zero,
                 // so rounding can never fake a crossing at the start.
-                let start_slip = slide.patch_slip(&setup, &slide.at(&setup, t0)).0;
-                let offset = if from_zero && dir * start_slip < 0.0 {
+                let start_slip = slide.patch_slip(setup, &slide.at(setup, t0)).0;
+                let offset = if cause != Cause::Start && dir * start_slip < 0.0 {
                     start_slip
                 } else {
                     0.0
                 };
                 let f = |t: f64| {
-                    let p = slide.at(&setup, t);
+                    let p = slide.at(setup, t);
                     last.set(Some(p));
-                    let (slip, rate) = slide.patch_slip(&setup, &p);
+                    let (slip, rate) = slide.patch_slip(setup, &p);
                     [(-dir * (slip - offset), -dir * rate)]
                 };
-                let (slip_curvature, terms, fastest) = slide.slip_bounds(&setup);
+                let (slip_curvature, terms, fastest) = slide.slip_bounds(setup);
                 let noise = ROUNDING * (speeds + terms + slide.stretch.speed(w));
                 // While the stretch's transient lasts, on its scale; after, on the cart's.
                 let split = slide.stretch.settled().clamp(t0, end);
@@ -404,95 +535,89 @@ fn solve_modal(
                 } else {
                     None
                 };
-                let event = early
+                early
                     .or_else(|| {
                         let curvature = slip_curvature + slide.stretch.third(w, split);
                         let step = setup.event_step(fastest);
                         first_rise_from_tangent(f, split, end, step, [curvature], [noise])
                     })
-                    .map(|(t, _)| (t, 0.0));
-                (CompliantMotion::Slide(slide), event)
+                    .map(|(t, _)| (t, Cause::SlipZero))
             }
-            None => {
-                let margin_curvature = mu * n0 * w * w;
-                // Stages of the search: (from, to, curvature, step).
-                let (grip, noise, stages) = match &support {
-                    Support::Cart(compliance) => {
-                        let grip = CompliantGrip::new(**compliance, state, e, &setup);
-                        let (curvature, size) = grip.force_bounds(&setup);
-                        let noise = ROUNDING * (mu * n0 + EXP_ROUNDING * size);
-                        let step = setup.event_step(compliance.fastest);
-                        let stage = (t0, end, curvature + margin_curvature, step);
-                        (CompliantMotion::Grip(Box::new(grip)), noise, vec![stage])
-                    }
-                    Support::Chain { modes, .. } => {
-                        let grip = ChainGrip::new(modes.clone(), full, e, &setup);
-                        let (stages, size) = grip.search_stages(&setup);
+            grip => {
+                let margin_curvature = peak * w * w;
+                // Stages of the search: (from, to, curvature, step), and the force's rounding.
+                let (stages, noise) = match grip {
+                    CompliantMotion::ChainGrip(grip) => {
+                        let (stages, size) = grip.search_stages(setup);
                         let stages = stages
                             .into_iter()
                             .map(|(from, to, curvature, step)| {
                                 (from, to, curvature + margin_curvature, step)
                             })
                             .collect();
-                        let noise = ROUNDING * (mu * n0 + size);
-                        (CompliantMotion::ChainGrip(grip), noise, stages)
+                        (stages, ROUNDING * (peak + size))
                     }
+                    CompliantMotion::Grip(grip) => {
+                        let (curvature, size) = grip.force_bounds(setup);
+                        let step = setup.event_step(grip.compliance.fastest);
+                        let stage = (t0, end, curvature + margin_curvature, step);
+                        (vec![stage], ROUNDING * (peak + EXP_ROUNDING * size))
+                    }
+                    CompliantMotion::Slide(_) => unreachable!("matched above"),
                 };
                 let f = |t: f64| {
-                    let p = grip.at(&setup, t);
+                    let p = grip.at(setup, t);
                     last.set(Some(p));
                     setup.grip_margins(t, p.friction, p.friction_rate)
                 };
-                let event = stages
+                stages
                     .iter()
                     .find_map(|&(from, to, curvature, step)| {
                         first_rise_from_tangent(f, from, to, step, [curvature; 2], [noise; 2])
                     })
-                    .map(|(t, branch)| (t, if branch == 0 { 1.0 } else { -1.0 }));
-                (grip, event)
+                    .map(|(t, branch)| {
+                        let sign = if branch == 0 { 1.0 } else { -1.0 };
+                        (t, Cause::GripBreak(sign))
+                    })
             }
         };
-        // A transition within rounding of the end changes nothing.
-        let event = event.filter(|&(t, _)| t < end * (1.0 - 1e-13));
-        let t1 = event.map_or(end, |(t, _)| t);
-        let point = match last.get() {
-            Some(p) if p.state.t == t1 => p,
-            _ => motion.at(&setup, t1),
+        Found {
+            event,
+            last: last.get(),
+        }
+    }
+
+    fn state_at(
+        &self,
+        setup: &Setup,
+        motion: &CompliantMotion,
+        t: f64,
+        last: Option<Point>,
+    ) -> CompliantState {
+        let point = match last {
+            Some(p) if p.state.t == t => p,
+            _ => motion.at(setup, t),
         };
-        state = point.state;
-        e = point.e;
-        full = match &motion {
+        let full = match motion {
             CompliantMotion::Slide(CompliantSlide {
                 rigid: Rigid::Chain(chain),
                 ..
-            }) => chain.full(&setup, t1),
-            CompliantMotion::ChainGrip(grip) => grip.full(&setup, t1),
-            _ => ChainState::from_contact(&state),
+            }) => chain.full(setup, t),
+            CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
+            _ => ChainState::from_contact(&point.state),
         };
-        if t1 > t0 {
-            phases.push(Phase {
-                kind: if slide_dir.is_some() {
-                    PhaseKind::Slide
-                } else {
-                    PhaseKind::Grip
-                },
-                slip_sign: slide_dir.map_or(0, |d| d as i8),
-                cart: Cart::Moving(1),
-                start: t0,
-                end: t1,
-                motion: Motion::Compliant(Box::new(motion)),
-            });
+        CompliantState {
+            contact: point.state,
+            full,
+            e: point.e,
         }
-        let Some((_, next)) = event else {
-            return Ok(finish(params, setup, phases, state));
-        };
-        // A slide ends in a grip; a grip breaks into a slide the way the force points.
-        slide_dir = if slide_dir.is_some() {
-            None
-        } else {
-            Some(next)
-        };
-        from_zero = true;
     }
-    Err(SolveError::TooManyPhases)
+
+    /// A slide ends in a grip; a grip breaks into a slide the way the force points.
+    fn next(&self, _: &Setup, _: &mut CompliantState, (ball, cart): Mode, cause: Cause) -> Mode {
+        match (ball, cause) {
+            (Ball::Grip, Cause::GripBreak(sign)) => (Ball::Slide(sign), cart),
+            _ => (Ball::Grip, cart),
+        }
+    }
 }

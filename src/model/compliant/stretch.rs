@@ -25,7 +25,7 @@ pub struct Stretch {
 
 impl Stretch {
     pub(super) fn new(c: &BallSpring, setup: &Setup, dir: f64, t0: f64, e0: f64) -> Self {
-        let force = dir * setup.mu * setup.n0;
+        let force = dir * setup.peak_friction();
         if c.cb > 0.0 {
             let lambda = c.kb / c.cb;
             let w = setup.w;

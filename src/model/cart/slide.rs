@@ -1,8 +1,8 @@
 //! The sliding phase, Eqs. (1)-(3): friction of magnitude mu N opposing the slip.
 
-use super::cart::Cart;
-use super::oscillator::{detuned, forced, free, free_given, step};
-use super::setup::{Setup, State};
+use super::super::contact::Cart;
+use super::super::oscillator::{detuned, forced, free, free_given, step};
+use super::super::setup::{Setup, State};
 
 /// A sliding phase from `start`, with the slip's sign `dir` (+1: the contact point moves forward
 /// relative to the cart and the friction on the ball, F = dir mu N, acts backward).
@@ -37,7 +37,7 @@ impl Slide {
     pub fn new(setup: &Setup, start: State, dir: f64, cart: Cart) -> Self {
         let (sin_wt0, cos_wt0) = (setup.w * start.t).sin_cos();
         let (w, omega) = (setup.w, setup.omega_slide);
-        let amplitude = dir * setup.mu * setup.n0 / (setup.cart_mass * (omega * omega - w * w));
+        let amplitude = dir * setup.peak_friction() / (setup.cart_mass * (omega * omega - w * w));
         let speeds = start.vx.abs() + setup.r * start.omega.abs() + start.v.abs();
         let response = if cart == Cart::Stuck {
             CartResponse::Stuck
@@ -76,7 +76,7 @@ impl Slide {
         let s0 = &self.start;
         let tau = t - s0.t;
         let (w, omega) = (setup.w, setup.omega_slide);
-        let force_amplitude = self.dir * setup.mu * setup.n0;
+        let force_amplitude = self.dir * setup.peak_friction();
         let (sin_w_tau, cos_w_tau) = (w * tau).sin_cos();
         let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
         // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
@@ -162,7 +162,7 @@ impl Slide {
     pub fn cart_speed_scale(&self, setup: &Setup) -> f64 {
         let s0 = &self.start;
         let remaining = setup.duration - s0.t;
-        let drive = setup.mu * setup.n0 / setup.cart_mass;
+        let drive = setup.peak_friction() / setup.cart_mass;
         let particular = match self.response {
             CartResponse::Detuned { amplitude } => amplitude.abs() * setup.w,
             _ => 0.0,
@@ -185,7 +185,7 @@ impl Slide {
     pub fn curvature(&self, setup: &Setup) -> (f64, f64) {
         let s0 = &self.start;
         let (w, omega, big_m) = (setup.w, setup.omega_slide, setup.cart_mass);
-        let force = setup.mu * setup.n0;
+        let force = setup.peak_friction();
         let ball = force * w / setup.m_eff;
         if self.cart == Cart::Stuck {
             return (ball, force * w * w);

@@ -1,8 +1,8 @@
 //! The grip phase, Eqs. (4)-(6): the contact point moves with the cart, held by static friction.
 
-use super::cart::Cart;
-use super::oscillator::{free, step};
-use super::setup::{Setup, State};
+use super::super::contact::Cart;
+use super::super::oscillator::{free, step};
+use super::super::setup::{Setup, State};
 
 /// A grip phase from `start`.
 #[derive(Clone, Copy, Debug)]
@@ -90,7 +90,7 @@ impl Grip {
     /// cart's velocity. The cart swings about its equilibrium X_e = -dir F_c / k with a known
     /// amplitude A, so |X''| <= Ω² A and |V''| <= Ω³ A; mu N is a sine of amplitude mu N0.
     pub fn curvature(&self, setup: &Setup) -> (f64, f64) {
-        let normal = setup.mu * setup.n0 * setup.w * setup.w;
+        let normal = setup.peak_friction() * setup.w * setup.w;
         if self.cart == Cart::Stuck || setup.k == 0.0 {
             return (normal, 0.0);
         }

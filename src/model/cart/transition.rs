@@ -2,31 +2,8 @@
 //! or grip) and what the cart does (move one way or the other, or stick) that is consistent with the
 //! friction laws at the contact and, with string friction, at the cart.
 
-use super::cart::Cart;
-use super::setup::{Setup, State};
-
-/// What the ball does in a phase.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Ball {
-    /// Sliding with the slip's sign (+1 or -1).
-    Slide(f64),
-    Grip,
-}
-
-/// Why a phase ended (or, at first contact, that none has yet).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Cause {
-    /// First contact.
-    Start,
-    /// The slip reached zero.
-    SlipZero,
-    /// The static friction reached mu N; the sign of F_s.
-    GripBreak(f64),
-    /// The moving cart came to rest.
-    CartStop,
-    /// The force on a stuck cart exceeded the string friction; the direction it pushes.
-    Unstick(i8),
-}
+use super::super::contact::{Ball, Cart, Cause};
+use super::super::setup::{Setup, State};
 
 /// The ball and cart modes of the phase that starts at `state` after `cause`, in a phase that was
 /// `ball` and `cart`.

@@ -1,0 +1,256 @@
+//! The paper's model: a rigid ball on a single cart held by a spring (Cross 2010, Sec. II), with
+//! string-on-string friction on the cart (Sec. IV's proposed enhancement; F_c = 0 is the paper's model).
+//! Each phase is a [`Slide`] (Eqs. (1)-(3)) or a [`Grip`] (Eqs. (4)-(6)); [`transition::next`] says
+//! which follows an event.
+
+mod grip;
+mod slide;
+pub mod transition;
+
+use std::cell::Cell;
+
+pub use grip::Grip;
+pub use slide::Slide;
+
+use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, ROLLING, ROUNDING};
+use super::error::{MAX_RADIANS, SolveError};
+use super::events::first_rise;
+use super::params::Params;
+use super::setup::{Setup, State};
+
+/// A phase on the single cart.
+#[derive(Clone, Copy, Debug)]
+pub enum CartMotion {
+    Slide(Slide),
+    Grip(Grip),
+}
+
+impl CartMotion {
+    /// The exact state at `t`.
+    #[inline]
+    pub fn at(&self, setup: &Setup, t: f64) -> State {
+        match self {
+            CartMotion::Slide(slide) => slide.at(setup, t),
+            CartMotion::Grip(grip) => grip.at(setup, t),
+        }
+    }
+
+    /// The friction force on the ball, positive backward, at `state`.
+    pub fn friction(&self, setup: &Setup, state: &State) -> f64 {
+        match self {
+            CartMotion::Slide(slide) => slide.friction(setup, state.t),
+            CartMotion::Grip(grip) => grip.friction(setup, state.x),
+        }
+    }
+
+    /// The state at the start of the phase.
+    pub fn initial(&self) -> State {
+        match self {
+            CartMotion::Slide(slide) => slide.start,
+            CartMotion::Grip(grip) => grip.start,
+        }
+    }
+}
+
+/// The rigid ball on the single cart.
+pub struct SingleCart {
+    /// The spin at first contact, rad/s.
+    spin: f64,
+    /// |v_x1| + r |omega1|: the scale of the speeds, for the event functions' rounding.
+    incoming: f64,
+}
+
+impl SingleCart {
+    /// The model for `params`, refused when the cart oscillates too fast to resolve.
+    pub fn new(params: &Params, setup: &Setup) -> Result<Self, SolveError> {
+        let radians = setup.omega_slide.max(setup.omega_grip) * setup.duration;
+        if radians > MAX_RADIANS {
+            return Err(SolveError::TooFast { radians });
+        }
+        Ok(SingleCart {
+            spin: params.spin,
+            incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
+        })
+    }
+}
+
+impl Contact for SingleCart {
+    type State = State;
+    type Motion = CartMotion;
+    type Probe = State;
+
+    fn start(&self, setup: &Setup) -> (State, Mode) {
+        let state = setup.initial(self.spin);
+        let slip0 = setup.slip(&state);
+        // A ball that arrives rolling grips at once (N(0) = 0 and F_s = 0, so the grip holds on the
+        // boundary).
+        let arriving = if slip0.abs() <= ROLLING * self.incoming {
+            Ball::Grip
+        } else {
+            Ball::Slide(slip0.signum())
+        };
+        let mode = transition::next(setup, &state, arriving, Cart::Moving(1), Cause::Start);
+        (state, mode)
+    }
+
+    fn time(state: &State) -> f64 {
+        state.t
+    }
+
+    fn contact(state: &State) -> State {
+        *state
+    }
+
+    fn motion(&self, setup: &Setup, state: &State, (ball, cart): Mode) -> CartMotion {
+        match ball {
+            Ball::Slide(dir) => CartMotion::Slide(Slide::new(setup, *state, dir, cart)),
+            Ball::Grip => CartMotion::Grip(Grip {
+                start: *state,
+                cart,
+            }),
+        }
+    }
+
+    fn first_event(
+        &self,
+        setup: &Setup,
+        motion: &CartMotion,
+        state: &State,
+        (_, cart): Mode,
+        cause: Cause,
+    ) -> Found<State> {
+        let (t0, end) = (state.t, setup.duration);
+        // Event functions that start on their own zero (the slip after a grip broke or the friction
+        // reversed, the cart's velocity after it stopped) are measured from their start value, so
+        // rounding can never fake a crossing at the start.
+        let slip_offset = if matches!(cause, Cause::SlipZero | Cause::GripBreak(_)) {
+            setup.slip(state)
+        } else {
+            0.0
+        };
+        let v_offset = if matches!(cause, Cause::Start | Cause::CartStop | Cause::Unstick(_)) {
+            state.v
+        } else {
+            0.0
+        };
+        let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
+        let forces = setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
+        // The state at the last time an event function was evaluated.
+        let last = Cell::new(*state);
+        let event = match (motion, cart) {
+            (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
+                let cart_dir = f64::from(cart_dir);
+                let string = setup.cart_friction > 0.0;
+                let f = |t: f64| {
+                    let (s, friction) = slide.evaluate(setup, t);
+                    last.set(s);
+                    let slip = slide.slip_event(setup, &s, friction, slip_offset);
+                    // Without string friction the cart's stopping changes nothing.
+                    let stop = if string {
+                        (
+                            -cart_dir * (s.v - v_offset),
+                            -cart_dir * slide.cart_acceleration(setup, &s, friction),
+                        )
+                    } else {
+                        (-1.0, 0.0)
+                    };
+                    [slip, stop]
+                };
+                let (slip_curvature, cart_curvature) = slide.curvature(setup);
+                // The stand-in for a cart that cannot stick is a constant: no curvature.
+                let cart_curvature = if string { cart_curvature } else { 0.0 };
+                let noise = [ROUNDING * speeds, ROUNDING * slide.cart_speed_scale(setup)];
+                let step = setup.event_step(setup.omega_slide);
+                first_rise(f, t0, end, step, [slip_curvature, cart_curvature], noise).map(
+                    |(t, branch)| {
+                        let cause = if branch == 0 {
+                            Cause::SlipZero
+                        } else {
+                            Cause::CartStop
+                        };
+                        (t, cause)
+                    },
+                )
+            }
+            (CartMotion::Slide(slide), Cart::Stuck) => {
+                let f = |t: f64| {
+                    let (s, friction) = slide.evaluate(setup, t);
+                    last.set(s);
+                    let slip = slide.slip_event(setup, &s, friction, slip_offset);
+                    let push = friction - setup.k * s.x;
+                    let push_rate = slide.dir * setup.friction_limit_rate(t);
+                    [
+                        slip,
+                        (push - setup.cart_friction, push_rate),
+                        (-push - setup.cart_friction, -push_rate),
+                    ]
+                };
+                let (slip_curvature, push_curvature) = slide.curvature(setup);
+                let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
+                let step = setup.event_step(0.0);
+                let curvature = [slip_curvature, push_curvature, push_curvature];
+                first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                    let cause = match branch {
+                        0 => Cause::SlipZero,
+                        1 => Cause::Unstick(1),
+                        _ => Cause::Unstick(-1),
+                    };
+                    (t, cause)
+                })
+            }
+            (CartMotion::Grip(grip), Cart::Moving(cart_dir)) => {
+                let cart_dir = f64::from(cart_dir);
+                let string = setup.cart_friction > 0.0;
+                let f = |t: f64| {
+                    let s = grip.at(setup, t);
+                    last.set(s);
+                    let [forward, backward] = grip.margins(setup, &s);
+                    let stop = if string {
+                        (
+                            -cart_dir * (s.v - v_offset),
+                            -cart_dir * grip.cart_acceleration(setup, &s),
+                        )
+                    } else {
+                        (-1.0, 0.0)
+                    };
+                    [forward, backward, stop]
+                };
+                let (margin_curvature, cart_curvature) = grip.curvature(setup);
+                let cart_curvature = if string { cart_curvature } else { 0.0 };
+                let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
+                let noise = [ROUNDING * forces, ROUNDING * forces, cart_noise];
+                let step = setup.event_step(setup.omega_grip);
+                let curvature = [margin_curvature, margin_curvature, cart_curvature];
+                first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                    let cause = match branch {
+                        0 => Cause::GripBreak(1.0),
+                        1 => Cause::GripBreak(-1.0),
+                        _ => Cause::CartStop,
+                    };
+                    (t, cause)
+                })
+            }
+            // Rolling on a still cart: nothing changes until the ball leaves.
+            (CartMotion::Grip(_), Cart::Stuck) => None,
+        };
+        Found {
+            event,
+            last: Some(last.get()),
+        }
+    }
+
+    fn state_at(&self, setup: &Setup, motion: &CartMotion, t: f64, last: Option<State>) -> State {
+        // The event search's last evaluation is usually at the transition itself.
+        match last {
+            Some(s) if s.t == t => s,
+            _ => motion.at(setup, t),
+        }
+    }
+
+    fn next(&self, setup: &Setup, state: &mut State, (ball, cart): Mode, cause: Cause) -> Mode {
+        if cause == Cause::CartStop {
+            state.v = 0.0;
+        }
+        transition::next(setup, state, ball, cart, cause)
+    }
+}

@@ -1,0 +1,68 @@
+//! A grip's start state in the modes: the weighted coefficients by the modes' orthogonality under
+//! [[C, D], [D, 0]], with one step of iterative refinement, accepted only where they rebuild the state
+//! and its force to rounding without cancellation.
+
+use super::{C64, CANCELLATION, FORCE_RECONSTRUCTION, GripModes, Mode, RECONSTRUCTION};
+
+/// The weighted coefficients of a state in the modes, by their orthogonality, and the state they
+/// rebuild.
+fn project(g: &GripModes, list: &[Mode], z: &[f64]) -> (Vec<C64>, Vec<f64>) {
+    let n = g.n;
+    let e = z[0] - (0..n).map(|j| g.phi1[j] * z[j + 1]).sum::<f64>();
+    let mut rebuilt = vec![0.0; 2 * n + 2];
+    let c = list
+        .iter()
+        .map(|mode| {
+            // w_iᵀ [[C, D], [D, 0]] z = c_b e_i e + φᵀ D y' + s φᵀ D y.
+            let mut dy = mode.u * (g.m_eff * z[n + 1]);
+            let mut y = mode.u * (g.m_eff * z[0]);
+            for j in 0..n {
+                dy += mode.q[j] * z[n + 2 + j];
+                y += mode.q[j] * z[j + 1];
+            }
+            let c = (mode.e * (g.cb * e) + dy + mode.s * y) / mode.norm * mode.weight;
+            rebuilt[0] += (c * mode.u).re;
+            rebuilt[n + 1] += (c * mode.s * mode.u).re;
+            for j in 0..n {
+                rebuilt[j + 1] += (c * mode.q[j]).re;
+                rebuilt[n + 2 + j] += (c * mode.s * mode.q[j]).re;
+            }
+            c
+        })
+        .collect();
+    (c, rebuilt)
+}
+
+/// The weighted coefficients of z0 in the modes, if they reproduce it (and its force: a stiff dashpot
+/// weighs e' far above its share of the energy) to rounding without cancellation. One step of
+/// iterative refinement takes up what the roots' rounding leaves of the orthogonality.
+pub(super) fn coefficients(g: &GripModes, list: &[Mode], z0: &[f64]) -> Option<Vec<C64>> {
+    let n = g.n;
+    let size = g.energy_norm(z0);
+    let (mut c, rebuilt) = project(g, list, z0);
+    let residual: Vec<f64> = z0.iter().zip(&rebuilt).map(|(a, b)| a - b).collect();
+    let (correction, rebuilt_residual) = project(g, list, &residual);
+    for (ci, di) in c.iter_mut().zip(&correction) {
+        *ci += di;
+    }
+    let error: Vec<f64> = (0..z0.len())
+        .map(|i| rebuilt[i] + rebuilt_residual[i] - z0[i])
+        .collect();
+    let terms: f64 = list.iter().zip(&c).map(|(m, c)| c.norm() * m.size).sum();
+    let e0 = z0[0] - (0..n).map(|j| g.phi1[j] * z0[j + 1]).sum::<f64>();
+    let de0 = z0[n + 1] - (0..n).map(|j| g.phi1[j] * z0[n + 2 + j]).sum::<f64>();
+    let force_terms = g.kb * e0.abs() + g.cb * de0.abs();
+    let force_sum: f64 = list.iter().zip(&c).map(|(m, c)| (c * m.force).norm()).sum();
+    let force_error = (list
+        .iter()
+        .zip(&c)
+        .map(|(m, c)| (c * m.force).re)
+        .sum::<f64>()
+        - (g.kb * e0 + g.cb * de0))
+        .abs();
+    let fine = c.iter().all(|c| c.re.is_finite() && c.im.is_finite())
+        && g.energy_norm(&error) <= RECONSTRUCTION * size
+        && force_error <= FORCE_RECONSTRUCTION * (force_terms + force_sum)
+        && terms <= CANCELLATION * size;
+    (fine || size == 0.0).then_some(c)
+}

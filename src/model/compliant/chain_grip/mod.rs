@@ -1,0 +1,339 @@
+//! The grip of a compliant ball on a chain of masses: one damped modal system (issue 6, parts 2 and 3
+//! together).
+//!
+//! The ball's contact point u (effective mass m_eff) is joined to the chain's first mass by the ball's
+//! spring k_b and dashpot c_b, while the contact patch moves with that mass. The chain is written in its
+//! own normal modes (those of the slide, `chain.slide`, mass-normalised):
+//!
+//! m_eff u'' = -F,  Q_j'' + Ω_j² Q_j = Φ_1j F,  F = k_b e + c_b e',  e = u - X_1,  X_1 = Σ Φ_1j Q_j.
+//!
+//! A motion e^{s t} that carries the unit force F = 1 has u = -1/(m_eff s²) and Q_j = Φ_1j/(s² + Ω_j²);
+//! it exists where g(s) = 1 + (k_b + c_b s) R(s) = 0, with R(s) = 1/(m_eff s²) + Σ Φ_1j²/(s² + Ω_j²)
+//! the receptance between the ball and the first mass. g has 2(N + 1) roots. They start from the
+//! undamped modes (c_b = 0: one root ω² of 1 + k_b R(iω) = 0 between each pair of neighbouring Ω_j²,
+//! found by bisection), damped in proportion to the dashpot's share of each mode, and are then found
+//! by Newton's method on the polynomial with Maehly's deflation (so that no root is found twice), or from
+//! the Schur form of the state matrix when that fails. The damping is not proportional, but the system
+//! is symmetric (mass D, damping C, stiffness K), so its modes w = (y, s y) are orthogonal under
+//! [[C, D], [D, 0]]: the coefficient of mode i in a state z0 is w_iᵀ [[C, D], [D, 0]] z0 over
+//! w_iᵀ [[C, D], [D, 0]] w_i, O(N) each. Every state of the grip is then Σ c_i e^{s_i τ} w_i, and the
+//! friction force simply Σ c_i e^{s_i τ}.
+//!
+//! The modes are used where they reproduce the grip's start state to rounding without cancellation;
+//! otherwise (near-double roots) the grip is evaluated through the matrix exponential of its state
+//! matrix, exactly but slowly.
+//!
+//! By job: this file holds the modes and a grip's evaluation; [`roots`] finds the roots, [`coefficients`]
+//! writes a start state in the modes, [`search`] bounds |F''| for the event search, and [`fallback`] is
+//! the matrix exponential.
+
+use std::sync::{Arc, Mutex, OnceLock};
+
+use nalgebra::{Cholesky, Complex, DMatrix, DVector};
+
+mod coefficients;
+mod fallback;
+mod roots;
+mod search;
+#[cfg(test)]
+mod tests;
+
+use super::super::chain::modes::MAX;
+use super::super::chain::{Chain, ChainState};
+use super::super::setup::{Setup, State};
+use super::{BallSpring, Point};
+use coefficients::coefficients;
+
+type C64 = Complex<f64>;
+
+/// A root counts as real when its imaginary part is below this fraction of its size.
+const REAL: f64 = 1e-10;
+/// Two roots closer than this (relative) are the same root found twice.
+const SAME: f64 = 1e-9;
+/// A root must satisfy g(s) = 0 to this fraction of the size of g's terms.
+const RESIDUAL: f64 = 1e-11;
+/// The modes must reproduce a grip's start state to this fraction of its size (energy norm)...
+const RECONSTRUCTION: f64 = 1e-12;
+/// ...and the force to this fraction of its terms...
+const FORCE_RECONSTRUCTION: f64 = 1e-10;
+/// ...and the sum of the sizes of the modal terms may exceed the state's size by at most this factor
+/// (the cancellation that multiplies the roots' rounding).
+const CANCELLATION: f64 = 1e3;
+/// A mode whose share of the bound on |F''| is below this fraction sets no step for the event search.
+const NEGLIGIBLE: f64 = 1e-6;
+
+/// One mode of the gripping ball and chain, scaled to carry the unit force.
+#[derive(Clone, Debug)]
+struct Mode {
+    s: C64,
+    /// 2 for one of a complex pair (its conjugate is implied), 1 for a real root.
+    weight: f64,
+    /// u of the mode, -1/(m_eff s²).
+    u: C64,
+    /// Q_j of the mode, Φ_1j/(s² + Ω_j²).
+    q: [C64; MAX],
+    /// e = u - X_1 of the mode (1/(k_b + c_b s) at the root).
+    e: C64,
+    /// F = k_b e + c_b s e of the mode (1 at the root).
+    force: C64,
+    /// w_iᵀ [[C, D], [D, 0]] w_i.
+    norm: C64,
+    /// The energy-norm size of the mode's state, sqrt(2 E).
+    size: f64,
+}
+
+/// The modes of the ball gripping a chain: computed once per bounce and shared by its grip phases.
+#[derive(Debug)]
+pub struct GripModes {
+    chain: Arc<Chain>,
+    n: usize,
+    kb: f64,
+    cb: f64,
+    m_eff: f64,
+    /// Φ_1j of the chain's slide modes.
+    phi1: [f64; MAX],
+    /// Ω_j² of the chain's slide modes.
+    omega2: [f64; MAX],
+    /// `None` where the roots could not all be found distinct: the grips then use the exponential.
+    modes: Option<Vec<Mode>>,
+    /// The state matrix in energy coordinates z̃ = T z, T = blockdiag(Lᵀ, D^(1/2)) with K = L Lᵀ, where
+    /// |z̃|² = 2E: [[0, Lᵀ D^(-1/2)], [-D^(-1/2) L, -D^(-1/2) C D^(-1/2)]], skew but for the dashpot, so
+    /// its size is that of the rates (for the Schur fallback and the exponential).
+    a: DMatrix<f64>,
+    /// L, the Cholesky factor of K (`None` if K is not positive definite, as for k = 0).
+    lower: Option<DMatrix<f64>>,
+    /// For the exponential: a step h with |Ã h|₁ <= 1 and exp(Ã h), made when a grip first needs it.
+    checkpoint: OnceLock<(f64, DMatrix<f64>)>,
+    /// An upper bound on the fastest rate in the grip, rad/s.
+    pub fastest: f64,
+}
+
+impl GripModes {
+    pub fn new(chain: Arc<Chain>, setup: &Setup, kb: f64, cb: f64) -> GripModes {
+        let modes = &chain.slide;
+        let n = modes.n;
+        let m_eff = setup.m_eff;
+        let mut phi1 = [0.0; MAX];
+        let mut omega2 = [0.0; MAX];
+        for j in 0..n {
+            phi1[j] = modes.shape[0][j];
+            omega2[j] = modes.omega[j] * modes.omega[j];
+        }
+        let dof = n + 1;
+        // K = diag(0, Ω²) + k_b g gᵀ and C = c_b g gᵀ with g = (1, -Φ_1j): e = g · y.
+        let mut g = DVector::<f64>::zeros(dof);
+        g[0] = 1.0;
+        for j in 0..n {
+            g[j + 1] = -phi1[j];
+        }
+        let mut stiffness = &g * g.transpose() * kb;
+        for j in 0..n {
+            stiffness[(j + 1, j + 1)] += omega2[j];
+        }
+        let lower = Cholesky::new(stiffness).map(|c| c.l());
+        let mut a = DMatrix::<f64>::zeros(2 * dof, 2 * dof);
+        if let Some(l) = &lower {
+            let root_mass = |i: usize| if i == 0 { m_eff.sqrt() } else { 1.0 };
+            for i in 0..dof {
+                for j in 0..dof {
+                    a[(i, dof + j)] = l[(j, i)] / root_mass(j);
+                    a[(dof + i, j)] = -l[(i, j)] / root_mass(i);
+                    a[(dof + i, dof + j)] = -cb * g[i] * g[j] / (root_mass(i) * root_mass(j));
+                }
+            }
+        }
+        let contact = 1.0 / m_eff + 1.0 / chain.link_mass;
+        let top = omega2[..n].iter().fold(0.0f64, |a, &b| a.max(b));
+        let fastest = (top + kb * contact).sqrt() + cb * contact;
+        let mut grip = GripModes {
+            chain,
+            n,
+            kb,
+            cb,
+            m_eff,
+            phi1,
+            omega2,
+            modes: None,
+            a,
+            lower,
+            checkpoint: OnceLock::new(),
+            fastest,
+        };
+        if grip.lower.is_some() {
+            grip.modes = grip.find_modes();
+        }
+        grip
+    }
+
+    pub fn spring(&self) -> BallSpring {
+        BallSpring {
+            kb: self.kb,
+            cb: self.cb,
+        }
+    }
+
+    pub fn chain(&self) -> &Chain {
+        &self.chain
+    }
+}
+
+/// A grip phase of the compliant ball on a chain.
+#[derive(Clone, Debug)]
+pub struct ChainGrip {
+    pub modes: Arc<GripModes>,
+    pub start: ChainState,
+    /// z0 = (u, Q, u', Q') at the start, u = X_1 + e.
+    z0: Vec<f64>,
+    /// The weighted modal coefficients of z0, when the modes reproduce it.
+    coefficients: Option<Vec<C64>>,
+    /// Without them, z̃ at the start and after every step h of the exponential, as far as asked for.
+    checkpoints: Arc<Mutex<Vec<DVector<f64>>>>,
+}
+
+impl ChainGrip {
+    pub fn new(modes: Arc<GripModes>, start: ChainState, e: f64, setup: &Setup) -> ChainGrip {
+        let n = modes.n;
+        let slide = &modes.chain.slide;
+        let q = slide.project(&start.x);
+        let dq = slide.project(&start.v);
+        let mut z0 = vec![0.0; 2 * n + 2];
+        z0[0] = start.x[0] + e;
+        z0[n + 1] = start.vx - setup.r * start.omega;
+        z0[1..=n].copy_from_slice(&q[..n]);
+        z0[n + 2..].copy_from_slice(&dq[..n]);
+        let coefficients = modes
+            .modes
+            .as_ref()
+            .and_then(|list| coefficients(&modes, list, &z0));
+        ChainGrip {
+            modes,
+            start,
+            z0,
+            coefficients,
+            checkpoints: Arc::new(Mutex::new(Vec::new())),
+        }
+    }
+
+    /// (u, Q, u', Q') and its rate at `t`.
+    fn propagate(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
+        let tau = t - self.start.t;
+        let g = &self.modes;
+        let n = g.n;
+        let mut z = vec![0.0; 2 * n + 2];
+        let mut dz = vec![0.0; 2 * n + 2];
+        match (&g.modes, &self.coefficients) {
+            (Some(list), Some(c)) => {
+                for (mode, &ci) in list.iter().zip(c) {
+                    let a = ci * exp(mode.s * tau);
+                    let (da, dda) = (a * mode.s, a * mode.s * mode.s);
+                    z[0] += (a * mode.u).re;
+                    z[n + 1] += (da * mode.u).re;
+                    dz[n + 1] += (dda * mode.u).re;
+                    for j in 0..n {
+                        z[j + 1] += (a * mode.q[j]).re;
+                        z[n + 2 + j] += (da * mode.q[j]).re;
+                        dz[n + 2 + j] += (dda * mode.q[j]).re;
+                    }
+                }
+                dz[..=n].copy_from_slice(&z[n + 1..]);
+            }
+            _ => {
+                let zt = self.exponential(tau);
+                let dzt = &g.a * &zt;
+                z.copy_from_slice(&g.energy_to_state(&zt));
+                dz.copy_from_slice(&g.energy_to_state(&dzt));
+            }
+        }
+        (z, dz)
+    }
+
+    /// The ball, the first mass, the force and the stretch at `t`.
+    #[inline]
+    pub fn at(&self, setup: &Setup, t: f64) -> Point {
+        let g = &self.modes;
+        let tau = t - self.start.t;
+        let n = g.n;
+        // The contact quantities alone need only one exponential per mode.
+        let (du, force, dforce, e, de, dde, x1, v1) = match (&g.modes, &self.coefficients) {
+            (Some(list), Some(c)) => {
+                let zero = C64::new(0.0, 0.0);
+                let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde) =
+                    (zero, zero, zero, zero, zero, zero, zero);
+                for (mode, &ci) in list.iter().zip(c) {
+                    let a = ci * exp(mode.s * tau);
+                    let da = a * mode.s;
+                    u += a * mode.u;
+                    du += da * mode.u;
+                    f += a * mode.force;
+                    df += da * mode.force;
+                    e += a * mode.e;
+                    de += da * mode.e;
+                    dde += da * mode.s * mode.e;
+                }
+                let (u, du, e, de) = (u.re, du.re, e.re, de.re);
+                (du, f.re, df.re, e, de, dde.re, u - e, du - de)
+            }
+            _ => {
+                let (z, dz) = self.propagate(t);
+                let x1: f64 = (0..n).map(|j| g.phi1[j] * z[j + 1]).sum();
+                let v1: f64 = (0..n).map(|j| g.phi1[j] * z[n + 2 + j]).sum();
+                let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
+                let (e, de, dde) = (z[0] - x1, z[n + 1] - v1, dz[n + 1] - a1);
+                let force = g.kb * e + g.cb * de;
+                (z[n + 1], force, g.kb * de + g.cb * dde, e, de, dde, x1, v1)
+            }
+        };
+        let (vx, omega) = self.ball(setup, du);
+        Point {
+            state: State {
+                t,
+                vx,
+                omega,
+                x: x1,
+                v: v1,
+            },
+            friction: force,
+            friction_rate: dforce,
+            e,
+            de,
+            dde,
+            slip_rate: 0.0,
+        }
+    }
+
+    /// The ball and the whole chain at `t`, and the stretch there.
+    /// The ball's (v_x, omega) once its contact point moves at `du`: m_eff (u' - u0') = -∫F dt.
+    fn ball(&self, setup: &Setup, du: f64) -> (f64, f64) {
+        let impulse = -setup.m_eff * (du - self.z0[self.modes.n + 1]);
+        (
+            self.start.vx - impulse / setup.m,
+            self.start.omega + impulse * setup.r / setup.inertia,
+        )
+    }
+
+    /// The ball and the whole chain at `t`.
+    pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
+        let (z, _) = self.propagate(t);
+        let n = self.modes.n;
+        let slide = &self.modes.chain.slide;
+        let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
+        q[..n].copy_from_slice(&z[1..=n]);
+        dq[..n].copy_from_slice(&z[n + 2..]);
+        let (vx, omega) = self.ball(setup, z[n + 1]);
+        ChainState {
+            t,
+            vx,
+            omega,
+            x: slide.expand(&q),
+            v: slide.expand(&dq),
+        }
+    }
+}
+
+/// e^z, with one `sin_cos` (num_complex calls `sin` and `cos` apart).
+#[inline]
+fn exp(z: C64) -> C64 {
+    let (sin, cos) = z.im.sin_cos();
+    let size = z.re.exp();
+    C64::new(size * cos, size * sin)
+}

@@ -1,0 +1,60 @@
+//! The phase driver: runs any [`Contact`] model phase by phase, from first contact to t = T.
+//!
+//! Each phase is the model's closed form; the driver asks for its first event, records the phase, and
+//! asks the model which phase follows. It enforces the phase limit and checks the caller's cancellation
+//! between phases. Generic over the model, so every model's loop is compiled for it (no dynamic calls).
+
+use super::contact::{Ball, Cause, Contact, Found};
+use super::error::{MAX_TRANSITIONS, SolveError};
+use super::phase::{Motion, Phase, PhaseKind};
+use super::setup::{Setup, State};
+
+/// The phases of one bounce and the state of ball and surface as the ball leaves.
+pub fn run<C: Contact>(
+    model: &C,
+    setup: &Setup,
+    cancelled: &impl Fn() -> bool,
+) -> Result<(Vec<Phase>, State), SolveError>
+where
+    C::Motion: Into<Motion>,
+{
+    let end = setup.duration;
+    let (mut state, mut mode) = model.start(setup);
+    let mut cause = Cause::Start;
+    let mut phases = Vec::with_capacity(8);
+    for _ in 0..MAX_TRANSITIONS {
+        if cancelled() {
+            return Err(SolveError::Cancelled);
+        }
+        let t0 = C::time(&state);
+        let motion = model.motion(setup, &state, mode);
+        let Found { event, last } = model.first_event(setup, &motion, &state, mode, cause);
+        // A transition within rounding of the end changes nothing.
+        let event = event.filter(|&(t, _)| t < end * (1.0 - 1e-13));
+        let t1 = event.map_or(end, |(t, _)| t);
+        state = model.state_at(setup, &motion, t1, last);
+        if t1 > t0 {
+            let (ball, cart) = mode;
+            phases.push(Phase {
+                kind: match ball {
+                    Ball::Slide(_) => PhaseKind::Slide,
+                    Ball::Grip => PhaseKind::Grip,
+                },
+                slip_sign: match ball {
+                    Ball::Slide(dir) => dir as i8,
+                    Ball::Grip => 0,
+                },
+                cart,
+                start: t0,
+                end: t1,
+                motion: motion.into(),
+            });
+        }
+        let Some((_, next_cause)) = event else {
+            return Ok((phases, C::contact(&state)));
+        };
+        cause = next_cause;
+        mode = model.next(setup, &mut state, mode, cause);
+    }
+    Err(SolveError::TooManyPhases { hint: "" })
+}

@@ -1,0 +1,130 @@
+//! Where the incoming energy went: ball, cart (or chain), friction, the normal loss, string friction and
+//! the compliant ball's spring and dashpot. The friction loss is integrated over the exact solution, so
+//! the residual checks the solution.
+
+use serde::Serialize;
+
+use super::compliant::CompliantMotion;
+use super::contact::Cart;
+use super::params::Params;
+use super::phase::{Motion, Phase, PhaseKind};
+use super::quadrature::integrate;
+use super::setup::{Setup, State};
+
+/// Where the incoming energy went, J.
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Energy {
+    /// Ball kinetic energy (translation and rotation) before the bounce.
+    pub initial: f64,
+    /// Ball kinetic energy after.
+    pub final_ball: f64,
+    /// Cart kinetic plus spring energy after (on a chain, the kinetic and spring energy of all its masses
+    /// and springs: the energy left in the chain).
+    pub final_cart: f64,
+    /// ∫ F · slip dt, integrated over the sliding phases of the exact solution.
+    pub friction_loss: f64,
+    /// Lost in the normal direction, m v_y1^2 (1 - e_y^2)/2.
+    pub normal_loss: f64,
+    /// Work against the string friction on the cart: F_c times the distance the cart travelled.
+    pub cart_friction_loss: f64,
+    /// Energy left in the compliant ball's tangential spring as it leaves, k_b e(T)²/2 (0 for a rigid ball).
+    pub ball_spring: f64,
+    /// Lost in the compliant ball's dashpot, ∫ c_b e'² dt over the contact (0 for a rigid ball).
+    pub dashpot_loss: f64,
+    /// (initial - final_ball - final_cart - friction_loss - normal_loss - cart_friction_loss - ball_spring
+    /// - dashpot_loss) / initial.
+    pub residual: f64,
+}
+
+/// A sum from +0.0: nothing lost prints as 0, never -0 (Rust's float `sum` starts from -0.0).
+fn add(sum: f64, x: f64) -> f64 {
+    sum + x
+}
+
+/// The energy budget of a solved bounce (see [`Bounce::energy`]).
+pub(super) fn energy_budget(
+    params: &Params,
+    setup: &Setup,
+    phases: &[Phase],
+    last: &State,
+) -> Energy {
+    let first = setup.initial(params.spin);
+    let vy2 = params.ey * setup.vy1;
+    let initial = setup.ball_tangential_energy(&first) + 0.5 * setup.m * setup.vy1 * setup.vy1;
+    let final_ball = setup.ball_tangential_energy(last) + 0.5 * setup.m * vy2 * vy2;
+    let final_cart = match phases.last() {
+        Some(p) if p.on_chain() => p.cart_energy_at(setup, p.end),
+        _ => setup.cart_energy(last),
+    };
+    let normal_loss = 0.5 * setup.m * (setup.vy1 * setup.vy1 - vy2 * vy2);
+    // The cart never reverses within a phase (its stopping ends the phase), so the distance it
+    // travels in a phase is |X(end) - X(start)|.
+    let cart_friction_loss = setup.cart_friction
+        * phases
+            .iter()
+            .filter(|p| p.cart != Cart::Stuck)
+            .map(|p| (p.state_at(setup, p.end).x - p.initial().x).abs())
+            .fold(0.0, add);
+    let friction_loss = phases
+        .iter()
+        .filter(|p| p.kind == PhaseKind::Slide)
+        .map(|p| match &p.motion {
+            Motion::Compliant(c) => {
+                c.integrate(setup, |t| p.friction_power(setup, t), p.start, p.end)
+            }
+            _ => {
+                let panel = 2.0 / p.fastest(setup).max(setup.w);
+                integrate(|t| p.friction_power(setup, t), p.start, p.end, panel)
+            }
+        })
+        .fold(0.0, add);
+    fn compliant(p: &Phase) -> Option<&CompliantMotion> {
+        match &p.motion {
+            Motion::Compliant(c) => Some(c.as_ref()),
+            _ => None,
+        }
+    }
+    let dashpot_loss = phases
+        .iter()
+        .filter_map(|p| compliant(p).map(|c| (p, c)))
+        .filter(|(_, c)| c.spring().cb > 0.0)
+        .map(|(p, c)| {
+            let cb = c.spring().cb;
+            c.integrate(
+                setup,
+                |t| {
+                    let de = c.at(setup, t).de;
+                    cb * de * de
+                },
+                p.start,
+                p.end,
+            )
+        })
+        .fold(0.0, add);
+    let ball_spring = phases
+        .last()
+        .and_then(|p| compliant(p).map(|c| (p, c)))
+        .map_or(0.0, |(p, c)| {
+            let e = c.at(setup, p.end).e;
+            0.5 * c.spring().kb * e * e
+        });
+    Energy {
+        initial,
+        final_ball,
+        final_cart,
+        friction_loss,
+        normal_loss,
+        cart_friction_loss,
+        ball_spring,
+        dashpot_loss,
+        residual: (initial
+            - final_ball
+            - final_cart
+            - friction_loss
+            - normal_loss
+            - cart_friction_loss
+            - ball_spring
+            - dashpot_loss)
+            / initial,
+    }
+}

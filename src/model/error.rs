@@ -1,0 +1,59 @@
+//! Why a bounce could not be solved, and the limits behind the refusals.
+
+use super::events::Stall;
+use super::limits::Unsolvable;
+use super::params::ParamError;
+
+/// The largest number of cart radians per contact the solver accepts (about 16 000 oscillations).
+pub const MAX_RADIANS: f64 = 1e5;
+/// The largest number of slide/grip transitions in one bounce.
+pub const MAX_TRANSITIONS: usize = 10_000;
+
+/// Why a bounce could not be solved.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum SolveError {
+    #[error(transparent)]
+    Params(#[from] ParamError),
+    #[error(
+        "the cart oscillates too fast to resolve: sqrt(k/M) T = {radians:.3e} rad exceeds {MAX_RADIANS:e} \
+         (lower the stiffness, raise the cart mass or shorten the impact)"
+    )]
+    TooFast { radians: f64 },
+    #[error(
+        "the bounce switched between sliding and gripping more than {MAX_TRANSITIONS} times{hint}"
+    )]
+    TooManyPhases {
+        /// What would calm it, where the model knows (empty otherwise).
+        hint: &'static str,
+    },
+    /// The caller's cancellation check said the solve is no longer wanted.
+    #[error("the solve was cancelled")]
+    Cancelled,
+    #[error(
+        "string friction on the cart (--cart-friction) is modelled for the single cart only, not for a \
+         chain of {chain} masses: set --cart-friction 0 or --chain 1"
+    )]
+    ChainStringFriction { chain: usize },
+    #[error(
+        "a compliant ball (--ball-stiffness > 0) is not modelled together with string friction on the \
+         cart: set --ball-stiffness 0 (a rigid ball) or --cart-friction 0"
+    )]
+    StringFrictionCompliantBall,
+    #[error(
+        "the ball's contact {part} is too fast to resolve: the grip's fastest rate times T = {radians:.3e} \
+         rad exceeds {MAX_RADIANS:e} ({advice})"
+    )]
+    BallTooFast {
+        radians: f64,
+        /// `spring` or `dashpot`: the larger share of the rate.
+        part: &'static str,
+        /// The parameters that would make the bounce solvable.
+        advice: String,
+    },
+    #[error(transparent)]
+    Unsolvable(#[from] Unsolvable),
+    #[error(transparent)]
+    Stalled(#[from] Stall),
+    #[error("{quantity} is not a finite number: the parameters are beyond what f64 carries through")]
+    NotFinite { quantity: &'static str },
+}
