@@ -22,20 +22,26 @@ fn main() -> ExitCode {
     }
 }
 
-/// Bad input is one line on stderr, as everywhere: clap's first line, which names the flag, with the
-/// list it announces (`the following required arguments were not provided:`) joined onto it.
+/// Bad input is one line on stderr, as everywhere: clap's first line, which names the flag, and the
+/// indented lines that qualify it (`[possible values: ...]`, `tip: ...`, the list a line ending in `:`
+/// announces), without the usage.
 fn one_line(text: &str) -> String {
     let mut lines = text.lines();
     let mut line = lines
         .next()
         .unwrap_or("error: invalid arguments")
         .to_string();
-    if line.ends_with(':') {
-        let items: Vec<&str> = lines
-            .take_while(|l| l.starts_with(char::is_whitespace) && !l.trim().is_empty())
-            .map(str::trim)
-            .collect();
-        line = format!("{line} {}", items.join(", "));
+    let details: Vec<&str> = lines
+        .take_while(|l| !l.starts_with("Usage:") && !l.starts_with("For more information"))
+        .filter(|l| l.starts_with(char::is_whitespace) && !l.trim().is_empty())
+        .map(str::trim)
+        .collect();
+    if !details.is_empty() {
+        line = if line.ends_with(':') {
+            format!("{line} {}", details.join(", "))
+        } else {
+            format!("{line}; {}", details.join("; "))
+        };
     }
     line
 }

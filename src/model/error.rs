@@ -54,6 +54,8 @@ pub enum SolveError {
     Unsolvable(#[from] Unsolvable),
     #[error(transparent)]
     Stalled(#[from] Stall),
-    #[error("{quantity} is not a finite number: the parameters are beyond what f64 carries through")]
+    #[error(
+        "{quantity} is not a finite number: the parameters are beyond what f64 carries through"
+    )]
     NotFinite { quantity: &'static str },
 }
