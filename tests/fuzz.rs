@@ -145,8 +145,22 @@ fn value(rng: &mut Rng) -> String {
     }
 }
 
-/// A value near the solvable edges or inside the ordinary ranges, which must be solved or refused.
+/// A value that must be solved or refused cleanly: half the time near the paper's (within a factor of
+/// ten of the default), else anywhere up to and past the edges of what can be solved.
 fn plausible(rng: &mut Rng, flag: &str) -> String {
+    let spec = snapback::model::params::spec_named(flag).expect("a parameter flag");
+    if flag == "chain" {
+        return (1 + rng.below(16)).to_string();
+    }
+    if rng.unit() < 0.5 {
+        let near = spec.default * rng.log_uniform(0.1, 10.0);
+        let value = if spec.range.contains(near) {
+            near
+        } else {
+            spec.range.clamp(near)
+        };
+        return format!("{value:e}");
+    }
     let (lo, hi): (f64, f64) = match flag {
         "angle" => (0.1, 90.0),
         "speed" | "mass" | "radius" | "duration" | "cart-mass" => (1e-16, 1e16),
@@ -156,11 +170,10 @@ fn plausible(rng: &mut Rng, flag: &str) -> String {
         "alpha" => (1e-7, 1e7),
         "stiffness" | "ball-stiffness" => (1e-3, 1e14),
         "cart-friction" => (1e-3, 1e4),
-        "chain" => return (1 + rng.below(16)).to_string(),
-        _ => (1e-3, 1e3),
+        _ => (1e-16, 10.0),
     };
     let x = if hi / lo > 1e3 {
-        rng.log_uniform(lo.max(1e-300), hi)
+        rng.log_uniform(lo, hi)
     } else {
         rng.uniform(lo, hi)
     };
@@ -193,7 +206,7 @@ const FLAGS: &[&str] = &[
 fn params(rng: &mut Rng, args: &mut Vec<String>) {
     for _ in 0..rng.below(5) {
         let flag = FLAGS[rng.below(FLAGS.len())];
-        let text = if rng.unit() < 0.5 {
+        let text = if rng.unit() < 0.25 {
             value(rng)
         } else {
             plausible(rng, flag)

@@ -126,13 +126,15 @@ fn the_hangs_are_refused_by_every_command() {
 }
 
 #[test]
-fn the_slow_solves_are_refused_at_their_work_budget() {
-    for args in [
-        &["simulate", "--chain", "16", "--ball-stiffness", "1e11"][..],
+fn the_slow_solves_are_refused_within_their_work_budget_or_phase_cap() {
+    refused(
+        &["simulate", "--chain", "16", "--ball-stiffness", "1e11"],
+        &["budget", "evaluations", "raise --ball-damping"],
+    );
+    refused(
         &["simulate", "--ball-stiffness", "1e12"],
-    ] {
-        refused(args, &["budget", "evaluations"]);
-    }
+        &["10000 times", "raise --ball-damping"],
+    );
 }
 
 #[test]

@@ -60,12 +60,15 @@ fn table(report: &Report) -> String {
     }
     let _ = writeln!(
         out,
-        "\n{} numbers: {} reproduced, {} close (within 3 %), {} differ, {} not computed",
+        "\n{} numbers: {} reproduced, {} close (within 3 %), {} differ{}",
         report.rows.len(),
         report.count(Status::Reproduced),
         report.count(Status::Close),
         report.count(Status::Differs),
-        report.count(Status::NotComputed)
+        match report.count(Status::NotComputed) {
+            0 => String::new(),
+            n => format!(", {n} not computed"),
+        }
     );
     for id in &report.missing {
         let _ = writeln!(out, "missing: claim {id} has no check");

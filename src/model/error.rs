@@ -52,8 +52,12 @@ pub enum SolveError {
     },
     #[error(transparent)]
     Unsolvable(#[from] Unsolvable),
-    #[error(transparent)]
-    Stalled(#[from] Stall),
+    #[error("{stall}{hint}")]
+    Stalled {
+        stall: Stall,
+        /// What would help, where the parameters say (empty otherwise).
+        hint: &'static str,
+    },
     #[error(
         "{quantity} is not a finite number: the parameters are beyond what f64 carries through"
     )]

@@ -25,8 +25,7 @@ const CONVERGED: f64 = 4.0 * f64::EPSILON;
 pub enum Stall {
     #[error(
         "the solve used up its budget of {evaluations} evaluations of the event functions near t = \
-         {t:.3e} s: the contact switches or oscillates faster than the solver can follow (a softer or \
-         more damped ball, or fewer chain masses, solves)"
+         {t:.3e} s: the contact switches or oscillates faster than the solver can follow"
     )]
     Budget { evaluations: u64, t: f64 },
     #[error(
