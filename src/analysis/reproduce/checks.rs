@@ -247,20 +247,25 @@ const FIG3B_MAX_X_TIME: &str = "light cart: time of the maximum X";
 
 fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
     let b = LIGHT.solve(base, FIG3_ANGLE, BACKSPIN)?;
-    let Some(grip) = timeline::first_grip(&b) else {
+    // A grip that follows a slide: one from first contact has no "before".
+    let first = timeline::first_grip(&b);
+    let Some(grip) = first.filter(|&i| i > 0) else {
         // The same rows as with a grip: those about the grip are not computed.
         let (t_max, x_max) = timeline::peak(&b, |s| s.x);
-        let none = |id, quantity, printed, unit| {
-            Row::new(id, quantity, printed, unit, f64::NAN).note("the ball never grips")
+        let why = if first.is_some() {
+            "the ball grips from first contact"
+        } else {
+            "the ball never grips"
         };
+        let none =
+            |id, quantity, printed, unit| Row::new(id, quantity, printed, unit, f64::NAN).note(why);
         return Ok(vec![
             none("fig3b-grip", FIG3B_GRIP_SPEED, "3.2", "m/s"),
             none("fig3b-grip", "light cart: time the ball grips", "1.7", "ms"),
             none("fig3b-force-drop", FIG3B_BEFORE, "109", "N"),
             none("fig3b-force-drop", FIG3B_AFTER, "90", "N"),
             Row::new("fig3b-max-x", FIG3B_MAX_X, "4.4", "mm", x_max * MILLI),
-            Row::new("fig3b-max-x", FIG3B_MAX_X_TIME, "2.3", "ms", t_max * MILLI)
-                .note("the ball never grips"),
+            Row::new("fig3b-max-x", FIG3B_MAX_X_TIME, "2.3", "ms", t_max * MILLI).note(why),
         ]);
     };
     let (before, after) = timeline::sides(&b, grip);
@@ -289,7 +294,7 @@ fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         ],
         |p| {
             let b = solve(p).ok()?;
-            let grip = timeline::first_grip(&b)?;
+            let grip = timeline::first_grip(&b).filter(|&i| i > 0)?;
             Some(timeline::sides(&b, grip).0.v)
         },
     )
