@@ -92,13 +92,16 @@ fn csv_has_a_header_and_the_requested_samples() {
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("t,N,F,X,V,vx,omega,slip,phase"));
+    assert_eq!(
+        lines.next(),
+        Some("t,N,F,X,V,vx,omega,slip,phase,cart_stuck,stretch,patch_slip")
+    );
     let rows: Vec<&str> = lines.collect();
     // 11 even samples plus both sides of the two transitions.
     assert_eq!(rows.len(), 11 + 4);
     assert!(rows[0].starts_with("0,"));
     assert!(rows.last().unwrap().starts_with("0.005,"));
-    assert!(rows.iter().all(|r| r.split(',').count() == 9));
+    assert!(rows.iter().all(|r| r.split(',').count() == 12));
     assert_eq!(
         snapback()
             .args(["simulate", "--format", "csv"])

@@ -72,6 +72,14 @@ fn cases() -> Vec<Case> {
         out.push(case(&[("angle", num(angle)), ("spin", num(spin))]));
     }
     out.push(case(&[("spin", "400".into())]));
+    // The friction reversing without a grip (slide-slide), just above the critical angle of a light
+    // cart and of a chain.
+    out.push(case(&[
+        ("angle", "32.5".into()),
+        ("cart-mass", "1g".into()),
+        ("stiffness", "9.554kN/m".into()),
+    ]));
+    out.push(case(&[("angle", "33.5".into()), ("chain", "8".into())]));
     out.push(case(&[("angle", "90".into()), ("spin", "-100".into())]));
     out.push(case(&[("angle", "90".into()), ("spin", "0".into())]));
     out.push(case(&[("angle", "0.5".into())]));

@@ -492,11 +492,11 @@ fn export_writes_the_series_and_the_outcome_and_says_where() {
 
     let text = std::fs::read_to_string(&csv).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some("t,N,F,X,V,vx,omega,slip,phase"));
+    assert_eq!(lines.next(), Some(snapback::export::csv::HEADER));
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
     assert!(rows.len() >= 501, "{} rows", rows.len());
     for row in &rows {
-        assert_eq!(row.len(), 9);
+        assert_eq!(row.len(), 12);
         for value in &row[..8] {
             value.parse::<f64>().unwrap();
         }

@@ -22,10 +22,17 @@ pub struct Row {
     /// The phases in order, e.g. `slide-grip-slide`.
     pub phases: String,
     pub slides_throughout: bool,
+    /// True when string friction holds the cart still at some time in the contact.
+    pub cart_stuck: bool,
+    /// A compliant ball's stretch e as it leaves, m (`None` for a rigid ball).
+    pub stretch: Option<f64>,
+    /// The slip of a compliant ball's contact patch on the cart as it leaves, m/s (`None` for a rigid
+    /// ball).
+    pub patch_slip: Option<f64>,
 }
 
 /// The columns after the varied value's.
-pub const COLUMNS: [&str; 7] = [
+pub const COLUMNS: [&str; 10] = [
     "omega2",
     "vx2",
     "vy2",
@@ -33,6 +40,9 @@ pub const COLUMNS: [&str; 7] = [
     "ex",
     "phases",
     "slides_throughout",
+    "cart_stuck",
+    "stretch",
+    "patch_slip",
 ];
 
 /// One bounce per value of `span` (`steps` values, ends included), on all cores, in order. For a
@@ -69,6 +79,9 @@ pub fn row(base: &Params, span: &Span, value: f64) -> Result<Row, AnalysisError>
         ex: o.ex,
         phases: bounce.phase_summary(),
         slides_throughout: bounce.slides_throughout(),
+        cart_stuck: bounce.cart_ever_stuck(),
+        stretch: bounce.final_patch().map(|(e, _)| e),
+        patch_slip: bounce.final_patch().map(|(_, slip)| slip),
     })
 }
 
@@ -176,35 +189,40 @@ fn format_rows(rows: &[Row], column: &str, layout: Layout, first: bool) -> Strin
     text
 }
 
-/// One CSV line of `r`.
+/// One CSV line of `r`, its numbers written by ryu straight into `text` (no formatting machinery: the
+/// line is most of a fast bounce's cost).
 fn csv_line(text: &mut String, r: &Row) {
-    let _ = write!(
-        text,
-        "{},{},{},{},{},",
-        Number(r.value),
-        Number(r.omega2),
-        Number(r.vx2),
-        Number(r.vy2),
-        Number(r.theta2_deg)
-    );
-    if let Some(ex) = r.ex {
-        let _ = write!(text, "{}", Number(ex));
+    let mut digits = ryu::Buffer::new();
+    for x in [r.value, r.omega2, r.vx2, r.vy2, r.theta2_deg] {
+        push_number(text, &mut digits, x);
+        text.push(',');
     }
-    let _ = writeln!(text, ",{},{}", r.phases, r.slides_throughout);
+    if let Some(ex) = r.ex {
+        push_number(text, &mut digits, ex);
+    }
+    text.push(',');
+    text.push_str(&r.phases);
+    for flag in [r.slides_throughout, r.cart_stuck] {
+        text.push_str(if flag { ",true" } else { ",false" });
+    }
+    for x in [r.stretch, r.patch_slip] {
+        text.push(',');
+        if let Some(x) = x {
+            push_number(text, &mut digits, x);
+        }
+    }
+    text.push('\n');
 }
 
-/// A number in its shortest round-trip form: plain (`10`, `0.3`), or with an exponent (`1e308`)
-/// beyond a plain form's 16 digits.
-struct Number(f64);
-
-impl std::fmt::Display for Number {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let size = self.0.abs();
-        if size != 0.0 && !(1e-5..1e16).contains(&size) {
-            write!(f, "{:e}", self.0)
-        } else {
-            write!(f, "{}", self.0)
-        }
+/// A number in its shortest round-trip form: plain (`10`, `0.3`) from 1e-5 to 1e16, else with an
+/// exponent (`1e308`, `2.5e-7`), as Rust's `{}` and `{:e}` write them (ryu's form without its `.0`;
+/// where two shortest forms lie equally close, ryu may end on the other digit).
+fn push_number(text: &mut String, digits: &mut ryu::Buffer, x: f64) {
+    if x.is_finite() {
+        let shown = digits.format_finite(x);
+        text.push_str(shown.strip_suffix(".0").unwrap_or(shown));
+    } else {
+        let _ = write!(text, "{x}");
     }
 }
 
@@ -219,5 +237,62 @@ pub fn object(column: &str, r: &Row) -> serde_json::Value {
     object.insert("ex".into(), r.ex.into());
     object.insert("phases".into(), r.phases.clone().into());
     object.insert("slides_throughout".into(), r.slides_throughout.into());
+    object.insert("cart_stuck".into(), r.cart_stuck.into());
+    object.insert("stretch".into(), r.stretch.into());
+    object.insert("patch_slip".into(), r.patch_slip.into());
     serde_json::Value::Object(object)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::push_number;
+
+    /// Rust's shortest round-trip forms, plain between 1e-5 and 1e16.
+    fn reference(x: f64) -> String {
+        let size = x.abs();
+        if size != 0.0 && !(1e-5..1e16).contains(&size) {
+            format!("{x:e}")
+        } else {
+            format!("{x}")
+        }
+    }
+
+    /// The same notation and length as Rust's, and the same number read back.
+    #[test]
+    fn numbers_are_written_as_rust_writes_them() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut digits = ryu::Buffer::new();
+        let edges = [
+            0.0,
+            -0.0,
+            1e-5,
+            9.999_999_999_999_999e-6,
+            1e16,
+            9_999_999_999_999_998.0,
+            10.0,
+            0.3,
+        ];
+        let random = (0..200_000).map(|_| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            f64::from_bits(state)
+        });
+        for x in edges.into_iter().chain(random).filter(|x| x.is_finite()) {
+            let mut text = String::new();
+            push_number(&mut text, &mut digits, x);
+            let rust = reference(x);
+            assert_eq!(text.len(), rust.len(), "{x:?}: {text} against {rust}");
+            assert_eq!(
+                text.contains('e'),
+                rust.contains('e'),
+                "{x:?}: {text} against {rust}"
+            );
+            assert_eq!(
+                text.parse::<f64>().unwrap().to_bits(),
+                x.to_bits(),
+                "{text}"
+            );
+        }
+    }
 }

@@ -17,7 +17,7 @@ pub struct FigureArgs {
     /// The bounce: Fig. 3 draws it beside the paper's other carts, Fig. 2 its omega2 against theta1 for its spin and the comparison spin (default: the paper's Fig. 3(c) case).
     #[command(flatten)]
     pub params: ParamArgs,
-    /// fig2 (omega2 against theta1, six curves) or fig3 (F, X and omega against t at 60 deg).
+    /// fig2 (omega2 against theta1, for omega1 = 0 and the given spin) or fig3 (F, X and omega against t).
     #[arg(value_name = "FIGURE")]
     pub which: String,
     /// The SVG file to write (SVG is the one format figure writes): a symlink is written through, a

@@ -79,7 +79,8 @@ fn table(report: &Report) -> String {
     if report.complete() {
         let _ = writeln!(
             out,
-            "every claim is reproduced, close, or differs for a reason shown in its note"
+            "every claim is reproduced, close, or differs, each close value and each difference with \
+             a cause shown in its note"
         );
     }
     out
@@ -106,11 +107,13 @@ pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
     } else {
         Err(Failure {
             message: format!(
-                "{} claim(s) without a check, {} difference(s) without a demonstrated reason, {} \
-                 number(s) not computed under these parameters",
+                "{} claim(s) without a check, {} difference(s) without a demonstrated reason{}",
                 report.missing.len(),
                 report.unexplained().len(),
-                report.count(Status::NotComputed)
+                match report.count(Status::NotComputed) {
+                    0 => String::new(),
+                    n => format!(", {n} number(s) not computed under these parameters"),
+                }
             ),
             status: 1,
         })

@@ -1,11 +1,11 @@
-//! CSV of a sampled time series, SI units: `t,N,F,X,V,vx,omega,slip,phase`.
+//! CSV of a sampled time series, SI units: `t,N,F,X,V,vx,omega,slip,phase,cart_stuck,stretch,patch_slip`.
 
 use std::fmt::Write;
 
 use crate::model::Sample;
 
 /// The header line of [`series`].
-pub const HEADER: &str = "t,N,F,X,V,vx,omega,slip,phase";
+pub const HEADER: &str = "t,N,F,X,V,vx,omega,slip,phase,cart_stuck,stretch,patch_slip";
 
 /// The samples as CSV with a header line.
 pub fn series(samples: &[Sample]) -> String {
@@ -16,8 +16,14 @@ pub fn series(samples: &[Sample]) -> String {
         for value in [s.t, s.normal, s.friction, s.x, s.v, s.vx, s.omega, s.slip] {
             let _ = write!(out, "{},", Number(value));
         }
-        out.push_str(s.kind.name());
-        out.push('\n');
+        let _ = writeln!(
+            out,
+            "{},{},{},{}",
+            s.kind.name(),
+            s.cart_stuck,
+            Number(s.stretch),
+            Number(s.patch_slip)
+        );
     }
     out
 }

@@ -54,6 +54,10 @@ pub struct Sample {
     pub kind: PhaseKind,
     /// True while string friction holds the cart still.
     pub cart_stuck: bool,
+    /// A compliant ball's stretch e, m (0 for a rigid ball).
+    pub stretch: f64,
+    /// The slip of the ball's contact patch on the cart, m/s (for a rigid ball, the slip itself).
+    pub patch_slip: f64,
 }
 
 /// A solved bounce.
@@ -110,6 +114,8 @@ impl Bounce {
     pub fn sample_in(&self, index: usize, t: f64) -> Sample {
         let phase = &self.phases[index];
         let s = phase.state_at(&self.setup, t);
+        let slip = self.setup.slip(&s);
+        let patch = phase.patch_at(&self.setup, t);
         Sample {
             t,
             normal: self.setup.normal(t),
@@ -118,10 +124,12 @@ impl Bounce {
             v: s.v,
             vx: s.vx,
             omega: s.omega,
-            slip: self.setup.slip(&s),
+            slip,
             phase: index,
             kind: phase.kind,
             cart_stuck: phase.cart == Cart::Stuck,
+            stretch: patch.map_or(0.0, |(e, _)| e),
+            patch_slip: patch.map_or(slip, |(_, p)| p),
         }
     }
 
@@ -193,8 +201,31 @@ impl Bounce {
             .join("-")
     }
 
-    /// True when the ball slides for the whole contact.
+    /// True when string friction holds the cart still at some time in the contact.
+    pub fn cart_ever_stuck(&self) -> bool {
+        self.phases.iter().any(|p| p.cart == Cart::Stuck)
+    }
+
+    /// A compliant ball's stretch e (m) and its patch's slip on the cart (m/s) as it leaves; `None` for
+    /// a rigid ball.
+    pub fn final_patch(&self) -> Option<(f64, f64)> {
+        let last = self.phases.last()?;
+        last.patch_at(&self.setup, last.end)
+    }
+
+    /// True when the ball slides one way for the whole contact: every phase a slide with the slip sign
+    /// of the first, so the friction never grips and never changes sign. This is the regime of Eq. (7)
+    /// and Eq. (8): a late reversal (slide-slide) does not count, and neither does a grip. Phases that
+    /// differ only in what the cart does (string friction: it sticks or comes unstuck under the sliding
+    /// ball) keep the slip's sign and do count. For a compliant ball the slide is its contact patch's.
     pub fn slides_throughout(&self) -> bool {
-        self.phases.iter().all(|p| p.kind == PhaseKind::Slide)
+        let one_way = |sign: i8| {
+            self.phases
+                .iter()
+                .all(|p| p.kind == PhaseKind::Slide && p.slip_sign == sign)
+        };
+        self.phases
+            .first()
+            .is_some_and(|first| one_way(first.slip_sign))
     }
 }

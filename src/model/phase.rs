@@ -98,6 +98,15 @@ impl Phase {
         }
     }
 
+    /// A compliant ball's stretch e (m) and its patch's slip on the cart (m/s) at `t`; `None` for a rigid
+    /// ball.
+    pub fn patch_at(&self, setup: &Setup, t: f64) -> Option<(f64, f64)> {
+        match &self.motion {
+            Motion::Compliant(c) => Some((c.at(setup, t).e, c.patch_slip(setup, t))),
+            _ => None,
+        }
+    }
+
     /// Kinetic plus spring energy of the cart, or of the whole chain, at `t`.
     pub fn cart_energy_at(&self, setup: &Setup, t: f64) -> f64 {
         match &self.motion {

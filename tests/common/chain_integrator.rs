@@ -9,6 +9,7 @@
 
 use snapback::model::Params;
 
+#[allow(dead_code)] // not every test file reads every field
 #[derive(Clone, Copy, Debug)]
 pub struct Numerical {
     pub vx2: f64,
@@ -18,6 +19,8 @@ pub struct Numerical {
     /// Kinetic plus spring energy of the chain at the end.
     pub chain_energy: f64,
     pub phases: usize,
+    /// Whether the ball gripped at any time.
+    pub gripped: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -179,6 +182,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     };
     let mut t = 0.0;
     let mut phases = 1;
+    let mut gripped = ball == Ball::Grip;
     // An event function right after a transition sits on zero; ignore it for a few nanoseconds.
     let mut guard_until = 0.0;
     while t < end {
@@ -210,6 +214,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         }
         ball = model.next(ball, t, &y);
         phases += 1;
+        gripped |= ball == Ball::Grip;
         guard_until = t + 1e-9;
     }
     Numerical {
@@ -218,5 +223,6 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         v2: y[2 + n],
         chain_energy: model.energy(&y),
         phases,
+        gripped,
     }
 }
