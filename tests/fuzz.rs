@@ -384,7 +384,8 @@ fn non_finite(text: &str) -> Option<String> {
         .map(str::to_string)
 }
 
-/// Keys whose null means "there is none", as the --help of their command says.
+/// Keys whose null means "there is none": as the --help of their command says, or (`stretch`,
+/// `patch_slip`) a compliant ball's figures for a rigid one.
 const NULLABLE: &[&str] = &[
     "ex",
     "roll_ratio",
@@ -392,6 +393,9 @@ const NULLABLE: &[&str] = &[
     "full_model_deg",
     "computed",
     "difference",
+    "first_grip_deg",
+    "stretch",
+    "patch_slip",
 ];
 
 /// A null in `json` under a key that is not [`NULLABLE`].

@@ -33,6 +33,7 @@ pub struct FigureArgs {
 const EXTENSIONS: [&str; 1] = ["svg"];
 
 pub fn run(args: &FigureArgs) -> Result<(), Failure> {
+    crate::model::limits::limit_work(crate::model::limits::COMMAND_WORK);
     let extension = args
         .out
         .extension()

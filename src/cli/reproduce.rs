@@ -87,6 +87,7 @@ fn table(report: &Report) -> String {
 }
 
 pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
+    crate::model::limits::limit_work(crate::model::limits::COMMAND_WORK);
     let base = args
         .params
         .apply(Params::default())

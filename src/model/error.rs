@@ -59,6 +59,11 @@ pub enum SolveError {
         hint: &'static str,
     },
     #[error(
+        "the command used up its work budget: under these parameters its bounces are too costly to \
+         solve them all (parameters nearer the paper's take seconds)"
+    )]
+    CommandBudget,
+    #[error(
         "{quantity} is not a finite number: the parameters are beyond what f64 carries through"
     )]
     NotFinite { quantity: &'static str },

@@ -55,6 +55,8 @@ const IDLE: Meter = Meter {
 
 thread_local! {
     static METER: Cell<Meter> = const { Cell::new(IDLE) };
+    /// The evaluations the last outermost metered solve on this thread spent.
+    static SPENT: Cell<u64> = const { Cell::new(0) };
 }
 
 /// Runs `solve` with a budget of `budget` event evaluations; `Err` when one of its searches gave up
@@ -71,11 +73,17 @@ pub fn metered<T>(budget: u64, solve: impl FnOnce() -> T) -> Result<T, Stall> {
         });
     }
     let result = solve();
-    let stall = METER.get().stall;
+    let meter = METER.get();
     if !outer.armed {
+        SPENT.set(meter.budget - meter.left);
         METER.set(IDLE);
     }
-    stall.map_or(Ok(result), Err)
+    meter.stall.map_or(Ok(result), Err)
+}
+
+/// The evaluations the last (outermost) [`metered`] solve on this thread spent.
+pub fn spent() -> u64 {
+    SPENT.get()
 }
 
 /// True while a metered solve runs on this thread.

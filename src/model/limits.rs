@@ -9,7 +9,7 @@ use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 
 use super::bounce::Bounce;
 use super::error::SolveError;
-use super::events;
+use super::events::{self, Stall};
 use super::params::{ParamId, Params, spec};
 use super::units;
 
@@ -107,6 +107,28 @@ pub fn budget(params: &Params) -> u64 {
     BUDGET * 2 / (links + 1)
 }
 
+/// The work a command may spend on all its solves, in evaluations weighted by their cost (see
+/// [`weight`]): unlimited unless the command set it ([`limit_work`]).
+static WORK_LEFT: AtomicU64 = AtomicU64::new(u64::MAX);
+
+/// The work of a command whose bounces the program fixes: about ten seconds of solving (the paper's
+/// `reproduce` takes 14 million units, on a chain of 4 masses 110 million).
+pub const COMMAND_WORK: u64 = 300_000_000;
+
+/// Limits the work of all the solves this process makes from now on to `units` (evaluations times
+/// [`weight`]): for a command whose number of bounces is fixed by the program, not by the user
+/// (`reproduce`, `figure`, `critical-angle`), so that parameters that make each bounce costly cannot
+/// make the whole take minutes.
+pub fn limit_work(units: u64) {
+    WORK_LEFT.store(units, Ordering::Relaxed);
+}
+
+/// What one evaluation costs, in work units: a chain of N masses costs about (N + 1)/2 times the
+/// single cart's, which costs 2.
+fn weight(params: &Params) -> u64 {
+    params.chain.clamp(1.0, 16.0) as u64 + 1
+}
+
 /// Set once the process is told to stop (Ctrl-C in a headless command).
 static INTERRUPTED: AtomicBool = AtomicBool::new(false);
 /// Bounces solved by this process.
@@ -148,11 +170,23 @@ fn checked(
 ) -> Result<Bounce, SolveError> {
     params.validate()?;
     check(params)?;
-    let bounce =
-        events::metered(budget(params), solve).map_err(|stall| SolveError::Stalled {
+    let weight = weight(params);
+    let allowed = WORK_LEFT.load(Ordering::Relaxed) / weight;
+    if allowed == 0 {
+        return Err(SolveError::CommandBudget);
+    }
+    let solved = events::metered(budget(params).min(allowed), solve);
+    let spent = events::spent().saturating_mul(weight);
+    let _ = WORK_LEFT.fetch_update(Ordering::Relaxed, Ordering::Relaxed, |left| {
+        Some(left.saturating_sub(spent))
+    });
+    let bounce = solved.map_err(|stall| match stall {
+        Stall::Budget { .. } if allowed < budget(params) => SolveError::CommandBudget,
+        stall => SolveError::Stalled {
             stall,
             hint: advice(params),
-        })??;
+        },
+    })??;
     finite(&bounce)?;
     Ok(bounce)
 }
