@@ -9,5 +9,6 @@ pub mod cli;
 pub mod export;
 pub mod input;
 pub mod model;
+pub mod output;
 pub mod scenario;
 pub mod tui;

@@ -63,6 +63,7 @@ pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
     let scan = span::parse_count("--scan", &args.scan, 3).map_err(Failure::usage)?;
     let best =
         optimize::optimize(&base, &span, objective, args.minimize, scan).map_err(Failure::usage)?;
+    crate::model::limits::reportable(&best.bounce).map_err(Failure::usage)?;
     let spec = span.spec;
     let unit = spec.dimension.base_symbol();
     // What was solved: the scan points, or every whole number of the range.

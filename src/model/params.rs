@@ -211,10 +211,10 @@ impl ParamSpec {
         let value =
             units::parse(text, self.dimension).map_err(|source| ParamError::Unparsable {
                 flag: self.flag,
-                given: text.trim().to_string(),
+                given: units::echo(text.trim()),
                 source: Box::new(source),
             })?;
-        self.check(value, text.trim())?;
+        self.check(value, &units::echo(text.trim()))?;
         Ok(value)
     }
 
