@@ -8,6 +8,7 @@ pub mod claims;
 pub mod critical;
 pub mod error;
 pub mod figures;
+pub mod fit;
 pub mod optimize;
 pub mod reproduce;
 pub mod retune;

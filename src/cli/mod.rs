@@ -3,6 +3,7 @@
 mod completions;
 mod critical_angle;
 mod figure;
+mod fit;
 mod man;
 mod optimize;
 mod params_args;
@@ -46,6 +47,8 @@ pub enum Commands {
     Optimize(optimize::OptimizeArgs),
     /// Check every number the paper prints (assets/claims.md) against the model.
     Reproduce(reproduce::ReproduceArgs),
+    /// Fit free parameters to measured rebounds (CSV): values, standard errors, 95% intervals.
+    Fit(fit::FitArgs),
     /// Draw the paper's Fig. 2 or Fig. 3 as SVG, at the given parameters.
     Figure(figure::FigureArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
@@ -82,6 +85,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Optimize(args)) => optimize::run(&args),
         Some(Commands::Reproduce(args)) => reproduce::run(&args),
         Some(Commands::Figure(args)) => figure::run(&args),
+        Some(Commands::Fit(args)) => fit::run(&args),
         Some(Commands::Completions(args)) => completions::run(&args),
         Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),
