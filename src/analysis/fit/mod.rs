@@ -3,8 +3,8 @@
 //! Method: the residual of each measurement is (model - measured) / sigma (sigma = 1 where the data give
 //! none). Starting points are a seeded random scan of each free parameter's start box (see
 //! [`Free::start_box`]) plus the given values; the best few by chi2 are each refined by
-//! Levenberg-Marquardt (`levenberg-marquardt`) on the Jacobian of [`problem::Model`], and the lowest chi2
-//! wins. At the optimum the covariance in the optimiser's coordinates is s^2 (J^T J)^-1, with s^2 = 1
+//! Levenberg-Marquardt (`levenberg-marquardt`) on the Jacobian of [`problem::Model`] (both skip bounces of
+//! more than 200 phases), and the lowest result is run to convergence without that limit. At the optimum the covariance in the optimiser's coordinates is s^2 (J^T J)^-1, with s^2 = 1
 //! when every measurement has a sigma and chi2/dof otherwise. A parameter in the numerical null space of
 //! the column-scaled J (singular value below 1e-7 of the largest) is reported as not determined by the
 //! data, and the covariance is taken over the others. The 95% interval is u +- t se_u in the optimiser's
@@ -29,12 +29,21 @@ use super::AnalysisError;
 use crate::model::params::ParamId;
 use crate::model::{Params, solve};
 
+/// Levenberg-Marquardt's evaluation budget, in evaluations per free parameter and one: for the short
+/// runs from the starting points, and for the final run to convergence.
+const SHORT_PATIENCE: usize = 20;
+const PATIENCE: usize = 200;
+
+/// The most phases a bounce may take while the scan and the short runs explore: a light cart on a stiff
+/// spring grips and slips thousands of times, slowly, far from any data. The final run has no limit.
+const EXPLORE_PHASES: usize = 200;
+
 /// How the starting points are chosen.
 #[derive(Clone, Copy, Debug)]
 pub struct Options {
     /// Random points of the scan per free parameter.
     pub scan_per_parameter: usize,
-    /// Points of the scan refined by Levenberg-Marquardt.
+    /// Points of the scan given a short run of Levenberg-Marquardt; the best result is run to convergence.
     pub refined: usize,
     pub seed: u64,
 }
@@ -43,7 +52,7 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             scan_per_parameter: 12,
-            refined: 3,
+            refined: 4,
             seed: 14,
         }
     }
@@ -124,12 +133,17 @@ pub fn fit(
             free.len()
         )));
     }
-    let model = Model {
+    let explore = Model {
         base: *base,
         free,
         data,
+        phase_limit: Some(EXPLORE_PHASES),
     };
-    let starts = starting_points(&model, options);
+    let model = Model {
+        phase_limit: None,
+        ..explore
+    };
+    let starts = starting_points(&explore, options);
     if !starts[0].1.is_finite() {
         let row = &data.rows[0];
         let err = solve(&row.params(base)).err();
@@ -139,24 +153,27 @@ pub fn fit(
             err.map_or(String::new(), |e| format!(" (line {}: {e})", row.line))
         )));
     }
-    let lm = LevenbergMarquardt::new().with_patience(200);
-    let (u, converged) = starts
+    let refine = |model: &Model, u: &[f64], patience: usize| {
+        let problem = Problem {
+            model,
+            u: nalgebra_lm::DVector::from_column_slice(u),
+        };
+        let (problem, report) = LevenbergMarquardt::new()
+            .with_patience(patience)
+            .minimize(problem);
+        let u = problem.u.as_slice().to_vec();
+        let chi2 = model.chi2(&u);
+        (u, chi2, report.termination.was_successful())
+    };
+    // A short run from each of the best starting points, then the best of them to convergence.
+    let (best, _, _) = starts
         .iter()
         .take(options.refined.max(1))
         .filter(|(_, chi2)| chi2.is_finite())
-        .map(|(u, _)| {
-            let problem = Problem {
-                model: &model,
-                u: nalgebra_lm::DVector::from_column_slice(u),
-            };
-            let (problem, report) = lm.minimize(problem);
-            let u = problem.u.as_slice().to_vec();
-            let chi2 = model.chi2(&u);
-            (u, chi2, report.termination.was_successful())
-        })
+        .map(|(u, _)| refine(&explore, u, SHORT_PATIENCE))
         .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map(|(u, _, ok)| (u, ok))
         .expect("the best starting point solves");
+    let (u, _, converged) = refine(&model, &best, PATIENCE);
     summarise(&model, &u, converged)
 }
 

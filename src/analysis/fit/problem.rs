@@ -2,13 +2,15 @@
 //! by central differences of the exact solver; rows are solved in parallel. The optimiser
 //! (`levenberg-marquardt`, built on nalgebra 0.34) sees them through [`Problem`].
 
+use std::cell::Cell;
+
 use levenberg_marquardt::LeastSquaresProblem;
 use nalgebra_lm::{DMatrix, DVector, Dyn, U1, VecStorage};
 use rayon::prelude::*;
 
 use super::data::{Dataset, Row};
 use super::free::{Free, place};
-use crate::model::{Params, solve};
+use crate::model::{Params, solve_cancellable};
 
 /// The residual given to the optimiser where the model cannot be solved, so that it steps back.
 const UNSOLVABLE: f64 = 1e100;
@@ -21,6 +23,8 @@ pub struct Model<'a> {
     pub base: Params,
     pub free: &'a [Free],
     pub data: &'a Dataset,
+    /// Bounces of more phases count as unsolvable.
+    pub phase_limit: Option<usize>,
 }
 
 impl Model<'_> {
@@ -32,7 +36,12 @@ impl Model<'_> {
     /// The model's value of each measured quantity of `row`, with the free parameters at `u`.
     pub fn predict(&self, row: &Row, u: &[f64]) -> Option<Vec<f64>> {
         let params = row.params(&place(&self.base, self.free, u));
-        let bounce = solve(&params).ok()?;
+        let phases = Cell::new(0usize);
+        let over_limit = || {
+            phases.set(phases.get() + 1);
+            self.phase_limit.is_some_and(|limit| phases.get() > limit)
+        };
+        let bounce = solve_cancellable(&params, &over_limit).ok()?;
         row.measured
             .iter()
             .map(|m| m.quantity.of(&bounce))
