@@ -151,7 +151,7 @@ pub fn table(fit: &Fit, data: &data::Dataset) -> String {
     );
     for f in &fit.free {
         let s = spec(f.id);
-        let name = format!("{} {}", s.flag, s.symbol);
+        let name = format!("{} ({})", s.flag, s.symbol);
         let (stderr, interval) = match (f.stderr, f.ci95) {
             (Some(se), Some((lo, hi))) => (
                 shown(f.id, se, Some(se)),
@@ -163,12 +163,12 @@ pub fn table(fit: &Fit, data: &data::Dataset) -> String {
             ),
             _ => ("-".into(), "not determined by the data".into()),
         };
-        let _ = writeln!(
-            out,
+        let line = format!(
             "  {name:<22} {:>12} {stderr:>10}  {interval:<24} {}",
             shown(f.id, f.value, f.stderr),
             s.display_unit
         );
+        let _ = writeln!(out, "{}", line.trim_end());
     }
     let scale = if fit.absolute_sigma {
         "the data's sigmas"
