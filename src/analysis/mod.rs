@@ -15,6 +15,7 @@ pub mod retune;
 pub mod span;
 pub mod sweep;
 pub mod timeline;
+pub mod uncertainty;
 
 pub use error::AnalysisError;
 pub use span::Span;

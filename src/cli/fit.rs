@@ -120,13 +120,13 @@ pub fn json(fit: &Fit) -> Value {
 }
 
 /// A value in a parameter's display unit, to the decimal place of the second significant digit of
-/// `precision` (its standard error), or to 5 significant digits without one.
+/// `precision` (its standard error; at most 9 decimals), or to 5 significant digits without one.
 fn shown(id: ParamId, value: f64, precision: Option<f64>) -> String {
     let s = spec(id);
     let display = |x: f64| units::in_unit(x, s.dimension, s.display_unit);
     match precision.map(display).filter(|p| *p > 0.0) {
         Some(p) => {
-            let decimals = (1 - p.log10().floor() as i32).max(0) as usize;
+            let decimals = (1 - p.log10().floor() as i32).clamp(0, 9) as usize;
             format!("{:.decimals$}", display(value))
         }
         None => units::brief(display(value), 5),
