@@ -5,7 +5,7 @@
 //! A `console` block holds commands, each on a line starting with `$ `, each followed by the output it
 //! prints (stdout and stderr together). In the output, a line `...` stands for any number of lines and
 //! `[..]` for any text within a line. The commands of one block run in `sh`, in order, in one fresh
-//! directory, with the binary first on `PATH`, in the C locale.
+//! directory that links the repository's `assets/`, with the binary first on `PATH`, in the C locale.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -115,6 +115,14 @@ fn every_console_capture_matches_the_binary() {
     for (k, block) in blocks.iter().enumerate() {
         let dir = std::env::temp_dir().join(format!("snapback-readme-{}-{k}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
+        let assets = dir.join("assets");
+        if !assets.exists() {
+            std::os::unix::fs::symlink(
+                Path::new(env!("CARGO_MANIFEST_DIR")).join("assets"),
+                &assets,
+            )
+            .unwrap();
+        }
         for capture in block {
             let out = Command::new("sh")
                 .arg("-c")

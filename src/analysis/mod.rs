@@ -8,12 +8,14 @@ pub mod claims;
 pub mod critical;
 pub mod error;
 pub mod figures;
+pub mod fit;
 pub mod optimize;
 pub mod reproduce;
 pub mod retune;
 pub mod span;
 pub mod sweep;
 pub mod timeline;
+pub mod uncertainty;
 
 pub use error::AnalysisError;
 pub use span::Span;

@@ -162,7 +162,7 @@ pub fn write(
 
 /// The text of `rows` in `layout`; `first` when they begin the sweep (a JSON array's first element
 /// takes no comma).
-fn format_rows(rows: &[Row], column: &str, layout: Layout, first: bool) -> String {
+pub(crate) fn format_rows(rows: &[Row], column: &str, layout: Layout, first: bool) -> String {
     let mut text = String::with_capacity(rows.len() * 300);
     for (k, r) in rows.iter().enumerate() {
         match layout {
@@ -218,7 +218,7 @@ fn csv_line(text: &mut String, r: &Row) {
 /// A number in its shortest round-trip form: plain (`10`, `0.3`) from 1e-5 to 1e16, else with an
 /// exponent (`1e308`, `2.5e-7`), as Rust's `{}` and `{:e}` write them (ryu's form without its `.0`;
 /// where two shortest forms lie equally close, ryu may end on the other digit).
-fn push_number(text: &mut String, digits: &mut ryu::Buffer, x: f64) {
+pub(crate) fn push_number(text: &mut String, digits: &mut ryu::Buffer, x: f64) {
     if x.is_finite() {
         let shown = digits.format_finite(x);
         text.push_str(shown.strip_suffix(".0").unwrap_or(shown));

@@ -3,6 +3,7 @@
 mod completions;
 mod critical_angle;
 mod figure;
+mod fit;
 mod man;
 mod optimize;
 mod params_args;
@@ -53,6 +54,8 @@ pub enum Commands {
         input."
     )]
     Reproduce(reproduce::ReproduceArgs),
+    /// Fit free parameters to measured rebounds (CSV): values, standard errors, 95% intervals.
+    Fit(fit::FitArgs),
     /// Draw the paper's Fig. 2 or Fig. 3 as SVG, at the given parameters.
     Figure(figure::FigureArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
@@ -89,6 +92,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Optimize(args)) => headless(|| optimize::run(&args)),
         Some(Commands::Reproduce(args)) => headless(|| reproduce::run(&args)),
         Some(Commands::Figure(args)) => headless(|| figure::run(&args)),
+        Some(Commands::Fit(args)) => headless(|| fit::run(&args)),
         Some(Commands::Completions(args)) => completions::run(&args),
         Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),

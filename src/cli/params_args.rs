@@ -5,6 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Arg, ArgMatches, Args, Command, FromArgMatches};
 
+use crate::analysis::uncertainty::Spread;
 use crate::model::params::{PARAMS, ParamError, ParamId, Params, spec};
 use crate::model::units;
 use crate::scenario::{self, Scenario, ScenarioError};
@@ -25,12 +26,50 @@ pub enum InputError {
     Param(#[from] ParamError),
     #[error(transparent)]
     Scenario(#[from] ScenarioError),
+    /// An uncertainty (`50±1`) that cannot be read, or given to a command that takes none.
+    #[error("{0}")]
+    Uncertainty(String),
+}
+
+/// `text` split at `±` or `+-` into the value and its uncertainty, if it has one.
+fn split_uncertainty(text: &str) -> (&str, Option<&str>) {
+    for mark in ["±", "+-"] {
+        if let Some((value, spread)) = text.split_once(mark) {
+            return (value, Some(spread));
+        }
+    }
+    (text, None)
+}
+
+/// The unit suffix of a value as typed (`rpm` of `-3820rpm`, empty for a bare number).
+fn suffix(value: &str) -> &str {
+    value
+        .trim()
+        .trim_start_matches(|c: char| c.is_ascii_digit() || "+-.eE ".contains(c))
 }
 
 impl ParamArgs {
     /// `base`, then the preset, then the scenario file, then each flag given (flags override the
     /// scenario), every value parsed and checked; the first bad one is the error.
-    pub fn apply(&self, mut base: Params) -> Result<Params, InputError> {
+    pub fn apply(&self, base: Params) -> Result<Params, InputError> {
+        if let Some((id, _)) = self
+            .given
+            .iter()
+            .find(|(_, text)| split_uncertainty(text).1.is_some())
+        {
+            return Err(InputError::Uncertainty(format!(
+                "--{}: an uncertainty (±) is taken by simulate and sweep only",
+                spec(*id).flag
+            )));
+        }
+        Ok(self.apply_uncertain(base)?.0)
+    }
+
+    /// [`ParamArgs::apply`] where a value may carry a standard uncertainty, `50±1` or `50+-1`
+    /// (`-3820rpm±200`: a bare uncertainty is in the value's unit); returns the uncertain parameters with
+    /// their uncertainties in the base unit.
+    pub fn apply_uncertain(&self, mut base: Params) -> Result<(Params, Vec<Spread>), InputError> {
+        let mut spreads = Vec::new();
         if let Some(name) = &self.preset {
             base = scenario::preset(name)?.apply(base);
         }
@@ -38,9 +77,29 @@ impl ParamArgs {
             base = Scenario::load(path)?.apply(base);
         }
         for (id, text) in &self.given {
-            base.set(*id, spec(*id).parse(text)?);
+            let (value, spread) = split_uncertainty(text);
+            let s = spec(*id);
+            base.set(*id, s.parse(value)?);
+            if let Some(spread) = spread {
+                let spread = spread.trim();
+                let typed = if spread.parse::<f64>().is_ok() {
+                    format!("{spread}{}", suffix(value))
+                } else {
+                    spread.to_string()
+                };
+                let sigma = units::parse(&typed, s.dimension)
+                    .ok()
+                    .filter(|v| v.is_finite() && *v >= 0.0)
+                    .ok_or_else(|| {
+                        InputError::Uncertainty(format!(
+                            "--{}: the uncertainty must be a number >= 0 (a unit suffix as for the value); got {spread}",
+                            s.flag
+                        ))
+                    })?;
+                spreads.push(Spread { id: *id, sigma });
+            }
         }
-        Ok(base)
+        Ok((base, spreads))
     }
 }
 

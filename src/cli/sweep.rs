@@ -4,8 +4,12 @@ use std::io::{BufWriter, Write};
 
 use clap::{Args, ValueEnum};
 
-use super::{Failure, ParamArgs};
+use super::simulate::MonteCarloArgs;
+use super::{Failure, ParamArgs, emit};
+use crate::analysis::AnalysisError;
+use crate::analysis::fit::data::Quantity;
 use crate::analysis::sweep::{Layout, WriteError};
+use crate::analysis::uncertainty::{Spread, monte_carlo};
 use crate::analysis::{Span, span, sweep};
 use crate::model::Params;
 
@@ -42,12 +46,14 @@ pub struct SweepArgs {
     /// Output format.
     #[arg(long, value_enum, default_value_t = Format::Csv)]
     pub format: Format,
+    #[command(flatten)]
+    pub monte_carlo: MonteCarloArgs,
 }
 
 pub fn run(args: &SweepArgs) -> Result<(), Failure> {
-    let base = args
+    let (base, spreads) = args
         .params
-        .apply(Params::default())
+        .apply_uncertain(Params::default())
         .map_err(Failure::usage)?;
     let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
     let steps = span::parse_count("--steps", &args.steps, 2).map_err(Failure::usage)?;
@@ -56,6 +62,11 @@ pub fn run(args: &SweepArgs) -> Result<(), Failure> {
         Format::Json => Layout::Json,
         Format::Jsonl => Layout::JsonLines,
     };
+    if !spreads.is_empty() {
+        let text = with_bands(&base, &span, steps, layout, &spreads, &args.monte_carlo)
+            .map_err(Failure::usage)?;
+        return emit(&text);
+    }
     let mut out = BufWriter::with_capacity(1 << 20, std::io::stdout().lock());
     let written = sweep::write(&mut out, &base, &span, steps, layout)
         .and_then(|()| out.flush().map_err(WriteError::Io));
@@ -68,4 +79,76 @@ pub fn run(args: &SweepArgs) -> Result<(), Failure> {
         }),
         _ => Ok(()),
     }
+}
+
+/// The sweep with each outcome's Monte Carlo mean and standard deviation beside it: after the usual
+/// columns (keys), `<outcome>_mean` and `<outcome>_sd` for omega2, omega2_rpm, vx2, vy2, theta2_deg, ex
+/// and speed2 (empty / null where no draw defines it). Every row draws with the same seed, so the bands
+/// are smooth along the sweep. Held in memory, not streamed.
+fn with_bands(
+    base: &Params,
+    span: &Span,
+    steps: usize,
+    layout: Layout,
+    spreads: &[Spread],
+    mc: &MonteCarloArgs,
+) -> Result<String, AnalysisError> {
+    let rows = sweep::sweep(base, span, steps)?;
+    let column = span.column();
+    let mut text = String::new();
+    let mut objects = Vec::new();
+    if layout == Layout::Csv {
+        text.push_str(&column);
+        for name in sweep::COLUMNS {
+            text.push(',');
+            text.push_str(name);
+        }
+        for q in Quantity::ALL {
+            text.push_str(&format!(",{0}_mean,{0}_sd", q.name()));
+        }
+        text.push('\n');
+    }
+    for row in &rows {
+        let mut at = *base;
+        at.set(span.spec.id, row.value);
+        let bands = monte_carlo(&at, spreads, mc.mc_samples as usize, mc.mc_seed)?;
+        match layout {
+            Layout::Csv => {
+                let line = sweep::format_rows(std::slice::from_ref(row), &column, layout, false);
+                text.push_str(line.trim_end_matches('\n'));
+                let mut digits = ryu::Buffer::new();
+                for b in &bands.bands {
+                    for x in [b.mean, b.sd] {
+                        text.push(',');
+                        if b.count > 0 {
+                            sweep::push_number(&mut text, &mut digits, x);
+                        }
+                    }
+                }
+                text.push('\n');
+            }
+            Layout::Json | Layout::JsonLines => {
+                let mut object = sweep::object(&column, row);
+                for b in &bands.bands {
+                    let (mean, sd) = if b.count > 0 {
+                        (b.mean.into(), b.sd.into())
+                    } else {
+                        (serde_json::Value::Null, serde_json::Value::Null)
+                    };
+                    object[format!("{}_mean", b.quantity.name())] = mean;
+                    object[format!("{}_sd", b.quantity.name())] = sd;
+                }
+                if layout == Layout::JsonLines {
+                    text.push_str(&object.to_string());
+                    text.push('\n');
+                } else {
+                    objects.push(object);
+                }
+            }
+        }
+    }
+    if layout == Layout::Json {
+        text = serde_json::to_string_pretty(&objects).expect("JSON values always serialize") + "\n";
+    }
+    Ok(text)
 }

@@ -4,3 +4,4 @@ pub mod csv;
 pub mod json;
 pub mod svg;
 pub mod table;
+pub mod uncertainty;
