@@ -10,4 +10,5 @@ pub mod export;
 pub mod input;
 pub mod model;
 pub mod scenario;
+pub mod shot;
 pub mod tui;

@@ -8,6 +8,7 @@ mod optimize;
 mod params_args;
 mod presets;
 mod reproduce;
+mod shot;
 mod simulate;
 mod sweep;
 mod tui;
@@ -17,7 +18,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-pub use params_args::{InputError, ParamArgs};
+pub use params_args::{InputError, ParamArgs, ShotParamArgs};
 
 /// Explore a ball bouncing obliquely off a surface that can move sideways (Cross, Am. J. Phys. 78, 2010).
 #[derive(Debug, Parser)]
@@ -48,6 +49,9 @@ pub enum Commands {
     Reproduce(reproduce::ReproduceArgs),
     /// Draw the paper's Fig. 2 or Fig. 3 as SVG, at the given parameters.
     Figure(figure::FigureArgs),
+    /// Play a stroke on court: the strings in the racquet's frame, the flight with drag and Magnus
+    /// lift, the bounce on the court and the kick at the opponent's baseline.
+    Shot(shot::ShotArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     Completions(completions::CompletionsArgs),
     /// Print the manual page (roff): snapback(1), or snapback-COMMAND(1) for one command.
@@ -82,6 +86,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Optimize(args)) => optimize::run(&args),
         Some(Commands::Reproduce(args)) => reproduce::run(&args),
         Some(Commands::Figure(args)) => figure::run(&args),
+        Some(Commands::Shot(args)) => shot::run(&args),
         Some(Commands::Completions(args)) => completions::run(&args),
         Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),

@@ -2,5 +2,6 @@
 
 pub mod csv;
 pub mod json;
+pub mod shot;
 pub mod svg;
 pub mod table;

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use std::path::PathBuf;
 
-use crate::model::params::{PARAMS, ParamSpec};
+use crate::model::params::{BOUNCE_PARAMS as PARAMS, ParamSpec};
 use crate::model::{Bounce, Params, Sample, SolveError, solve};
 
 use super::baseline::Baseline;

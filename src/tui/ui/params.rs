@@ -8,7 +8,7 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
-use crate::model::PARAMS;
+use crate::model::params::BOUNCE_PARAMS as PARAMS;
 use crate::tui::app::App;
 
 /// The fewest rows the panel is given, borders included, however short the screen.
