@@ -431,3 +431,125 @@ fn a_bare_incoming_spin_is_rpm() {
     let b = shot_json(&["--ball-topspin", "25rps"]);
     assert_eq!(a["launch"], b["launch"]);
 }
+
+#[test]
+fn a_sweep_of_shots_is_one_shot_per_value() {
+    let out = snapback()
+        .args([
+            "sweep",
+            "--shot",
+            "--vary",
+            "face-angle",
+            "--from",
+            "-4",
+            "--to",
+            "4",
+            "--steps",
+            "5",
+        ])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header[0], "face_angle_deg");
+    let at = |key: &str| header.iter().position(|h| *h == key).unwrap();
+    let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    assert_eq!(rows.len(), 5);
+    for row in &rows {
+        let face: f64 = row[0].parse().unwrap();
+        let p = Params {
+            face_angle_deg: face,
+            ..preset("topspin-forehand")
+        };
+        let s = play(&p, false).unwrap();
+        let kick = row[at("kick_height_m")];
+        assert_eq!(kick.parse::<f64>().ok(), s.kick_height, "{row:?}");
+        assert_eq!(row[at("in")], s.is_in().to_string());
+    }
+    // A closed face sends the ball lower over the net.
+    let clearance = |row: &Vec<&str>| row[at("net_clearance_m")].parse::<f64>().unwrap();
+    assert!(clearance(&rows[0]) > clearance(&rows[4]));
+    // Without --shot the shot's flags are refused, and so is --speed with it.
+    for args in [
+        &[
+            "sweep",
+            "--vary",
+            "face-angle",
+            "--from",
+            "0",
+            "--to",
+            "1",
+            "--steps",
+            "2",
+        ][..],
+        &[
+            "sweep", "--vary", "mu", "--from", "0", "--to", "1", "--steps", "2", "--height", "2",
+        ][..],
+        &[
+            "sweep", "--shot", "--vary", "speed", "--from", "1", "--to", "2", "--steps", "2",
+        ][..],
+    ] {
+        let out = snapback().args(args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+    }
+}
+
+#[test]
+fn the_face_angle_that_kicks_highest_lands_in() {
+    let out = snapback()
+        .args([
+            "optimize",
+            "--objective",
+            "kick_height",
+            "--vary",
+            "face-angle",
+        ])
+        .args(["--from", "-10", "--to", "10", "--format", "json"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(doc["shot"]["in"], true);
+    let face = doc["value"].as_f64().unwrap();
+    let best = doc["objective_value"].as_f64().unwrap();
+    assert_eq!(doc["shot"]["kick_height_m"].as_f64(), Some(best));
+    // No face angle nearby that lands in kicks higher.
+    for step in [-0.5, -0.05, 0.05, 0.5] {
+        let p = Params {
+            face_angle_deg: face + step,
+            ..preset("topspin-forehand")
+        };
+        let s = play(&p, false).unwrap();
+        if s.is_in() {
+            assert!(
+                s.kick_height.unwrap() <= best + 1e-9,
+                "{step}: {:?}",
+                s.kick_height
+            );
+        }
+    }
+    // A bounce objective keeps refusing the shot's flags.
+    let out = snapback()
+        .args([
+            "optimize",
+            "--vary",
+            "face-angle",
+            "--from",
+            "0",
+            "--to",
+            "1",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+}

@@ -11,6 +11,7 @@ pub mod figures;
 pub mod optimize;
 pub mod reproduce;
 pub mod retune;
+pub mod shots;
 pub mod span;
 pub mod sweep;
 pub mod timeline;

@@ -4,6 +4,7 @@ use clap::{Args, ValueEnum};
 
 use super::{Failure, ShotParamArgs, emit};
 use crate::export;
+use crate::model::params::{Group, ParamSpec, spec};
 use crate::model::{ParamId, Params};
 use crate::scenario;
 use crate::shot;
@@ -41,22 +42,52 @@ pub fn base() -> Params {
         .apply(Params::default())
 }
 
-/// Refuses the flags the frame change sets on the strings, naming the shot's own.
-pub fn refuse_bounce_incidence(given: &[(ParamId, String)]) -> Result<(), Failure> {
+/// Refuses the flags (and a varied parameter) that the frame change sets on the strings, naming the
+/// shot's own.
+pub fn refuse_bounce_incidence(
+    given: &[(ParamId, String)],
+    varied: Option<&ParamSpec>,
+) -> Result<(), Failure> {
     let set = [ParamId::Speed, ParamId::Angle, ParamId::Spin];
-    match given.iter().find(|(id, _)| set.contains(id)) {
-        Some((id, _)) => Err(Failure::usage(format!(
+    let flag = given
+        .iter()
+        .map(|(id, _)| *id)
+        .chain(varied.map(|s| s.id))
+        .find(|id| set.contains(id));
+    match flag {
+        Some(id) => Err(Failure::usage(format!(
             "{} is what the strings see, set by the frame change in a shot: give the incoming ball \
              with --ball-speed, --ball-descent, --ball-topspin and the racquet with --racquet-speed, \
              --swing-path, --face-angle",
-            crate::model::params::spec(*id).long_flag()
+            spec(id).long_flag()
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// Refuses the shot's flags (and a varied shot parameter) where no shot is played; `fix` says how to
+/// play one.
+pub fn refuse_shot_flags(
+    given: &[(ParamId, String)],
+    varied: Option<&ParamSpec>,
+    fix: &str,
+) -> Result<(), Failure> {
+    let shot = given
+        .iter()
+        .map(|(id, _)| spec(*id))
+        .chain(varied)
+        .find(|s| s.group == Group::Shot);
+    match shot {
+        Some(s) => Err(Failure::usage(format!(
+            "{} is a shot parameter and only a shot uses it: {fix}",
+            s.long_flag()
         ))),
         None => Ok(()),
     }
 }
 
 pub fn run(args: &ShotArgs) -> Result<(), Failure> {
-    refuse_bounce_incidence(&args.params.given)?;
+    refuse_bounce_incidence(&args.params.given, None)?;
     let params = args.params.apply(base()).map_err(Failure::usage)?;
     let shot = shot::play(&params, args.trajectory).map_err(Failure::usage)?;
     let text = match args.format {

@@ -150,3 +150,34 @@ pub fn table(shot: &Shot) -> String {
     );
     out
 }
+
+/// `sweep --shot` as CSV: the varied value's `column`, then the shot's numbers (an empty field for a
+/// null; `in` as true or false).
+pub fn csv(column: &str, rows: &[(f64, Shot)]) -> String {
+    let mut out = format!(
+        "{column},contact_angle_deg,contact_speed,contact_spin,launch_speed,launch_angle_deg,\
+         launch_topspin_rpm,net_clearance_m,landing_m,flight_time_s,in,kick_height_m\n"
+    );
+    // `+ 0.0` writes -0 as 0.
+    let field = |v: Option<f64>| v.map_or(String::new(), |v| (v + 0.0).to_string());
+    for (value, s) in rows {
+        let c = &s.strings.incidence;
+        let l = &s.strings.leaving;
+        let _ = writeln!(
+            out,
+            "{value},{},{},{},{},{},{},{},{},{},{},{}",
+            c.theta1_deg,
+            c.speed,
+            c.spin + 0.0,
+            l.speed(),
+            l.angle_deg() + 0.0,
+            l.topspin() * RPM + 0.0,
+            field(s.net_clearance),
+            field(s.landing_x.map(|x| x - NET_X)),
+            s.flight_time,
+            s.is_in(),
+            field(s.kick_height),
+        );
+    }
+    out
+}
