@@ -37,6 +37,9 @@ pub enum ShotError {
     Court(SolveError),
     #[error(transparent)]
     Flight(#[from] TooLong),
+    /// Only where the path just touches the court at its lowest point, so that it does not come down.
+    #[error("the ball only grazes the court: it does not come down onto it")]
+    Grazes,
 }
 
 /// A ball's velocity (m/s) and spin about z (rad/s, counter-clockwise positive) in the court frame.
@@ -260,7 +263,7 @@ fn bounce_on_court(p: &Params, arriving: &Motion) -> Result<Contact, ShotError> 
     let floor = Surface::at_rest(Vector2::new(0.0, 1.0));
     let incidence = floor
         .incidence(arriving.velocity, arriving.omega_z)
-        .expect("a ball coming down meets the court");
+        .ok_or(ShotError::Grazes)?;
     let bounce = court::bounce(p, &incidence).map_err(ShotError::Court)?;
     let o = &bounce.outcome;
     let (velocity, omega_z) = floor.rebound(&incidence, o.vx2, o.vy2, o.omega2);
