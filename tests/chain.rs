@@ -7,7 +7,7 @@ mod chain_integrator;
 
 use proptest::prelude::*;
 use snapback::model::solve::solve_chain;
-use snapback::model::{Params, PhaseKind, SolveError, solve};
+use snapback::model::{Params, PhaseKind, solve};
 
 #[path = "support/rng.rs"]
 mod rng;
@@ -239,26 +239,10 @@ fn a_free_chain_moves_only_its_first_mass() {
 }
 
 #[test]
-fn string_friction_on_a_chain_is_refused() {
-    let p = Params {
-        chain: 3.0,
-        cart_friction: 2.0,
-        ..Params::default()
-    };
-    let err = solve(&p).unwrap_err();
-    assert_eq!(err, SolveError::ChainStringFriction { chain: 3 });
-    let message = err.to_string();
-    assert!(
-        message.contains("single cart only") && message.contains("--cart-friction"),
-        "{message}"
-    );
-    // The single cart still takes it.
-    assert!(solve(&Params { chain: 1.0, ..p }).is_ok());
-    // A chain length that is not a whole number is not rounded.
+fn a_chain_length_that_is_not_a_whole_number_is_refused() {
     let err = solve(&Params {
         chain: 2.5,
-        cart_friction: 0.0,
-        ..p
+        ..Params::default()
     })
     .unwrap_err();
     assert_eq!(
@@ -311,6 +295,14 @@ fn the_chain_agrees_with_numerical_integration() {
                 <= 1e-7 * p.speed.max(exact.final_state.v.abs()),
             "{what}"
         );
+        assert!(
+            (exact.final_state.x - reference.x1).abs()
+                <= 1e-7 * (p.speed * p.duration).max(exact.final_state.x.abs()),
+            "{what}: X_1 {} {}",
+            exact.final_state.x,
+            reference.x1
+        );
+        assert!(!reference.stuck, "{what}: no string friction holds nothing");
         if exact
             .phases
             .iter()

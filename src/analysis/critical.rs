@@ -1,20 +1,22 @@
-//! The critical angle: below it the ball slides for the whole contact; above it, it grips.
+//! The critical angle: below it the ball slides one way for the whole contact (Eq. (7)); above it the
+//! friction reverses or the ball grips. And the second threshold, where a grip first appears.
 
 use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::model::params::ParamId;
-use crate::model::{Params, SolveError, solve};
+use crate::model::{Params, PhaseKind, SolveError, solve};
 
-/// Where the sliding regime ends as theta1 rises from glancing incidence.
+/// Where a sliding regime ends as theta1 rises from glancing incidence: sliding one way throughout
+/// (the critical angle), or sliding without a grip (the first grip).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 #[serde(tag = "regime", content = "deg", rename_all = "kebab-case")]
 pub enum Critical {
-    /// The ball slides throughout for every theta1 below this angle, degrees.
+    /// The regime holds for every theta1 below this angle, degrees.
     At(f64),
-    /// The ball slides throughout at every angle up to normal incidence.
+    /// The regime holds at every angle up to normal incidence.
     AlwaysSlides,
-    /// The ball grips even at the most glancing angle.
+    /// The regime does not hold even at the most glancing angle.
     NeverSlidesThroughout,
     /// Eq. (7) does not apply: r omega1 >= v1, so the contact point arrives at rest or moving backward
     /// at every angle, and the equation assumes it moves forward.
@@ -53,53 +55,90 @@ pub fn eq7(p: &Params) -> Critical {
     Critical::At(theta.to_degrees())
 }
 
-/// The scan step of [`full_model`], degrees. The sliding regime ends where the slip first reaches zero
-/// exactly at release, and the grip then moves continuously earlier as theta1 rises, so a scan this
-/// fine does not step over it; bisection then gives the angle far finer than 0.01 deg.
+/// The scan step of [`thresholds`], degrees. Sliding one way ends where the slip first reaches zero
+/// exactly at release; as theta1 rises that moment moves continuously earlier, to where N is large
+/// enough to hold a grip, so a scan this fine steps over neither threshold (none did over 1500 random
+/// carts and chains scanned every 0.005 deg); bisection then gives each far finer than 0.01 deg.
 const SCAN_STEP: f64 = 0.05;
 
 /// Scan angles solved together before looking for the first grip.
 const BLOCK: usize = 128;
 
-/// The full model's critical angle for the cart of `p` (its angle is ignored): the largest theta1
-/// below which `slides_throughout()` holds. Every 0.05 deg from 0.05 deg upward is solved, in blocks
-/// on all cores, until one grips; that angle and the one before it are then bisected to 1e-9 deg.
-pub fn full_model(p: &Params) -> Result<Critical, SolveError> {
-    let slides = |deg: f64| -> Result<bool, SolveError> {
-        let mut q = *p;
-        q.set(ParamId::Angle, deg);
-        Ok(solve(&q)?.slides_throughout())
-    };
+/// The full model's two thresholds for the cart of `p` (its angle is ignored).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Thresholds {
+    /// The critical angle as Eq. (7) means it: the largest theta1 below which the ball slides one way
+    /// for the whole contact ([`crate::model::Bounce::slides_throughout`]).
+    pub slides_throughout: Critical,
+    /// The largest theta1 below which the ball never grips. Between the two the slip reaches zero
+    /// while the grip cannot hold (on a light cart, late in the contact as N falls), so the friction
+    /// reverses without gripping (slide-slide). A compliant ball's patch always grips when its slip
+    /// reaches zero, so for it the two coincide.
+    pub first_grip: Critical,
+}
+
+/// What one solve tells the scan.
+#[derive(Clone, Copy)]
+struct Regime {
+    one_way: bool,
+    grips: bool,
+}
+
+fn regime(p: &Params, deg: f64) -> Result<Regime, SolveError> {
+    let mut q = *p;
+    q.set(ParamId::Angle, deg);
+    let b = solve(&q)?;
+    Ok(Regime {
+        one_way: b.slides_throughout(),
+        grips: b.phases.iter().any(|ph| ph.kind == PhaseKind::Grip),
+    })
+}
+
+/// Both thresholds: every 0.05 deg from 0.05 deg upward is solved, in blocks on all cores, until the
+/// ball grips; for each threshold the first angle past it and the one before are then bisected to
+/// 1e-9 deg.
+pub fn thresholds(p: &Params) -> Result<Thresholds, SolveError> {
     let n = (90.0 / SCAN_STEP).round() as usize;
     let angle = |i: usize| if i == n { 90.0 } else { i as f64 * SCAN_STEP };
-    // Blocks of angles solved on all cores, upward from glancing incidence until one grips.
-    let mut first_grip = None;
+    let mut scanned: Vec<Regime> = Vec::with_capacity(n);
     for block in (1..=n).collect::<Vec<_>>().chunks(BLOCK) {
-        let slid: Vec<bool> = block
+        let found: Vec<Regime> = block
             .par_iter()
-            .map(|&i| slides(angle(i)))
+            .map(|&i| regime(p, angle(i)))
             .collect::<Result<_, _>>()?;
-        if let Some(j) = slid.iter().position(|s| !s) {
-            first_grip = Some(block[j]);
+        scanned.extend(found);
+        if scanned.iter().any(|r| r.grips) {
             break;
         }
     }
-    let Some(first_grip) = first_grip else {
-        return Ok(Critical::AlwaysSlides);
-    };
-    if first_grip == 1 {
-        return Ok(Critical::NeverSlidesThroughout);
-    }
-    let (mut lo, mut hi) = (angle(first_grip - 1), angle(first_grip));
-    while hi - lo > 1e-9 {
-        let mid = 0.5 * (lo + hi);
-        if slides(mid)? {
-            lo = mid;
-        } else {
-            hi = mid;
+    let edge = |holds: fn(Regime) -> bool| -> Result<Critical, SolveError> {
+        let Some(first) = scanned.iter().position(|&r| !holds(r)) else {
+            return Ok(Critical::AlwaysSlides);
+        };
+        if first == 0 {
+            return Ok(Critical::NeverSlidesThroughout);
         }
-    }
-    Ok(Critical::At(0.5 * (lo + hi)))
+        // scanned[i] is angle(i + 1).
+        let (mut lo, mut hi) = (angle(first), angle(first + 1));
+        while hi - lo > 1e-9 {
+            let mid = 0.5 * (lo + hi);
+            if holds(regime(p, mid)?) {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        Ok(Critical::At(0.5 * (lo + hi)))
+    };
+    Ok(Thresholds {
+        slides_throughout: edge(|r| r.one_way)?,
+        first_grip: edge(|r| !r.grips)?,
+    })
+}
+
+/// The full model's critical angle: [`Thresholds::slides_throughout`].
+pub fn full_model(p: &Params) -> Result<Critical, SolveError> {
+    thresholds(p).map(|t| t.slides_throughout)
 }
 
 #[cfg(test)]

@@ -1,5 +1,5 @@
-//! `snapback critical-angle`: the angle below which the ball slides for the whole contact, from
-//! Eq. (7) and from the full model for the given cart.
+//! `snapback critical-angle`: the angle below which the ball slides one way for the whole contact, from
+//! Eq. (7) and from the full model for the given cart, and the angle where the ball first grips.
 
 use std::fmt::Write;
 
@@ -15,7 +15,7 @@ pub enum Format {
     /// Readable lines.
     #[default]
     Table,
-    /// One JSON object: `eq7_deg`, `full_model_deg` (null when there is no such angle), their regimes (`eq7`, `full_model`) and the parameters.
+    /// One JSON object: `eq7_deg`, `full_model_deg`, `first_grip_deg` (null when there is no such angle), their regimes (`eq7`, `full_model`, `first_grip`) and the parameters.
     Json,
 }
 
@@ -41,20 +41,33 @@ fn describe(c: Critical) -> String {
     }
 }
 
+fn describe_grip(c: Critical) -> String {
+    match c {
+        Critical::AlwaysSlides => "none: the ball grips at no angle".into(),
+        Critical::NeverSlidesThroughout => "none: the ball grips even at glancing incidence".into(),
+        _ => describe(c),
+    }
+}
+
 pub fn run(args: &CriticalAngleArgs) -> Result<(), Failure> {
     let params = args
         .params
         .apply(Params::default())
         .map_err(Failure::usage)?;
     let eq7 = critical::eq7(&params);
-    let full = critical::full_model(&params).map_err(Failure::usage)?;
+    let critical::Thresholds {
+        slides_throughout: full,
+        first_grip,
+    } = critical::thresholds(&params).map_err(Failure::usage)?;
     let text = match args.format {
         Format::Json => {
             let doc = serde_json::json!({
                 "eq7_deg": eq7.degrees(),
                 "full_model_deg": full.degrees(),
+                "first_grip_deg": first_grip.degrees(),
                 "eq7": eq7,
                 "full_model": full,
+                "first_grip": first_grip,
                 "params": params,
             });
             let mut text =
@@ -67,7 +80,7 @@ pub fn run(args: &CriticalAngleArgs) -> Result<(), Failure> {
             let mut out = String::new();
             let _ = writeln!(
                 out,
-                "Critical angle of incidence: below it the ball slides for the whole contact"
+                "Critical angle of incidence: below it the ball slides one way for the whole contact"
             );
             let _ = writeln!(
                 out,
@@ -82,6 +95,12 @@ pub fn run(args: &CriticalAngleArgs) -> Result<(), Failure> {
             );
             let _ = writeln!(out, "  {:<26}{}", "Eq. (7), rigid surface", describe(eq7));
             let _ = writeln!(out, "  {:<26}{}", "full model, this cart", describe(full));
+            let _ = writeln!(
+                out,
+                "  {:<26}{}",
+                "first grip, this cart",
+                describe_grip(first_grip)
+            );
             if let (Some(a), Some(b)) = (eq7.degrees(), full.degrees()) {
                 let _ = writeln!(out, "  {:<26}{:+.2} deg", "full model - Eq. (7)", b - a);
             }

@@ -41,7 +41,7 @@ pub enum Commands {
     Presets(presets::PresetsArgs),
     /// Solve one bounce per value of a parameter and print the outcomes as CSV, JSON or JSON Lines.
     Sweep(sweep::SweepArgs),
-    /// The angle below which the ball slides for the whole contact: Eq. (7) and the full model.
+    /// The angle below which the ball slides one way for the whole contact (Eq. (7) and the full model), and the angle where it first grips.
     CriticalAngle(critical_angle::CriticalAngleArgs),
     /// The value of a parameter that maximises (or minimises) an outcome, and the bounce there.
     Optimize(optimize::OptimizeArgs),

@@ -72,7 +72,8 @@ fn table(report: &Report) -> String {
     if report.complete() {
         let _ = writeln!(
             out,
-            "every claim is reproduced, close, or differs for a reason shown in its note"
+            "every claim is reproduced, close, or differs, each close value and each difference with \
+             a cause shown in its note"
         );
     }
     out

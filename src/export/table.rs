@@ -47,16 +47,27 @@ pub fn summary(b: &Bounce) -> String {
     // A compliant ball grips through its contact patch, and its force then follows its spring.
     let compliant = b.params.ball_stiffness > 0.0;
     for p in &b.phases {
+        let stuck;
         let slip = match (p.kind, p.slip_sign, p.cart) {
-            (PhaseKind::Grip, _, Cart::Stuck) => "rolling on the stuck cart",
+            (PhaseKind::Grip, _, Cart::Stuck) => {
+                stuck = format!("rolling on the stuck {cart}");
+                &stuck
+            }
             (PhaseKind::Grip, _, _) if compliant && chain => {
                 "patch moves with the first mass, F = k_b e + c_b e'"
             }
             (PhaseKind::Grip, _, _) if compliant => "patch moves with the cart, F = k_b e + c_b e'",
             (PhaseKind::Grip, _, _) if chain => "contact point moves with the first mass",
             (PhaseKind::Grip, _, _) => "contact point moves with the cart",
-            (_, s, Cart::Stuck) if s > 0 => "slipping forward, F = +μN; cart stuck",
-            (_, _, Cart::Stuck) => "slipping backward, F = -μN; cart stuck",
+            (_, s, Cart::Stuck) => {
+                let way = if s > 0 {
+                    "forward, F = +μN"
+                } else {
+                    "backward, F = -μN"
+                };
+                stuck = format!("slipping {way}; {cart} stuck");
+                &stuck
+            }
             (_, s, _) if s > 0 => "slipping forward, F = +μN",
             _ => "slipping backward, F = -μN",
         };

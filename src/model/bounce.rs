@@ -213,8 +213,19 @@ impl Bounce {
         last.patch_at(&self.setup, last.end)
     }
 
-    /// True when the ball slides for the whole contact.
+    /// True when the ball slides one way for the whole contact: every phase a slide with the slip sign
+    /// of the first, so the friction never grips and never changes sign. This is the regime of Eq. (7)
+    /// and Eq. (8): a late reversal (slide-slide) does not count, and neither does a grip. Phases that
+    /// differ only in what the cart does (string friction: it sticks or comes unstuck under the sliding
+    /// ball) keep the slip's sign and do count. For a compliant ball the slide is its contact patch's.
     pub fn slides_throughout(&self) -> bool {
-        self.phases.iter().all(|p| p.kind == PhaseKind::Slide)
+        let one_way = |sign: i8| {
+            self.phases
+                .iter()
+                .all(|p| p.kind == PhaseKind::Slide && p.slip_sign == sign)
+        };
+        self.phases
+            .first()
+            .is_some_and(|first| one_way(first.slip_sign))
     }
 }

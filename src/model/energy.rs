@@ -25,7 +25,8 @@ pub struct Energy {
     pub friction_loss: f64,
     /// Lost in the normal direction, m v_y1^2 (1 - e_y^2)/2.
     pub normal_loss: f64,
-    /// Work against the string friction on the cart: F_c times the distance the cart travelled.
+    /// Work against the string friction on the cart: F_c times the distance the cart (on a chain, its
+    /// first mass) travelled.
     pub cart_friction_loss: f64,
     /// Energy left in the compliant ball's tangential spring as it leaves, k_b e(T)²/2 (0 for a rigid ball).
     pub ball_spring: f64,

@@ -28,11 +28,6 @@ pub enum SolveError {
     #[error("the solve was cancelled")]
     Cancelled,
     #[error(
-        "string friction on the cart (--cart-friction) is modelled for the single cart only, not for a \
-         chain of {chain} masses: set --cart-friction 0 or --chain 1"
-    )]
-    ChainStringFriction { chain: usize },
-    #[error(
         "a compliant ball (--ball-stiffness > 0) is not modelled together with string friction on the \
          cart: set --ball-stiffness 0 (a rigid ball) or --cart-friction 0"
     )]

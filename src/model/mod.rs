@@ -21,6 +21,7 @@ pub mod phase;
 pub mod quadrature;
 pub mod setup;
 pub mod solve;
+pub mod transition;
 pub mod units;
 
 pub use bounce::{Bounce, Outcome, Sample};

@@ -6,9 +6,14 @@
 //! friction that keeps the contact point moving with the first mass, F_s = m_eff (K X)_1 / (M/N + m_eff).
 //! Its own plain rules decide what follows each transition: at zero slip, grip if |F_s| <= mu N, else the
 //! friction reverses; a broken grip slides the way F_s pulled.
+//!
+//! String friction on the first mass (`cart_friction`, F_c): a Coulomb force against its motion, which
+//! holds it still while the push on it, F - (K X)_1, is at most F_c (the ball rolling on it needs no
+//! friction then). Gripping a moving first mass, F_s = m_eff ((K X)_1 + d F_c) / (M/N + m_eff).
 
 use snapback::model::Params;
 
+#[allow(dead_code)] // not every test file reads every field
 #[derive(Clone, Copy, Debug)]
 pub struct Numerical {
     pub vx2: f64,
@@ -17,13 +22,26 @@ pub struct Numerical {
     pub v2: f64,
     /// Kinetic plus spring energy of the chain at the end.
     pub chain_energy: f64,
+    /// The first mass's displacement at the end.
+    pub x1: f64,
     pub phases: usize,
+    /// Whether string friction held the first mass still at some time.
+    pub stuck: bool,
+    /// Whether the ball gripped at any time.
+    pub gripped: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Debug)]
 enum Ball {
     Slide(f64),
     Grip,
+}
+
+/// The first mass: moving in a direction, or held by string friction.
+#[derive(Clone, Copy, PartialEq, Debug)]
+enum Cart {
+    Moving(f64),
+    Stuck,
 }
 
 struct Model {
@@ -36,6 +54,8 @@ struct Model {
     /// Each spring, N k.
     kappa: f64,
     mu: f64,
+    /// String friction on the first mass.
+    fc: f64,
     n0: f64,
     w: f64,
 }
@@ -64,37 +84,45 @@ impl Model {
         self.kappa * (left + right)
     }
 
-    fn static_friction(&self, y: &Y) -> f64 {
-        self.m_eff() * self.spring(y, 0) / (self.link + self.m_eff())
+    /// The static friction that keeps the contact point moving with a first mass moving in `dir`.
+    fn static_friction(&self, y: &Y, dir: f64) -> f64 {
+        self.m_eff() * (self.spring(y, 0) + dir * self.fc) / (self.link + self.m_eff())
     }
 
-    fn friction(&self, ball: Ball, t: f64, y: &Y) -> f64 {
-        match ball {
-            Ball::Slide(dir) => dir * self.mu * self.normal(t),
-            Ball::Grip => self.static_friction(y),
+    fn friction(&self, ball: Ball, cart: Cart, t: f64, y: &Y) -> f64 {
+        match (ball, cart) {
+            (Ball::Slide(dir), _) => dir * self.mu * self.normal(t),
+            (Ball::Grip, Cart::Moving(dir)) => self.static_friction(y, dir),
+            (Ball::Grip, Cart::Stuck) => 0.0,
         }
     }
 
-    fn rate(&self, ball: Ball, t: f64, y: &Y) -> Y {
-        let f = self.friction(ball, t, y);
+    fn rate(&self, ball: Ball, cart: Cart, t: f64, y: &Y) -> Y {
+        let f = self.friction(ball, cart, t, y);
         let n = self.n;
         let mut out = vec![0.0; 2 + 2 * n];
         out[0] = -f / self.m;
         out[1] = f * self.r / self.inertia;
         for i in 0..n {
             out[2 + i] = y[2 + n + i];
-            let push = if i == 0 { f } else { 0.0 };
+            let push = match (i, cart) {
+                (0, Cart::Moving(dir)) => f - dir * self.fc,
+                _ => 0.0,
+            };
             out[2 + n + i] = (push - self.spring(y, i)) / self.link;
+        }
+        if cart == Cart::Stuck {
+            (out[2], out[2 + n]) = (0.0, 0.0);
         }
         out
     }
 
-    fn rk4(&self, ball: Ball, t: f64, y: &Y, h: f64) -> Y {
+    fn rk4(&self, (ball, cart): (Ball, Cart), t: f64, y: &Y, h: f64) -> Y {
         let add = |a: &Y, b: &Y, s: f64| -> Y { a.iter().zip(b).map(|(a, b)| a + s * b).collect() };
-        let k1 = self.rate(ball, t, y);
-        let k2 = self.rate(ball, t + h / 2.0, &add(y, &k1, h / 2.0));
-        let k3 = self.rate(ball, t + h / 2.0, &add(y, &k2, h / 2.0));
-        let k4 = self.rate(ball, t + h, &add(y, &k3, h));
+        let k1 = self.rate(ball, cart, t, y);
+        let k2 = self.rate(ball, cart, t + h / 2.0, &add(y, &k1, h / 2.0));
+        let k3 = self.rate(ball, cart, t + h / 2.0, &add(y, &k2, h / 2.0));
+        let k4 = self.rate(ball, cart, t + h, &add(y, &k3, h));
         (0..y.len())
             .map(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
             .collect()
@@ -104,23 +132,92 @@ impl Model {
         y[0] - self.r * y[1] - y[2 + self.n]
     }
 
-    fn ended(&self, ball: Ball, t: f64, y: &Y) -> bool {
-        match ball {
+    /// Whether the ball's event (the slip reached zero, or the grip broke) and the first mass's (it
+    /// stopped, or was pushed free) have happened.
+    fn events(&self, (ball, cart): (Ball, Cart), t: f64, y: &Y) -> (bool, bool) {
+        let f = self.friction(ball, cart, t, y);
+        let ball_event = match ball {
             Ball::Slide(dir) => -dir * self.slip(y) > 0.0,
-            Ball::Grip => self.static_friction(y).abs() > self.mu * self.normal(t),
+            Ball::Grip => f.abs() > self.mu * self.normal(t),
+        };
+        let cart_event = match cart {
+            Cart::Moving(dir) => self.fc > 0.0 && -dir * y[2 + self.n] > 0.0,
+            Cart::Stuck => (f - self.spring(y, 0)).abs() > self.fc,
+        };
+        (ball_event, cart_event)
+    }
+
+    fn ended(&self, mode: (Ball, Cart), t: f64, y: &Y) -> bool {
+        let (ball_event, cart_event) = self.events(mode, t, y);
+        ball_event || cart_event
+    }
+
+    /// The ball at zero slip on a first mass moving in `dir`: grip if it can hold, else the friction
+    /// reverses (or, from a grip, slides the way F_s pulls).
+    fn ball_on_moving(&self, t: f64, y: &Y, dir: f64, ball: Ball) -> Ball {
+        let fs = self.static_friction(y, dir);
+        if fs.abs() <= self.mu * self.normal(t) {
+            Ball::Grip
+        } else {
+            match ball {
+                Ball::Slide(s) => Ball::Slide(-s),
+                Ball::Grip => Ball::Slide(fs.signum()),
+            }
         }
     }
 
-    fn next(&self, ball: Ball, t: f64, y: &Y) -> Ball {
-        match ball {
-            Ball::Slide(dir) => {
-                if self.static_friction(y).abs() <= self.mu * self.normal(t) {
-                    Ball::Grip
+    /// The first mass at rest under a gripping ball: held if the spring cannot overcome F_c, else it
+    /// moves the way the spring pulls.
+    fn at_rest_under_grip(&self, t: f64, y: &Y, ball: Ball) -> (Ball, Cart) {
+        let spring = self.spring(y, 0);
+        if spring.abs() <= self.fc {
+            (Ball::Grip, Cart::Stuck)
+        } else {
+            let dir = (-spring).signum();
+            (self.ball_on_moving(t, y, dir, ball), Cart::Moving(dir))
+        }
+    }
+
+    fn next(
+        &self,
+        (ball, cart): (Ball, Cart),
+        ball_fired: bool,
+        t: f64,
+        y: &mut Y,
+    ) -> (Ball, Cart) {
+        let n = self.n;
+        let spring = self.spring(y, 0);
+        match (ball, cart, ball_fired) {
+            (Ball::Slide(_), Cart::Moving(dir), true) => {
+                (self.ball_on_moving(t, y, dir, ball), cart)
+            }
+            (Ball::Slide(_), Cart::Stuck, true) => self.at_rest_under_grip(t, y, ball),
+            // The first mass came to rest under a sliding ball.
+            (Ball::Slide(s), Cart::Moving(_), false) => {
+                y[2 + n] = 0.0;
+                let push = s * self.mu * self.normal(t) - spring;
+                if push.abs() <= self.fc {
+                    (ball, Cart::Stuck)
                 } else {
-                    Ball::Slide(-dir)
+                    (ball, Cart::Moving(push.signum()))
                 }
             }
-            Ball::Grip => Ball::Slide(self.static_friction(y).signum()),
+            (Ball::Slide(s), Cart::Stuck, false) => {
+                let push = s * self.mu * self.normal(t) - spring;
+                (ball, Cart::Moving(push.signum()))
+            }
+            (Ball::Grip, Cart::Moving(dir), true) => {
+                (Ball::Slide(self.static_friction(y, dir).signum()), cart)
+            }
+            (Ball::Grip, Cart::Moving(_), false) => {
+                y[2 + n] = 0.0;
+                self.at_rest_under_grip(t, y, ball)
+            }
+            // Pushed free by the spring behind it, under a rolling ball.
+            (Ball::Grip, Cart::Stuck, _) => {
+                let dir = (-spring).signum();
+                (self.ball_on_moving(t, y, dir, ball), Cart::Moving(dir))
+            }
         }
     }
 
@@ -163,6 +260,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         link: p.cart_mass / n as f64,
         kappa: p.stiffness * n as f64,
         mu: p.mu,
+        fc: p.cart_friction,
         n0: (1.0 + p.ey) * std::f64::consts::PI * p.mass * p.speed * theta.sin()
             / (2.0 * p.duration),
         w: std::f64::consts::PI / p.duration,
@@ -172,19 +270,27 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     y[0] = p.speed * theta.cos();
     y[1] = p.spin;
     let slip0 = model.slip(&y);
-    let mut ball = if slip0 == 0.0 {
+    let ball = if slip0 == 0.0 {
         Ball::Grip
     } else {
         Ball::Slide(slip0.signum())
     };
+    let cart = if p.cart_friction > 0.0 {
+        Cart::Stuck
+    } else {
+        Cart::Moving(1.0)
+    };
+    let mut mode = (ball, cart);
     let mut t = 0.0;
     let mut phases = 1;
+    let mut stuck = cart == Cart::Stuck;
+    let mut gripped = ball == Ball::Grip;
     // An event function right after a transition sits on zero; ignore it for a few nanoseconds.
     let mut guard_until = 0.0;
     while t < end {
         let h = max_step.min(end - t);
-        let next = model.rk4(ball, t, &y, h);
-        let crossed = t + h > guard_until && model.ended(ball, t + h, &next);
+        let next = model.rk4(mode, t, &y, h);
+        let crossed = t + h > guard_until && model.ended(mode, t + h, &next);
         if !crossed {
             t += h;
             y = next;
@@ -193,8 +299,8 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         let (mut lo, mut hi) = (0.0, h);
         for _ in 0..200 {
             let mid = 0.5 * (lo + hi);
-            let ym = model.rk4(ball, t, &y, mid);
-            if t + mid > guard_until && model.ended(ball, t + mid, &ym) {
+            let ym = model.rk4(mode, t, &y, mid);
+            if t + mid > guard_until && model.ended(mode, t + mid, &ym) {
                 hi = mid;
             } else {
                 lo = mid;
@@ -203,12 +309,15 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
                 break;
             }
         }
-        y = model.rk4(ball, t, &y, hi);
+        y = model.rk4(mode, t, &y, hi);
         t += hi;
         if t >= end * (1.0 - 1e-12) {
             break;
         }
-        ball = model.next(ball, t, &y);
+        let ball_fired = model.events(mode, t, &y).0;
+        mode = model.next(mode, ball_fired, t, &mut y);
+        stuck |= mode.1 == Cart::Stuck;
+        gripped |= mode.0 == Ball::Grip;
         phases += 1;
         guard_until = t + 1e-9;
     }
@@ -217,6 +326,9 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         omega2: y[1],
         v2: y[2 + n],
         chain_energy: model.energy(&y),
+        x1: y[2],
         phases,
+        stuck,
+        gripped,
     }
 }

@@ -13,6 +13,7 @@
 use snapback::model::Params;
 use std::f64::consts::PI;
 
+#[allow(dead_code)] // not every test file reads every field
 #[derive(Clone, Copy, Debug)]
 pub struct Reference {
     pub vx2: f64,

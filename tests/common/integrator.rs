@@ -6,6 +6,7 @@
 
 use snapback::model::Params;
 
+#[allow(dead_code)] // not every test file reads every field
 #[derive(Clone, Copy, Debug)]
 pub struct Numerical {
     pub vx2: f64,
@@ -14,6 +15,11 @@ pub struct Numerical {
     pub v2: f64,
     /// How many phases the ball and cart went through.
     pub phases: usize,
+    /// How many phases the ball went through (a slide, a grip, a slide the other way), whatever the cart
+    /// did meanwhile.
+    pub ball_phases: usize,
+    /// Whether the ball gripped at any time.
+    pub gripped: bool,
 }
 
 #[derive(Clone, Copy, PartialEq, Debug)]
@@ -212,6 +218,8 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     };
     let mut t = 0.0;
     let mut phases = 1;
+    let mut ball_phases = 1;
+    let mut gripped = ball == Ball::Grip;
     // An event function right after a transition sits on zero; ignore it for a few nanoseconds.
     let mut guard_until = 0.0;
     while t < end {
@@ -243,8 +251,11 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
             break;
         }
         let ball_fired = model.events(ball, cart, t, &y).0;
+        let before = ball;
         (ball, cart) = model.next(ball, cart, ball_fired, t, &mut y);
         phases += 1;
+        ball_phases += usize::from(ball != before);
+        gripped |= ball == Ball::Grip;
         guard_until = t + 1e-9;
     }
     Numerical {
@@ -253,5 +264,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         x2: y[2],
         v2: y[3],
         phases,
+        ball_phases,
+        gripped,
     }
 }

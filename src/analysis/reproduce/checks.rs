@@ -8,6 +8,8 @@ use crate::model::params::{ParamId, spec};
 use crate::model::{Bounce, Params, SolveError, solve};
 
 use super::Row;
+use super::causes::rounded;
+use super::stepping;
 use crate::analysis::cases::{Cart, FIG3_ANGLE, HEAVY, LIGHT, SOFT};
 use crate::analysis::critical::{self, Critical};
 use crate::analysis::optimize::{Objective, optimize};
@@ -104,7 +106,14 @@ fn eq8(base: &Params) -> Result<Vec<Row>, AnalysisError> {
              {eq7:.3} deg Eq. (8) gives {:.2} rad/s",
             best.value,
             coefficient * eq7.to_radians().sin()
-        )),
+        ))
+        .cause(|row| {
+            // The paper evaluates Eq. (8) at its critical angle as printed.
+            let printed = coefficient * at.to_radians().sin();
+            row.prints(printed).then(|| {
+                format!("Eq. (8) at the angle as printed, {at} deg, gives {printed:.3} rad/s")
+            })
+        }),
         Row::new(
             "eq8-spin-at-23.9",
             "heavy cart, omega1 = 0: theta1 of the maximum spin",
@@ -141,6 +150,7 @@ fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         "deg",
         degrees(critical::eq7(&no_spin)),
     )];
+    let heavy_no_spin = full_critical(&HEAVY, base, 0.0)?;
     for cart in [HEAVY, LIGHT] {
         rows.push(
             Row::new(
@@ -150,7 +160,15 @@ fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
                 "deg",
                 full_critical(&cart, base, 0.0)?,
             )
-            .note("largest theta1 below which the ball slides throughout, scan + bisection"),
+            .note("largest theta1 below which the ball slides one way throughout, scan + bisection")
+            .cause(|row| {
+                row.prints(heavy_no_spin).then(|| {
+                    format!(
+                        "the paper states one angle for the three carts of Fig. 2(a), and \
+                         {heavy_no_spin:.3} deg is the heavy cart's"
+                    )
+                })
+            }),
         );
     }
     let soft = full_critical(&SOFT, base, 0.0)?;
@@ -162,19 +180,11 @@ fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             "deg",
             soft,
         )
-        .reason(
-            retune(
-                &SOFT.case(base, 45.0, 0.0),
-                ParamId::Stiffness,
-                1e4,
-                4e4,
-                26.6,
-                |p| critical::full_model(p).ok().and_then(Critical::degrees),
-            )
-            .map(|k| {
-                format!("26.6 deg is the critical angle of the 10 g cart with k = {k:.0} N/m")
-            }),
-        ),
+        .cause(|row| {
+            rounded(&SOFT.case(base, 45.0, 0.0), row.paper, |p| {
+                critical::full_model(p).ok().and_then(Critical::degrees)
+            })
+        }),
     );
     rows.push(
         Row::new(
@@ -209,6 +219,7 @@ fn grip_time(b: &Bounce) -> f64 {
 
 fn fig3a(base: &Params) -> Result<Vec<Row>, AnalysisError> {
     let b = HEAVY.solve(base, FIG3_ANGLE, BACKSPIN)?;
+    let heavy = HEAVY.case(base, FIG3_ANGLE, BACKSPIN);
     let grip = grip_time(&b) * MILLI;
     Ok(vec![
         Row::new(
@@ -218,10 +229,25 @@ fn fig3a(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             "ms",
             grip,
         )
-        .note(format!(
-            "phases {}; {grip:.4} ms rounds to 2.26, and reads 2.25 truncated",
-            b.phase_summary()
-        )),
+        .note(format!("phases {}", b.phase_summary()))
+        .cause(|row| {
+            stepping::cause(
+                &heavy,
+                |v| row.prints(v),
+                "ms",
+                |steps| {
+                    steps
+                        .iter()
+                        .find(|s| s.grip)
+                        .map_or(f64::NAN, |s| s.t * MILLI)
+                },
+            )
+        })
+        .cause(|row| {
+            rounded(&heavy, row.paper, |p| {
+                Some(grip_time(&solve(p).ok()?) * MILLI)
+            })
+        }),
         Row::new(
             "fig3a-roll-ratio",
             "heavy cart: r omega2 / v_x2 at release",
@@ -271,6 +297,9 @@ fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         }
     }
     let light = LIGHT.case(base, FIG3_ANGLE, BACKSPIN);
+    // The friction just before and just after a grip at the time the paper prints, 1.7 ms.
+    let at_printed = b.sample_at(1.7e-3);
+    let static_at_printed = b.setup.grip_gain * at_printed.x;
     let speed_reason = retune::explain(
         &light,
         printed_v,
@@ -317,21 +346,58 @@ fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             "109",
             "N",
             before.friction,
-        ),
+        )
+        .cause(|row| {
+            row.prints(at_printed.friction).then(|| {
+                format!(
+                    "at the grip time as printed, 1.7 ms, mu N = {:.1} N",
+                    at_printed.friction
+                )
+            })
+        })
+        .cause(|row| {
+            rounded(&light, row.paper, |p| {
+                let b = solve(p).ok()?;
+                Some(timeline::sides(&b, timeline::first_grip(&b)?).0.friction)
+            })
+        }),
         Row::new(
             "fig3b-force-drop",
             "light cart: friction F just after the grip (F_s, Eq. (5))",
             "90",
             "N",
             after.friction,
-        ),
+        )
+        .cause(|row| {
+            row.prints(static_at_printed).then(|| {
+                format!(
+                    "at the grip time as printed, 1.7 ms, Eq. (5) gives F_s = {static_at_printed:.1} N"
+                )
+            })
+        })
+        .cause(|row| {
+            rounded(&light, row.paper, |p| {
+                let b = solve(p).ok()?;
+                Some(timeline::sides(&b, timeline::first_grip(&b)?).1.friction)
+            })
+        }),
         Row::new(
             "fig3b-max-x",
             "light cart: maximum cart displacement X",
             "4.4",
             "mm",
             x_max * MILLI,
-        ),
+        )
+        .cause(|row| {
+            stepping::cause(&light, |v| row.prints(v), "mm", |steps| {
+                stepping::peak(steps, |s| s.x).1 * MILLI
+            })
+        })
+        .cause(|row| {
+            rounded(&light, row.paper, |p| {
+                Some(timeline::peak(&solve(p).ok()?, |s| s.x).1 * MILLI)
+            })
+        }),
         Row::new(
             "fig3b-max-x",
             "light cart: time of the maximum X",
@@ -377,8 +443,10 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         false,
         400,
     )?;
-    let spin_reason = at_printed.as_ref().map(|r| {
-        format!(
+    let spin_note = at_printed.as_ref().map_or_else(
+        || "no k from 5 to 50 kN/m gives 162.8 rad/s".to_string(),
+        |r| {
+            format!(
             "k = {:.0} N/m instead of 15000 gives omega2 = 162.8 rad/s with e_x = {:.3}; the most any k \
              gives the 10 g cart is {:.2} rad/s (k = {:.0} N/m)",
             r.params.stiffness,
@@ -386,7 +454,42 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             best_k.objective_value,
             best_k.value
         )
+        },
+    );
+    // Eq. (6): while the ball grips, X = X_max cos(omega (t - t_max)), back at zero a quarter period
+    // after its peak; and the spring that would bring the cart back exactly at T.
+    let omega = b.setup.omega_grip;
+    let back = t_far + std::f64::consts::FRAC_PI_2 / omega;
+    let last = b.phases.last().expect("a bounce has phases");
+    let k_back = retune(&soft, ParamId::Stiffness, 1e4, 4e4, 0.0, |p| {
+        solve(p).ok().map(|b| b.final_state.x)
     });
+    let returning = k_back
+        .map(|k| {
+            let mut p = soft;
+            p.stiffness = k;
+            solve(&p).map_err(case_error("soft spring, cart back at T"))
+        })
+        .transpose()?;
+    let return_reason = format!(
+        "while the ball grips, the cart swings at sqrt(k/(M + m alpha/(1+alpha))) = {omega:.1} rad/s \
+         (Eq. (6)), so from its peak at {:.3} ms it is back at X = 0 only at {:.3} ms, {:.3} ms after T; \
+         the ball slides again from {:.3} ms ({}), and F falls to zero at T with N, not with X; {}",
+        t_far * MILLI,
+        back * MILLI,
+        (back - b.setup.duration) * MILLI,
+        last.start * MILLI,
+        b.phase_summary(),
+        returning.map_or_else(
+            || "no k from 10 to 40 kN/m brings the cart back at T".to_string(),
+            |r| format!(
+                "a curve back at 0 at T needs k = {:.0} N/m ({}, omega2 = {:.1} rad/s)",
+                r.params.stiffness,
+                r.phase_summary(),
+                r.outcome.omega2
+            )
+        )
+    );
     Ok(vec![
         Row::new(
             "fig3c-grip",
@@ -394,7 +497,20 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             "5.0",
             "m/s",
             v_max,
-        ),
+        )
+        .cause(|row| {
+            stepping::cause(
+                &soft,
+                |v| row.prints(v),
+                "m/s",
+                |steps| stepping::peak(steps, |s| s.v).1,
+            )
+        })
+        .cause(|row| {
+            rounded(&soft, row.paper, |p| {
+                Some(timeline::peak(&solve(p).ok()?, |s| s.v).1)
+            })
+        }),
         Row::new(
             "fig3c-grip",
             "soft spring: time of the maximum V (the grip)",
@@ -402,7 +518,20 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             "ms",
             t_fast * MILLI,
         )
-        .note(format!("the ball grips at {:.4} ms", grip_time(&b) * MILLI)),
+        .note(format!("the ball grips at {:.4} ms", grip_time(&b) * MILLI))
+        .cause(|row| {
+            stepping::cause(
+                &soft,
+                |v| row.prints(v),
+                "ms",
+                |steps| stepping::peak(steps, |s| s.v).0 * MILLI,
+            )
+        })
+        .cause(|row| {
+            rounded(&soft, row.paper, |p| {
+                Some(timeline::peak(&solve(p).ok()?, |s| s.v).0 * MILLI)
+            })
+        }),
         Row::new(
             "fig3c-max-x",
             "soft spring: maximum cart displacement X",
@@ -418,13 +547,26 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             t_far * MILLI,
         ),
         Row::new(
+            "fig3c-return",
+            "soft spring: cart displacement X at the end of the contact",
+            "0",
+            "mm",
+            b.final_state.x * MILLI,
+        )
+        .reason(Some(return_reason)),
+        Row::new(
             "fig3c-spin",
             "soft spring: rebound spin omega2",
             "162.8",
             "rad/s",
             b.outcome.omega2,
         )
-        .reason(spin_reason.clone()),
+        .note(&spin_note)
+        .cause(|row| {
+            rounded(&soft, row.paper, |p| {
+                solve(p).ok().map(|b| b.outcome.omega2)
+            })
+        }),
         Row::new(
             "fig3c-spin",
             "soft spring: e_x",
@@ -432,7 +574,8 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             "",
             b.outcome.ex.unwrap_or(f64::NAN),
         )
-        .reason(spin_reason),
+        .note(&spin_note)
+        .cause(|row| rounded(&soft, row.paper, |p| solve(p).ok()?.outcome.ex)),
     ])
 }
 
@@ -478,7 +621,13 @@ fn light_carts(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             "rad/s",
             tenth.objective_value,
         )
-        .note(describe(&tenth)),
+        .note(describe(&tenth))
+        .cause(|row| {
+            // The tuned case: its k is the optimum, not a printed value, so only the ball's are tried.
+            rounded(&tenth.bounce.params, row.paper, |p| {
+                tuned(p, 1e-4).ok().map(|o| o.objective_value)
+            })
+        }),
         Row::new(
             "light-0.1g",
             "0.1 g cart, best k: e_x",
@@ -589,7 +738,12 @@ fn backspin_crossover(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             "deg",
             first(&soft),
         )
-        .note(evidence.clone()),
+        .note(evidence.clone())
+        .cause(|row| {
+            rounded(&SOFT.case(base, FIG3_ANGLE, 0.0), row.paper, |p| {
+                backspin_windows(p).ok()?.first().map(|(a, _)| *a)
+            })
+        }),
         Row::new(
             "backspin-crossover",
             "light cart: lowest theta1 where omega1 = -100 out-spins omega1 = 0",

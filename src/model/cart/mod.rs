@@ -2,10 +2,11 @@
 //! string-on-string friction on the cart (Sec. IV's proposed enhancement; F_c = 0 is the paper's model).
 //! Each phase is a [`Slide`] (Eqs. (1)-(3)) or a [`Grip`] (Eqs. (4)-(6)); [`transition::next`] says
 //! which follows an event.
+//!
+//! [`transition::next`]: super::transition::next
 
 mod grip;
 mod slide;
-pub mod transition;
 
 use std::cell::Cell;
 
@@ -17,6 +18,7 @@ use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise;
 use super::params::Params;
 use super::setup::{Setup, State};
+use super::transition::{self, Touched};
 
 /// A phase on the single cart.
 #[derive(Clone, Copy, Debug)]
@@ -89,7 +91,13 @@ impl Contact for SingleCart {
         } else {
             Ball::Slide(slip0.signum())
         };
-        let mode = transition::next(setup, &state, arriving, Cart::Moving(1), Cause::Start);
+        let mode = transition::next(
+            setup,
+            &touched(setup, &state),
+            arriving,
+            Cart::Moving(1),
+            Cause::Start,
+        );
         (state, mode)
     }
 
@@ -251,6 +259,16 @@ impl Contact for SingleCart {
         if cause == Cause::CartStop {
             state.v = 0.0;
         }
-        transition::next(setup, state, ball, cart, cause)
+        transition::next(setup, &touched(setup, state), ball, cart, cause)
+    }
+}
+
+/// The cart as the transition rules see it.
+fn touched(setup: &Setup, state: &State) -> Touched {
+    Touched {
+        t: state.t,
+        mass: setup.cart_mass,
+        spring: setup.k * state.x,
+        v: state.v,
     }
 }

@@ -8,11 +8,17 @@
 //! swing freely. Transitions follow the paper's rules (grip when |F_s| <= mu N at zero slip, else the
 //! friction reverses; a broken grip slides the way F_s pulled), located by [`first_rise`] on the exact
 //! expressions with curvature bounds from the modal amplitudes. A compliant ball on the chain is its own
-//! model, [`super::compliant`] (its grip is one damped modal system of ball and chain). String friction
-//! on the cart is for the single cart only: a chain with it is refused.
+//! model, [`super::compliant`] (its grip is one damped modal system of ball and chain).
+//!
+//! String friction (Sec. IV's proposed enhancement) acts on the first mass, the one the ball touches:
+//! a constant -d F_c while it moves in direction d, and while the net push on it (the ball's friction
+//! less the link spring N k (X_1 - X_2)) stays within F_c, it holds it still ([`string`]). The modes
+//! that follow each event are chosen by the single cart's rules ([`super::transition`]), the first mass
+//! (with the ball's m_eff while it grips) in the cart's place.
 
 pub mod modes;
 pub mod motion;
+mod string;
 
 use std::cell::RefCell;
 use std::sync::{Arc, OnceLock};
@@ -37,6 +43,8 @@ pub struct Chain {
     pub slide: Modes,
     /// The gripping modes, computed when first needed (a compliant ball never needs them).
     grip: OnceLock<Modes>,
+    /// The modes of the masses behind a first mass held by string friction, when first needed.
+    clamped: OnceLock<Modes>,
     m_eff: f64,
 }
 
@@ -72,6 +80,7 @@ impl Chain {
             link_stiffness,
             slide: Modes::new(n, link_mass, link_stiffness, 0.0),
             grip: OnceLock::new(),
+            clamped: OnceLock::new(),
             m_eff: setup.m_eff,
         }
     }
@@ -80,6 +89,18 @@ impl Chain {
     pub fn grip(&self) -> &Modes {
         self.grip
             .get_or_init(|| Modes::new(self.n, self.link_mass, self.link_stiffness, self.m_eff))
+    }
+
+    /// The modes of the masses behind a held first mass.
+    pub fn clamped(&self) -> &Modes {
+        self.clamped
+            .get_or_init(|| Modes::clamped(self.n - 1, self.link_mass, self.link_stiffness))
+    }
+
+    /// The spring force holding the first mass back, N k (X_1 - X_2) (k X_1 for one mass).
+    pub fn link_force(&self, s: &ChainState) -> f64 {
+        let behind = if self.n > 1 { s.x[1] } else { 0.0 };
+        self.link_stiffness * (s.x[0] - behind)
     }
 
     /// The modes of a sliding (`dir` ±1) or gripping (`dir` 0) phase.
@@ -151,20 +172,16 @@ pub type ChainMotion = Arc<Motion>;
 /// single cart to rounding; [`super::solve`] sends N = 1 to the single cart's own model).
 pub struct ChainOfMasses {
     chain: Arc<Chain>,
+    /// True with string friction on the first mass.
+    string: bool,
     spin: f64,
     /// |v_x1| + r |omega1|: the scale of the speeds, for the event functions' rounding.
     incoming: f64,
 }
 
 impl ChainOfMasses {
-    /// The model for `params`, refused with string friction (modelled for the single cart only) or when
-    /// the chain oscillates too fast to resolve.
+    /// The model for `params`, refused when the chain oscillates too fast to resolve.
     pub fn new(params: &Params, setup: &Setup) -> Result<Self, SolveError> {
-        if params.cart_friction > 0.0 {
-            return Err(SolveError::ChainStringFriction {
-                chain: params.chain as usize,
-            });
-        }
         let chain = Chain::shared(params, setup);
         let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
         if radians > MAX_RADIANS {
@@ -172,6 +189,7 @@ impl ChainOfMasses {
         }
         Ok(ChainOfMasses {
             chain,
+            string: params.cart_friction > 0.0,
             spin: params.spin,
             incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
         })
@@ -193,7 +211,24 @@ impl Contact for ChainOfMasses {
             v: [0.0; MAX],
         };
         let slip0 = setup.slip(&first);
-        let ball = if slip0.abs() <= ROLLING * self.incoming {
+        let rolling = slip0.abs() <= ROLLING * self.incoming;
+        if self.string {
+            let arriving = if rolling {
+                Ball::Grip
+            } else {
+                Ball::Slide(slip0.signum())
+            };
+            let mode = string::next(
+                &self.chain,
+                setup,
+                &state,
+                arriving,
+                Cart::Moving(1),
+                Cause::Start,
+            );
+            return (state, mode);
+        }
+        let ball = if rolling {
             next(&self.chain, setup, &state, Ball::Grip, Cause::Start)
         } else {
             Ball::Slide(slip0.signum())
@@ -209,12 +244,12 @@ impl Contact for ChainOfMasses {
         state.contact()
     }
 
-    fn motion(&self, setup: &Setup, state: &ChainState, (ball, _): Mode) -> ChainMotion {
+    fn motion(&self, setup: &Setup, state: &ChainState, (ball, cart): Mode) -> ChainMotion {
         let dir = match ball {
             Ball::Slide(dir) => dir,
             Ball::Grip => 0.0,
         };
-        Arc::new(Motion::new(self.chain.clone(), setup, *state, dir))
+        Arc::new(Motion::new(self.chain.clone(), setup, *state, dir, cart))
     }
 
     fn first_event(
@@ -222,9 +257,13 @@ impl Contact for ChainOfMasses {
         setup: &Setup,
         motion: &ChainMotion,
         state: &ChainState,
-        (ball, _): Mode,
+        (ball, cart): Mode,
         cause: Cause,
     ) -> Found<()> {
+        if self.string {
+            let event = string::first_event(self, setup, motion, state, (ball, cart), cause);
+            return Found { event, last: None };
+        }
         let (t0, end) = (state.t, setup.duration);
         let event = match ball {
             Ball::Slide(dir) => {
@@ -273,6 +312,12 @@ impl Contact for ChainOfMasses {
         (ball, cart): Mode,
         cause: Cause,
     ) -> Mode {
+        if self.string {
+            if cause == Cause::CartStop {
+                state.v[0] = 0.0;
+            }
+            return string::next(&self.chain, setup, state, ball, cart, cause);
+        }
         (next(&self.chain, setup, state, ball, cause), cart)
     }
 }
@@ -286,7 +331,7 @@ fn next(chain: &Arc<Chain>, setup: &Setup, state: &ChainState, ball: Ball, cause
         Cause::GripBreak(sign) => Ball::Slide(sign),
         Cause::Start if ball != Ball::Grip => ball,
         _ => {
-            let grip = Motion::new(chain.clone(), setup, *state, 0.0);
+            let grip = Motion::new(chain.clone(), setup, *state, 0.0, Cart::Moving(1));
             let static_friction = grip.contact(setup, state.t).friction;
             if static_friction.abs() <= setup.mu * setup.normal(state.t) {
                 Ball::Grip

@@ -93,6 +93,39 @@ impl Modes {
         modes
     }
 
+    /// The masses behind a first mass held still by string friction: `n` links of mass `link_mass`
+    /// between two fixed ends (the held mass and the wall) joined by `n + 1` springs `link_stiffness`.
+    /// Their modes are known in closed form: Φ_ij = sqrt(2/((n+1) m)) sin(i j π/(n+1)) and
+    /// Ω_j = 2 sqrt(κ/m) sin(j π/(2(n+1))) for i, j = 1..n.
+    pub fn clamped(n: usize, link_mass: f64, link_stiffness: f64) -> Modes {
+        assert!(n < MAX, "a chain of {n} masses behind the first");
+        let mut modes = Modes {
+            n,
+            mass: [0.0; MAX],
+            omega: [0.0; MAX],
+            shape: [[0.0; MAX]; MAX],
+            first_stiff: [0.0; MAX],
+            largest: [0.0; MAX],
+            fastest: 0.0,
+        };
+        let ends = (n + 1) as f64;
+        let norm = (2.0 / (ends * link_mass)).sqrt();
+        let frequency = 2.0 * (link_stiffness / link_mass).sqrt();
+        for j in 0..n {
+            modes.mass[j] = link_mass;
+            let omega = frequency * ((j + 1) as f64 * std::f64::consts::FRAC_PI_2 / ends).sin();
+            modes.omega[j] = omega;
+            for i in 0..n {
+                let angle = ((i + 1) * (j + 1)) as f64 * std::f64::consts::PI / ends;
+                modes.shape[i][j] = norm * angle.sin();
+                modes.largest[j] = modes.largest[j].max(modes.shape[i][j].abs());
+            }
+            modes.first_stiff[j] = modes.shape[0][j] * omega * omega;
+            modes.fastest = modes.fastest.max(omega);
+        }
+        modes
+    }
+
     /// The modal coordinates q = Φᵀ D x of displacements (or velocities) `x`.
     pub fn project(&self, x: &[f64; MAX]) -> [f64; MAX] {
         let mut q = [0.0; MAX];
@@ -149,6 +182,28 @@ mod tests {
                         let scale = modes.fastest.powi(2);
                         assert!((spectral[(i, j)] - want).abs() < 1e-12 * scale, "n {n} K");
                     }
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn clamped_modes_diagonalise_the_chain_behind_a_held_mass() {
+        for n in [1, 2, 7, 15] {
+            let (m, kappa) = (0.01 / (n + 1) as f64, 15000.0 * (n + 1) as f64);
+            let modes = Modes::clamped(n, m, kappa);
+            let phi = DMatrix::from_fn(n, n, |i, j| modes.shape[i][j]);
+            // Both ends fixed: every diagonal entry of K is 2 kappa.
+            let k = stiffness(n + 1, kappa).remove_row(0).remove_column(0);
+            let identity = phi.transpose() * &phi * m;
+            let spectral = phi.transpose() * k * &phi;
+            let scale = modes.fastest.powi(2);
+            for i in 0..n {
+                for j in 0..n {
+                    let want = if i == j { 1.0 } else { 0.0 };
+                    assert!((identity[(i, j)] - want).abs() < 1e-12, "n {n} I {i} {j}");
+                    let want = if i == j { modes.omega[i].powi(2) } else { 0.0 };
+                    assert!((spectral[(i, j)] - want).abs() < 1e-12 * scale, "n {n} K");
                 }
             }
         }

@@ -1,9 +1,13 @@
 //! One phase of a chain bounce in closed form: every normal mode a forced (sliding) or free (gripping)
 //! oscillator, written with the resonance- and zero-frequency-safe pieces of [`super::super::oscillator`].
+//! With string friction the first mass moving in direction d also feels the constant -d F_c, a step
+//! forcing Φ_1j (-d F_c) of each mode; held still by it, the first mass stays put and the masses behind
+//! it swing freely in their own modes ([`Modes::clamped`]) about the straight line from it to the wall.
 
 use std::sync::Arc;
 
-use super::super::oscillator::{detuned, forced, free, free_given};
+use super::super::contact::Cart;
+use super::super::oscillator::{detuned, forced, free, free_given, step};
 use super::super::setup::{Setup, State};
 use super::modes::{MAX, Modes};
 use super::{Chain, ChainState};
@@ -24,17 +28,22 @@ enum Response {
 const DETUNED_GAIN: f64 = 16.0;
 
 /// One phase of a chain bounce from `start`: sliding with the slip's sign `dir` (friction dir mu N on the
-/// ball, its reaction on the first mass), or gripping (`dir` = 0).
+/// ball, its reaction on the first mass), or gripping (`dir` = 0), while the first mass moves or is held
+/// still (`cart`).
 #[derive(Clone, Debug)]
 pub struct Motion {
     chain: Arc<Chain>,
     pub dir: f64,
+    pub cart: Cart,
     pub start: ChainState,
     sin_wt0: f64,
     cos_wt0: f64,
+    /// The modal coordinates at the start (held: of the masses behind the first, about their rest line).
     q0: [f64; MAX],
     dq0: [f64; MAX],
     response: [Response; MAX],
+    /// The string friction on the moving first mass, -d F_c (0 without string friction or when held).
+    push: f64,
     /// The first mass's velocity at the start as the modal sum gives it (the grip's impulse on the ball
     /// is measured from it, so that it is exactly zero at the start).
     v1_start: f64,
@@ -54,8 +63,17 @@ pub struct Contact {
 }
 
 impl Motion {
-    pub fn new(chain: Arc<Chain>, setup: &Setup, start: ChainState, dir: f64) -> Motion {
+    pub fn new(
+        chain: Arc<Chain>,
+        setup: &Setup,
+        start: ChainState,
+        dir: f64,
+        cart: Cart,
+    ) -> Motion {
         let (sin_wt0, cos_wt0) = (setup.w * start.t).sin_cos();
+        if cart == Cart::Stuck {
+            return Motion::held(chain, start, dir, (sin_wt0, cos_wt0));
+        }
         let modes = chain.modes(dir);
         let q0 = modes.project(&start.x);
         let dq0 = modes.project(&start.v);
@@ -81,13 +99,44 @@ impl Motion {
         Motion {
             chain,
             dir,
+            cart,
             start,
             sin_wt0,
             cos_wt0,
             q0,
             dq0,
             response,
+            push: cart.friction(setup),
             v1_start,
+        }
+    }
+
+    /// The phase with the first mass held still: the masses behind it swing freely about their rest
+    /// line X_i = X_1 (N + 1 - i)/N.
+    fn held(
+        chain: Arc<Chain>,
+        start: ChainState,
+        dir: f64,
+        (sin_wt0, cos_wt0): (f64, f64),
+    ) -> Motion {
+        let modes = chain.clamped();
+        let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
+        for i in 0..modes.n {
+            x[i] = start.x[i + 1] - rest_line(&chain, &start, i + 1);
+            v[i] = start.v[i + 1];
+        }
+        Motion {
+            q0: modes.project(&x),
+            dq0: modes.project(&v),
+            chain,
+            dir,
+            cart: Cart::Stuck,
+            start,
+            sin_wt0,
+            cos_wt0,
+            response: [Response::Free; MAX],
+            push: 0.0,
+            v1_start: 0.0,
         }
     }
 
@@ -95,8 +144,16 @@ impl Motion {
         &self.chain
     }
 
+    /// The modes of this phase (held: those of the masses behind the first).
     pub fn modes(&self) -> &Modes {
-        self.chain.modes(self.dir)
+        match self.cart {
+            Cart::Stuck => self.chain.clamped(),
+            Cart::Moving(_) => self.chain.modes(self.dir),
+        }
+    }
+
+    pub fn is_held(&self) -> bool {
+        self.cart == Cart::Stuck
     }
 
     pub fn is_grip(&self) -> bool {
@@ -135,12 +192,37 @@ impl Motion {
                 }
             };
         }
+        if self.push != 0.0 {
+            // The string friction switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω².
+            for j in 0..modes.n {
+                let omega = modes.omega[j];
+                let (s, c) = (omega * tau).sin_cos();
+                let (x_step, v_step) = step(s, c, omega, tau);
+                let drive = modes.shape[0][j] * self.push;
+                q[j] += drive * x_step;
+                dq[j] += drive * v_step;
+            }
+        }
         (q, dq, sin_w_tau, cos_w_tau)
+    }
+
+    /// The ball's impulse ∫ F dt since t0 and the friction F at t0 + τ while it slides, Eqs. (1), (2):
+    /// F0 (cos w t0 - cos w t)/w and F0 sin(w t), given sin(w τ) and cos(w τ).
+    #[inline]
+    fn sliding(&self, setup: &Setup, sin_w_tau: f64, cos_w_tau: f64) -> (f64, f64) {
+        let force = self.dir * setup.peak_friction();
+        let impulse =
+            force * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / setup.w;
+        let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
+        (impulse, force * sin_wt.max(0.0))
     }
 
     /// The ball, the first mass and the friction at `t`.
     #[inline]
     pub fn contact(&self, setup: &Setup, t: f64) -> Contact {
+        if self.is_held() {
+            return self.held_contact(setup, t);
+        }
         let modes = self.modes();
         let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
         let (mut x, mut v, mut stiff, mut stiff_rate) = (0.0, 0.0, 0.0, 0.0);
@@ -152,23 +234,25 @@ impl Motion {
             stiff_rate += modes.first_stiff[j] * dq[j];
         }
         let s0 = &self.start;
+        // The spring and string forces on the first mass over its mass: Σ Φ_1j Ω_j² q_j less push/m_1.
+        let held_back = if self.push == 0.0 {
+            stiff
+        } else {
+            stiff - self.push / modes.mass[0]
+        };
         let (impulse, friction, friction_rate, accel) = if self.is_grip() {
-            // F_s = -m_eff V_1', V_1' = -Σ Φ_1j Ω_j² q_j; the impulse on the ball is -m_eff (V_1 - V_1(t0)).
+            // F_s = -m_eff V_1', V_1' = -(Σ Φ_1j Ω_j² q_j - push/m_1) (Eq. (5) on the chain); the
+            // impulse on the ball is -m_eff (V_1 - V_1(t0)).
             let m_eff = setup.m_eff;
             (
                 -m_eff * (v - self.v1_start),
-                m_eff * stiff,
+                m_eff * held_back,
                 m_eff * stiff_rate,
-                -stiff,
+                -held_back,
             )
         } else {
-            // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
-            let force = self.dir * setup.peak_friction();
-            let impulse =
-                force * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / setup.w;
-            let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
-            let friction = force * sin_wt.max(0.0);
-            (impulse, friction, 0.0, friction / modes.mass[0] - stiff)
+            let (impulse, friction) = self.sliding(setup, sin_w_tau, cos_w_tau);
+            (impulse, friction, 0.0, friction / modes.mass[0] - held_back)
         };
         Contact {
             state: State {
@@ -184,23 +268,72 @@ impl Motion {
         }
     }
 
+    /// The ball and the held first mass at `t`: the ball slides on a still surface (Eqs. (1), (2)) or
+    /// rolls on it with no friction.
+    fn held_contact(&self, setup: &Setup, t: f64) -> Contact {
+        let s0 = &self.start;
+        let (impulse, friction) = if self.is_grip() {
+            (0.0, 0.0)
+        } else {
+            let (sin_w_tau, cos_w_tau) = (setup.w * (t - s0.t)).sin_cos();
+            self.sliding(setup, sin_w_tau, cos_w_tau)
+        };
+        Contact {
+            state: State {
+                t,
+                vx: s0.vx - impulse / setup.m,
+                omega: s0.omega + impulse * setup.r / setup.inertia,
+                x: s0.x[0],
+                v: 0.0,
+            },
+            friction,
+            friction_rate: 0.0,
+            accel: 0.0,
+        }
+    }
+
+    /// The spring force on the held first mass, N k (X_1 - X_2), and its rate, at `t`. On the rest line
+    /// X_1 - X_2 = X_1/N; the masses' swing Σ Φ_1j q_j about it adds the rest.
+    pub fn link(&self, setup: &Setup, t: f64) -> (f64, f64) {
+        let modes = self.modes();
+        let (q, dq, _, _) = self.modal(setup, t);
+        let (mut x2, mut v2) = (0.0, 0.0);
+        for j in 0..modes.n {
+            x2 += modes.shape[0][j] * q[j];
+            v2 += modes.shape[0][j] * dq[j];
+        }
+        let chain = &self.chain;
+        let kappa = chain.link_stiffness;
+        (kappa * (self.start.x[0] / chain.n as f64 - x2), -kappa * v2)
+    }
+
     /// The whole chain at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
         let modes = self.modes();
         let (q, dq, _, _) = self.modal(setup, t);
         let contact = self.contact(setup, t).state;
+        let (mut x, mut v) = (modes.expand(&q), modes.expand(&dq));
+        if self.is_held() {
+            // Behind the held mass: its rest line plus the swing.
+            for i in (1..self.chain.n).rev() {
+                x[i] = rest_line(&self.chain, &self.start, i) + x[i - 1];
+                v[i] = v[i - 1];
+            }
+            (x[0], v[0]) = (contact.x, 0.0);
+        }
         ChainState {
             t,
             vx: contact.vx,
             omega: contact.omega,
-            x: modes.expand(&q),
-            v: modes.expand(&dq),
+            x,
+            v,
         }
     }
 
     /// A bound on |q_j'| over the rest of the contact, per mode, for a sliding phase: the smaller of the
-    /// energy bound d/dt sqrt(q'² + Ω² q²) <= |Φ_1j F| integrated (the friction's remaining impulse is
-    /// at most mu N0 (1 + cos w t0)/w) and the amplitudes of the closed form |a| w + the free swing.
+    /// energy bound d/dt sqrt(q'² + Ω² q²) <= |Φ_1j (F + push)| integrated (the friction's remaining
+    /// impulse is at most mu N0 (1 + cos w t0)/w) and the amplitudes of the closed form: |a| w, the free
+    /// swing and the string friction's step |Φ_1j push|/Ω.
     fn speed_bounds(&self, setup: &Setup) -> [f64; MAX] {
         let modes = self.modes();
         let w = setup.w;
@@ -210,9 +343,9 @@ impl Motion {
         for (j, bound) in bounds.iter_mut().enumerate().take(modes.n) {
             let (omega, q0, dq0) = (modes.omega[j], self.q0[j], self.dq0[j]);
             let phi = modes.shape[0][j].abs();
-            let energy = (dq0 * dq0 + (omega * q0).powi(2)).sqrt() + phi * remaining_impulse;
+            let mut energy = (dq0 * dq0 + (omega * q0).powi(2)).sqrt() + phi * remaining_impulse;
             let detuning = omega * omega - w * w;
-            let amplitudes = if detuning == 0.0 || self.is_grip() {
+            let mut amplitudes = if detuning == 0.0 || self.is_grip() {
                 f64::INFINITY
             } else {
                 let a = self.dir * modes.shape[0][j] * force / detuning;
@@ -220,9 +353,34 @@ impl Motion {
                 let v_free = dq0 - a * w * self.cos_wt0;
                 a.abs() * w + ((omega * x_free).powi(2) + v_free * v_free).sqrt()
             };
+            let push = (modes.shape[0][j] * self.push).abs();
+            if push > 0.0 {
+                energy += push * (setup.duration - self.start.t);
+                amplitudes += if omega > 0.0 {
+                    push / omega
+                } else {
+                    f64::INFINITY
+                };
+            }
             *bound = energy.min(amplitudes);
         }
         bounds
+    }
+
+    /// A bound on |q_j'| over a grip phase. Each mode swings freely about its equilibrium under the
+    /// string friction, q_e = Φ_1j push / Ω², so sqrt(q'² + Ω² (q - q_e)²) stays at its start value; a
+    /// mode of zero frequency instead gains speed at the rate Φ_1j push.
+    fn grip_swing(&self, setup: &Setup, j: usize) -> f64 {
+        let modes = self.modes();
+        let (omega, q0, dq0) = (modes.omega[j], self.q0[j], self.dq0[j]);
+        let push = modes.shape[0][j] * self.push;
+        if push == 0.0 {
+            (dq0.powi(2) + (omega * q0).powi(2)).sqrt()
+        } else if omega == 0.0 {
+            dq0.abs() + push.abs() * (setup.duration - self.start.t)
+        } else {
+            (dq0.powi(2) + (omega * q0 - push / omega).powi(2)).sqrt()
+        }
     }
 
     /// The slide's bound on |slip''| and the size of the terms of the slip (for its rounding floor).
@@ -242,19 +400,72 @@ impl Motion {
     }
 
     /// The grip's bound on the second derivative of its margins ±F_s - mu N, and the size of the terms
-    /// of F_s. Each mode swings freely with sqrt(q'² + Ω² q²) = E_j fixed, so
-    /// |F_s''| = m_eff |Σ Φ_1j Ω_j⁴ q_j| <= m_eff Σ |Φ_1j| Ω_j³ E_j; mu N'' is at most mu N0 w².
+    /// of F_s. Each mode swings about its equilibrium with sqrt(q'² + Ω² (q - q_e)²) = E_j fixed, so
+    /// |F_s''| = m_eff |Σ Φ_1j Ω_j⁴ (q_j - q_e)| <= m_eff Σ |Φ_1j| Ω_j³ E_j; mu N'' is at most mu N0 w².
     pub fn margin_curvature(&self, setup: &Setup) -> (f64, f64) {
         let modes = self.modes();
         let mut curvature = setup.peak_friction() * setup.w * setup.w;
         let mut terms = setup.peak_friction();
         for j in 0..modes.n {
             let omega = modes.omega[j];
-            let swing = (self.dq0[j].powi(2) + (omega * self.q0[j]).powi(2)).sqrt();
-            let reach = setup.m_eff * modes.shape[0][j].abs() * omega * swing;
+            let reach = setup.m_eff * modes.shape[0][j].abs() * omega * self.grip_swing(setup, j);
             curvature += reach * omega * omega;
             terms += reach;
         }
+        if self.push != 0.0 {
+            // The string friction's share of F_s, m_eff push/m_1, and the equilibria's Σ Φ_1j Ω_j² q_e.
+            terms += 2.0 * setup.m_eff * (self.push / modes.mass[0]).abs();
+        }
         (curvature, terms)
     }
+
+    /// A bound on |V_1''| over the phase of a moving first mass, and the size of the terms of V_1.
+    /// Sliding, V_1'' = F'/m_1 - Σ Φ_1j Ω_j² q_j'; gripping, each mode's q_j' swings as q_j does, its
+    /// second derivative -Ω_j² q_j', so |V_1''| <= Σ |Φ_1j| Ω_j² E_j.
+    pub fn cart_curvature(&self, setup: &Setup) -> (f64, f64) {
+        let modes = self.modes();
+        let (mut curvature, mut terms) = (0.0, 0.0);
+        if self.is_grip() {
+            for j in 0..modes.n {
+                let swing = self.grip_swing(setup, j);
+                curvature += modes.shape[0][j].abs() * modes.omega[j].powi(2) * swing;
+                terms += modes.shape[0][j].abs() * swing;
+            }
+        } else {
+            curvature = setup.peak_friction() * setup.w / modes.mass[0];
+            for (j, bound) in self.speed_bounds(setup).iter().enumerate().take(modes.n) {
+                curvature += modes.first_stiff[j].abs() * bound;
+                terms += modes.shape[0][j].abs() * bound;
+            }
+        }
+        (curvature, terms)
+    }
+
+    /// For a held first mass: a bound on the second derivative of the spring force N k (X_1 - X_2) on
+    /// it, and the size of its terms. Each mode behind it swings freely, |q_j''| <= Ω_j E_j with
+    /// E_j = sqrt(q_j'² + Ω_j² q_j²) fixed, so |S''| <= N k Σ |Φ_1j| Ω_j E_j.
+    pub fn link_curvature(&self) -> (f64, f64) {
+        let chain = &self.chain;
+        let kappa = chain.link_stiffness;
+        if kappa == 0.0 {
+            return (0.0, 0.0);
+        }
+        let modes = self.modes();
+        let mut curvature = 0.0;
+        let mut terms = kappa * self.start.x[0].abs() / chain.n as f64;
+        for j in 0..modes.n {
+            let omega = modes.omega[j];
+            let swing = (self.dq0[j].powi(2) + (omega * self.q0[j]).powi(2)).sqrt();
+            let phi = modes.shape[0][j].abs();
+            curvature += kappa * phi * omega * swing;
+            terms += kappa * phi * swing / omega;
+        }
+        (curvature, terms)
+    }
+}
+
+/// Mass `i` (0-based) on the straight line from the held first mass to the wall, X_1 (N - i)/N: where
+/// the springs behind a still first mass are at rest.
+fn rest_line(chain: &Chain, start: &ChainState, i: usize) -> f64 {
+    start.x[0] * (chain.n - i) as f64 / chain.n as f64
 }

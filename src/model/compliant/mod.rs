@@ -469,6 +469,7 @@ impl Contact for CompliantBall {
                         setup,
                         state.full,
                         dir,
+                        Cart::Moving(1),
                     ))),
                 };
                 CompliantMotion::Slide(CompliantSlide {

@@ -1,11 +1,24 @@
 //! Which phase follows a transition: the combination of what the ball does (slide one way or the other,
 //! or grip) and what the cart does (move one way or the other, or stick) that is consistent with the
-//! friction laws at the contact and, with string friction, at the cart.
+//! friction laws at the contact and, with string friction, at the cart. Shared by the single cart and
+//! the chain, whose first mass plays the cart: only the forces on the mass the ball touches decide.
 
-use super::super::contact::{Ball, Cart, Cause};
-use super::super::setup::{Setup, State};
+use super::contact::{Ball, Cart, Cause};
+use super::setup::Setup;
 
-/// The ball and cart modes of the phase that starts at `state` after `cause`, in a phase that was
+/// The mass the ball touches at a transition: the single cart, or a chain's first mass.
+#[derive(Clone, Copy, Debug)]
+pub struct Touched {
+    pub t: f64,
+    /// Its mass, kg (M, or M/N on a chain).
+    pub mass: f64,
+    /// The spring force holding it back, N: k X on the cart, N k (X_1 - X_2) on a chain's first mass.
+    pub spring: f64,
+    /// Its velocity, m/s.
+    pub v: f64,
+}
+
+/// The ball and cart modes of the phase that starts at `touched` after `cause`, in a phase that was
 /// `ball` and `cart`.
 ///
 /// A broken grip or a cart that comes unstuck leaves only one choice. Otherwise every candidate is
@@ -13,7 +26,13 @@ use super::super::setup::{Setup, State};
 /// F_c, and a mode that starts from rest (zero slip, a cart at rest) must move the way its friction
 /// allows. Without string friction this is the paper's rule: grip if Eq. (5) can hold the ball, or
 /// else the friction reverses.
-pub fn next(setup: &Setup, state: &State, ball: Ball, cart: Cart, cause: Cause) -> (Ball, Cart) {
+pub fn next(
+    setup: &Setup,
+    touched: &Touched,
+    ball: Ball,
+    cart: Cart,
+    cause: Cause,
+) -> (Ball, Cart) {
     match cause {
         Cause::GripBreak(sign) => return (Ball::Slide(sign), cart),
         Cause::Unstick(dir) => return (ball, Cart::Moving(dir)),
@@ -23,7 +42,7 @@ pub fn next(setup: &Setup, state: &State, ball: Ball, cart: Cart, cause: Cause) 
     let any_cart = [Cart::Stuck, Cart::Moving(1), Cart::Moving(-1)];
     // A gripping ball is at zero slip too, so a cart that stops under it may let it slide.
     let slip_at_rest = cause == Cause::SlipZero || ball == Ball::Grip;
-    let cart_at_rest = setup.cart_friction > 0.0 && (state.v == 0.0 || cause == Cause::CartStop);
+    let cart_at_rest = setup.cart_friction > 0.0 && (touched.v == 0.0 || cause == Cause::CartStop);
     let balls: &[Ball] = if slip_at_rest {
         &any_ball
     } else {
@@ -37,8 +56,9 @@ pub fn next(setup: &Setup, state: &State, ball: Ball, cart: Cart, cause: Cause) 
         std::slice::from_ref(&cart)
     };
     let at = At {
-        limit: setup.mu * setup.normal(state.t),
-        spring: setup.k * state.x,
+        limit: setup.mu * setup.normal(touched.t),
+        mass: touched.mass,
+        spring: touched.spring,
         slip_at_rest,
         cart_at_rest,
     };
@@ -57,9 +77,11 @@ pub fn next(setup: &Setup, state: &State, ball: Ball, cart: Cart, cause: Cause) 
     (best.1, best.2)
 }
 
-/// The forces at a transition: mu N, the spring's k X, and which contacts are at rest.
+/// The forces at a transition: mu N, the touched mass and the spring force on it, and which contacts
+/// are at rest.
 struct At {
     limit: f64,
+    mass: f64,
     spring: f64,
     slip_at_rest: bool,
     cart_at_rest: bool,
@@ -69,16 +91,18 @@ struct At {
 fn violation(setup: &Setup, at: &At, ball: Ball, cart: Cart) -> f64 {
     let At {
         limit,
+        mass,
         spring,
         slip_at_rest,
         cart_at_rest,
     } = *at;
-    let gripped_mass = setup.cart_mass + setup.m_eff;
+    let gripped_mass = mass + setup.m_eff;
     match (ball, cart) {
         // Rolling on a still cart needs no friction; the spring alone must not move the cart.
         (Ball::Grip, Cart::Stuck) => (spring.abs() - setup.cart_friction).max(0.0),
         (Ball::Grip, Cart::Moving(dir)) => {
             let string = f64::from(dir) * setup.cart_friction;
+            // Eq. (5) with the string friction beside the spring force.
             let static_friction = setup.m_eff * (spring + string) / gripped_mass;
             let mut v = (static_friction.abs() - limit).max(0.0);
             if cart_at_rest {
@@ -105,7 +129,7 @@ fn violation(setup: &Setup, at: &At, ball: Ball, cart: Cart) -> f64 {
             }
             if slip_at_rest {
                 // slip' = -F/m_eff - V' must carry the slip the way `dir` says.
-                let slip_rate = -friction / setup.m_eff - push / setup.cart_mass;
+                let slip_rate = -friction / setup.m_eff - push / mass;
                 v += (-dir * slip_rate * setup.m_eff).max(0.0);
             }
             v
