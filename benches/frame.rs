@@ -5,6 +5,7 @@
 //! cursor, and the frame.
 
 use std::hint::black_box;
+use std::time::Duration;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use crossterm::event::{KeyCode, KeyEvent, KeyModifiers};
@@ -21,6 +22,7 @@ fn keystroke_to_frame(c: &mut Criterion) {
         let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
         let mut app = App::new(Params::default(), Theme::default()).unwrap();
         app.view = view;
+        app.settle(Duration::from_secs(60));
         // Select the incident spin: stepping it changes every curve (the angle would leave the sweeps be).
         app.update(Action::SelectNext);
         app.update(Action::SelectNext);
@@ -32,6 +34,8 @@ fn keystroke_to_frame(c: &mut Criterion) {
                 up = !up;
                 let action = keys::action_for(black_box(key), &app.mode).unwrap();
                 app.update(action);
+                // The worker's answer (cached after the first two presses: the spin alternates).
+                app.settle(Duration::from_secs(60));
                 draw(&mut terminal, &app).unwrap();
                 black_box(terminal.backend().buffer().area);
             })
@@ -50,6 +54,7 @@ fn view_name(view: View) -> &'static str {
 fn playback_frame(c: &mut Criterion) {
     let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
     let mut app = App::new(Params::default(), Theme::default()).unwrap();
+    app.settle(Duration::from_secs(60));
     c.bench_function("frame/playback", |b| {
         b.iter(|| {
             if !app.playing {

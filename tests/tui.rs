@@ -198,7 +198,7 @@ fn a_rejected_edit_shows_why_and_keeps_the_value() {
         assert_eq!(app.mode, Mode::Normal);
         let status = screen.lines().last().unwrap();
         assert!(
-            status.starts_with("--angle must be in (0, 90] deg; got 95 (value unchanged)"),
+            status.starts_with("incidence angle θ1 must be in (0, 90] deg; got 95"),
             "{status}"
         );
         assert!(line_with(&screen, "incidence angle").contains("60.0 deg"));
@@ -214,7 +214,7 @@ fn a_rejected_edit_shows_why_and_keeps_the_value() {
         let (app, screen) = explore(160, 48, events);
         assert_eq!(app.params, Params::default());
         assert!(
-            line_with(&screen, reason).starts_with("--angle: "),
+            line_with(&screen, reason).starts_with("incidence angle θ1: "),
             "{screen}"
         );
     }
@@ -281,10 +281,12 @@ fn the_help_overlay_lists_every_key() {
             assert!(screen.contains(&keys_label(binding)), "{binding:?}");
         }
     }
-    // Esc closes the overlay without quitting; a second Esc quits.
-    let (app, _) = explore(80, 24, vec![key(KeyCode::Char('?')), key(KeyCode::Esc)]);
-    assert_eq!(app.mode, Mode::Normal);
-    assert!(!app.quit);
+    // Esc and q close the overlay without quitting; a second Esc quits.
+    for close in [KeyCode::Esc, KeyCode::Char('q')] {
+        let (app, _) = explore(80, 24, vec![key(KeyCode::Char('?')), key(close)]);
+        assert_eq!(app.mode, Mode::Normal);
+        assert!(!app.quit);
+    }
     let (app, _) = explore(
         80,
         24,
@@ -308,13 +310,18 @@ fn q_esc_and_ctrl_c_quit() {
 }
 
 #[test]
-fn a_small_terminal_gets_a_notice_and_q_still_quits() {
-    let (app, screen) = explore(79, 24, vec![key(KeyCode::Right)]);
+fn a_small_terminal_gets_a_notice_ignores_parameter_keys_and_q_and_ctrl_c_still_quit() {
+    // Keys that would act blind behind the notice are ignored.
+    let (app, screen) = explore(79, 24, vec![key(KeyCode::Right), key(KeyCode::Tab)]);
     assert!(
         screen.contains("terminal too small: need 80 x 24"),
         "{screen}"
     );
-    assert_eq!(app.params.angle_deg, 61.0);
+    assert_eq!(app.params.angle_deg, 60.0);
+    assert_eq!(app.view, View::Contact);
+    assert!(!app.quit);
+    let (app, _) = explore(79, 24, vec![ctrl('c')]);
+    assert!(app.quit);
     let (app, screen) = explore(60, 10, vec![key(KeyCode::Char('q'))]);
     assert!(app.quit);
     assert!(
@@ -366,6 +373,7 @@ fn no_color_draws_without_colours() {
     let theme = Theme {
         color: false,
         marker: Marker::Braille,
+        ascii: false,
     };
     for events in [
         vec![],
@@ -398,6 +406,7 @@ fn dot_and_block_markers_draw_without_braille() {
         let theme = Theme {
             color: true,
             marker,
+            ascii: false,
         };
         let (_, terminal) = explore_with(theme, 160, 48, vec![]);
         let screen = text(&terminal);
@@ -434,4 +443,96 @@ fn snapshots_of_the_default_screens() {
         let (_, sweep) = explore(w, h, vec![key(KeyCode::Tab)]);
         insta::assert_snapshot!(format!("sweep_{w}x{h}"), sweep);
     }
+}
+
+#[test]
+fn masses_of_a_kilogram_and_more_show_in_kg() {
+    // From the angle down to the cart mass (after the ball's stiffness and damping), then typed.
+    let mut events = vec![key(KeyCode::Down); 11];
+    events.push(key(KeyCode::Enter));
+    events.extend(typed("10kg"));
+    events.push(key(KeyCode::Enter));
+    let (app, screen) = explore(160, 48, events);
+    assert_eq!(app.params.cart_mass, 10.0);
+    assert!(
+        line_with(&screen, "cart mass").contains("10.000 kg"),
+        "{screen}"
+    );
+}
+
+#[test]
+fn a_long_chattering_contact_keeps_labels_inside_the_charts_and_the_outcome_short() {
+    // T = 5 s: hundreds of phases, and y labels as wide as their column.
+    let params = Params {
+        duration: 5.0,
+        ..Params::default()
+    };
+    let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
+    let mut app = App::new(params, Theme::default()).unwrap();
+    run(
+        &mut terminal,
+        &mut app,
+        &mut Scripted::from(Vec::<Event>::new()),
+    )
+    .unwrap();
+    let screen = text(&terminal);
+    assert!(app.solved.as_ref().unwrap().bounce.phases.len() > 100);
+    // The left column's right border (column 42 at 160 wide) is whole down to the status line.
+    for (row, line) in screen.lines().take(47).enumerate() {
+        let border = line.chars().nth(42).unwrap();
+        assert!("│┐┘┤".contains(border), "row {row}: {line}\n{screen}");
+    }
+    // The phase sequence is cut short with its count.
+    assert!(
+        screen.contains("slide-grip-slide-grip-slide-grip-… (") && screen.contains("phases)"),
+        "{screen}"
+    );
+}
+
+#[test]
+fn the_help_scrolls_to_its_end_at_80_x_24_and_arrows_do_not_step_behind_it() {
+    // Opened, the help starts with the keys; the selected parameter's notes are below the fold.
+    let (_, screen) = explore(80, 24, vec![key(KeyCode::Char('?'))]);
+    assert!(screen.contains("Keys"), "{screen}");
+    assert!(!screen.contains("(--angle)"), "{screen}");
+    // Scrolled down, they come into view; the arrows scrolled and changed nothing.
+    let mut events = vec![key(KeyCode::Char('?'))];
+    events.extend(vec![key(KeyCode::Down); 60]);
+    let (app, screen) = explore(80, 24, events);
+    assert!(screen.contains("(--angle)"), "{screen}");
+    assert!(screen.contains("While typing a value"), "{screen}");
+    assert_eq!(app.selected, 0);
+    assert_eq!(app.params, Params::default());
+    // And back up to the top.
+    let mut events = vec![key(KeyCode::Char('?'))];
+    events.extend(vec![key(KeyCode::Down); 60]);
+    events.extend(vec![key(KeyCode::Char('k')); 200]);
+    let (_, screen) = explore(80, 24, events);
+    assert!(screen.contains("Keys"), "{screen}");
+}
+
+#[test]
+fn a_start_the_solver_refuses_opens_and_says_so() {
+    // A 1 mg cart on a 1 MN/m spring oscillates too fast to resolve: in range, but refused.
+    let params = Params {
+        cart_mass: 1e-6,
+        stiffness: 1e9,
+        ..Params::default()
+    };
+    let mut terminal = Terminal::new(TestBackend::new(80, 24)).unwrap();
+    let mut app = App::new(params, Theme::default()).unwrap();
+    run(
+        &mut terminal,
+        &mut app,
+        &mut Scripted::from(vec![key(KeyCode::Right)]),
+    )
+    .unwrap();
+    let screen = text(&terminal);
+    assert!(screen.contains("oscillates too fast"), "{screen}");
+    assert!(
+        screen.contains("refused: the status line says why"),
+        "{screen}"
+    );
+    assert!(!screen.contains("solving"), "{screen}");
+    assert!(app.solved.is_none());
 }

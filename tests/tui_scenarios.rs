@@ -317,6 +317,22 @@ fn each_kind_of_bad_file_names_the_file_line_and_key_and_changes_nothing() {
         message(&app)
     );
     assert_eq!(app.params, Params::default());
+    // Standard input is the terminal, and a FIFO would block the explorer: both are refused at once.
+    let fifo = dir.path().join("pipe.toml");
+    let made = std::process::Command::new("mkfifo")
+        .arg(&fifo)
+        .status()
+        .unwrap();
+    assert!(made.success());
+    for (name, reason) in [("-", "standard input"), ("pipe.toml", "not a regular file")] {
+        let mut app = app_in(Params::default(), dir.path());
+        let mut events = vec![char('o')];
+        events.extend(typed(name));
+        events.push(key(KeyCode::Enter));
+        drive(&mut app, 80, 24, events);
+        assert!(message(&app).contains(reason), "{name}: {}", message(&app));
+        assert_eq!(app.params, Params::default());
+    }
 }
 
 #[test]
@@ -412,7 +428,11 @@ fn the_baseline_gives_the_cores_differences() {
     let base = solve(&Params::default()).unwrap().outcome;
     let now = solve(&app.params).unwrap().outcome;
     assert_eq!(app.params.cart_mass, 0.005);
-    let deltas = app.baseline.as_ref().unwrap().deltas(&app.bounce);
+    let deltas = app
+        .baseline
+        .as_ref()
+        .unwrap()
+        .deltas(&app.solved.as_ref().unwrap().bounce);
     assert_eq!(deltas.omega2, now.omega2 - base.omega2);
     assert_eq!(deltas.ex, Some(now.ex.unwrap() - base.ex.unwrap()));
     let d_omega2 = format!("{:+.1} rad/s", now.omega2 - base.omega2);
@@ -545,4 +565,34 @@ fn the_help_lists_the_scenario_keys() {
             );
         }
     }
+}
+
+#[test]
+fn quitting_with_changes_since_the_scenario_file_asks_once() {
+    let dir = TempDir::new("unsaved");
+    let mut app = app_in(Params::default(), dir.path());
+    let mut events = vec![char('s')];
+    events.extend(typed("kept"));
+    events.push(key(KeyCode::Enter));
+    drive(&mut app, 160, 48, events);
+    assert_eq!(
+        message(&app),
+        format!("saved {}", dir.path().join("kept.toml").display())
+    );
+    // Unchanged since the save: q quits.
+    drive(&mut app, 160, 48, vec![char('q')]);
+    assert!(app.quit);
+    app.quit = false;
+    // Changed: the first q asks, anything else forgets the question, a q right after it quits.
+    drive(&mut app, 160, 48, vec![key(KeyCode::Right), char('q')]);
+    assert!(!app.quit);
+    assert!(
+        message(&app).contains("kept.toml are not saved"),
+        "{}",
+        message(&app)
+    );
+    drive(&mut app, 160, 48, vec![char('j'), char('q')]);
+    assert!(!app.quit);
+    drive(&mut app, 160, 48, vec![key(KeyCode::Esc)]);
+    assert!(app.quit);
 }

@@ -70,6 +70,7 @@ fn rows(
 pub fn row(base: &Params, span: &Span, value: f64) -> Result<Row, AnalysisError> {
     let bounce = span.solve(base, value)?;
     let o = &bounce.outcome;
+    let patch = bounce.final_patch();
     Ok(Row {
         value,
         omega2: o.omega2,
@@ -80,8 +81,8 @@ pub fn row(base: &Params, span: &Span, value: f64) -> Result<Row, AnalysisError>
         phases: bounce.phase_summary(),
         slides_throughout: bounce.slides_throughout(),
         cart_stuck: bounce.cart_ever_stuck(),
-        stretch: bounce.final_patch().map(|(e, _)| e),
-        patch_slip: bounce.final_patch().map(|(_, slip)| slip),
+        stretch: patch.map(|(e, _)| e),
+        patch_slip: patch.map(|(_, slip)| slip),
     })
 }
 

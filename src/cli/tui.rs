@@ -5,7 +5,7 @@ use ratatui::symbols::Marker;
 
 use super::{Failure, ParamArgs};
 use crate::model::Params;
-use crate::tui::{self, OpenError, Options};
+use crate::tui::{self, OpenError, Options, playback};
 
 /// How the charts draw their curves.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -36,6 +36,15 @@ pub struct TuiArgs {
     /// Chart marker: braille (default), or dot or block for fonts without braille.
     #[arg(long, value_enum, default_value_t = MarkerArg::Braille)]
     pub marker: MarkerArg,
+    /// Frames a second while the bounce plays (fewer send fewer bytes over a slow link).
+    #[arg(long, default_value_t = playback::DEFAULT_FPS, value_parser = clap::value_parser!(u32).range(1..=60))]
+    pub fps: u32,
+    /// Write ASCII only (the default when the locale is not UTF-8: LC_ALL, LC_CTYPE, LANG).
+    #[arg(long, conflicts_with = "unicode")]
+    pub ascii: bool,
+    /// Write Unicode (braille, box drawing, Greek letters) whatever the locale says.
+    #[arg(long)]
+    pub unicode: bool,
 }
 
 pub fn run(args: &TuiArgs) -> Result<(), Failure> {
@@ -47,6 +56,8 @@ pub fn run(args: &TuiArgs) -> Result<(), Failure> {
         params,
         marker: args.marker.into(),
         color: !tui::no_color_requested(),
+        ascii: args.ascii || !(args.unicode || tui::locale::utf8_here()),
+        fps: args.fps,
     };
     tui::open(options).map_err(|e| match e {
         OpenError::NotATerminal | OpenError::Solve(_) => Failure::usage(e),

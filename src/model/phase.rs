@@ -102,7 +102,7 @@ impl Phase {
     /// ball.
     pub fn patch_at(&self, setup: &Setup, t: f64) -> Option<(f64, f64)> {
         match &self.motion {
-            Motion::Compliant(c) => Some((c.at(setup, t).e, c.patch_slip(setup, t))),
+            Motion::Compliant(c) => Some(c.stretch_and_patch_slip(setup, t)),
             _ => None,
         }
     }

@@ -1,25 +1,24 @@
-//! The explorer's state and the one place it changes: [`App::update`] applies an [`Action`], re-solves the
-//! bounce and recomputes the derived curves; [`App::advance`] moves the time cursor while playing. Drawing
+//! The explorer's state and the one place it changes: [`App::update`] applies an [`Action`] and asks the
+//! workers for what the new parameters need ([`super::solver`]); [`App::poll`] takes their answers as they
+//! come; [`App::advance`] moves the time cursor while playing. Nothing here waits for a solve, and drawing
 //! only reads an `App`.
 
-use std::time::Duration;
-
 use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use crate::model::params::{BOUNCE_PARAMS as PARAMS, ParamSpec};
-use crate::model::{Bounce, Params, Sample, SolveError, solve};
+use crate::model::{Params, Sample, SolveError};
 
 use super::baseline::Baseline;
 use super::heatmap::Heatmap;
 use super::history::History;
 use super::playback::{self, Speed};
 use super::scenarios::FilePrompt;
-use super::sweep::Sweep;
-use super::travel::Travel;
+use super::solved::Solved;
+use super::solver::{Answer, Arrival, Solver};
+use super::sweep::Sweeps;
 use super::ui::theme::Theme;
-
-/// Evenly spaced samples of the time series behind the contact charts (transitions are added by the core).
-pub const SERIES_SAMPLES: usize = 400;
 
 /// What the right-hand side of the screen shows; Tab cycles through them in this order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -97,6 +96,10 @@ pub enum Action {
     },
     ToggleHelp,
     CloseHelp,
+    /// Scroll the help a row down or up.
+    ScrollHelp {
+        down: bool,
+    },
     Quit,
     /// Open the preset picker.
     OpenPicker,
@@ -160,6 +163,7 @@ pub struct Message {
 /// Everything the explorer shows.
 #[derive(Debug)]
 pub struct App {
+    /// The parameters as the user set them; shown at once, solved on the worker.
     pub params: Params,
     /// Index into [`PARAMS`] of the highlighted parameter.
     pub selected: usize,
@@ -169,40 +173,62 @@ pub struct App {
     pub quit: bool,
     /// Colours and chart marker.
     pub theme: Theme,
-    /// The solved bounce for `params`.
-    pub bounce: Bounce,
-    /// Its time series, for the contact charts.
-    pub series: Vec<Sample>,
-    /// Rebound spin against incidence angle, for the sweep view.
-    pub sweep: Sweep,
-    /// The same for the comparison incident spin ([`Sweep::comparison_spin`]).
-    pub sweep_comparison: Sweep,
+    /// The newest bounce solved: for `params`, or for earlier ones while those are being solved (the
+    /// charts are then marked stale). `None` until the first answer.
+    pub solved: Option<Arc<Solved>>,
+    /// Rebound spin against incidence angle for the current and the comparison spin, for the sweep view:
+    /// the newest computed (stale while the current parameters' are being computed).
+    pub sweeps: Option<Arc<Sweeps>>,
     /// Where the explorer started (R goes back here): the defaults, or a preset, scenario or flags.
     pub start: Params,
     /// Parameter changes that can be undone and redone.
     pub history: History,
+    /// The history as it was when `solved` was made current: put back if a change is refused.
+    settled_history: History,
+    /// Says what a refusal of the parameters asked for leaves unchanged: `value` or `parameters`.
+    unchanged: &'static str,
     /// A pinned bounce the charts and the outcome compare against.
     pub baseline: Option<Baseline>,
     /// Where scenario files and exports go, and relative file names are read from.
     pub dir: PathBuf,
     /// The scenario file last opened or saved, as typed, offered by the next prompt.
     pub last_file: Option<String>,
+    /// The parameters as that file holds them: quitting with others asks once.
+    pub(super) file_params: Option<Params>,
+    /// True after a quit that was asked about: the next quit goes.
+    quit_asked: bool,
+    /// Rows the help is scrolled down by (the overlay stops at its last row).
+    pub help_scroll: u16,
     /// The time cursor, s, in `[0, T]`: the charts' vertical line, their readouts and the schematic.
     pub cursor: f64,
     /// True while the bounce plays in slow motion.
     pub playing: bool,
     pub speed: Speed,
-    /// The ball's travel and rotation (numerical integrals of the exact solution), for the schematic.
-    pub travel: Travel,
+    /// Wall time between frames while playing.
+    pub frame: Duration,
     /// omega2 over cart mass and stiffness, for the heatmap view; computed when that view is shown.
     pub heatmap: Heatmap,
+    /// The workers and their answers so far.
+    solver: Solver,
+    /// When the parameters or the view last changed: pending panels are marked stale only once an
+    /// answer has taken [`STALE_AFTER`], so a quick answer costs no dimmed frame.
+    changed_at: Instant,
+    /// True while pending panels are drawn dimmed.
+    pub stale_marked: bool,
 }
 
+/// The most the help scrolls: more than its rows on the narrowest screen.
+const HELP_SCROLL_LIMIT: u16 = 80;
+
+/// How long an answer may take before the panels waiting for it are dimmed.
+pub const STALE_AFTER: Duration = Duration::from_millis(150);
+
 impl App {
-    /// An explorer on `params`, with the incidence angle selected; fails if the bounce cannot be solved.
+    /// An explorer on `params`, with the incidence angle selected; fails only if the parameters are out
+    /// of range. The bounce is solved on the worker: the first frame does not wait for it.
     pub fn new(params: Params, theme: Theme) -> Result<Self, SolveError> {
-        let bounce = solve(&params)?;
-        Ok(App {
+        params.validate()?;
+        let mut app = App {
             params,
             selected: 0,
             view: View::Contact,
@@ -210,63 +236,181 @@ impl App {
             message: None,
             quit: false,
             theme,
-            series: bounce.series(SERIES_SAMPLES),
-            sweep: Sweep::compute(&params),
-            sweep_comparison: Sweep::comparison(&params),
+            solved: None,
+            sweeps: None,
             cursor: 0.0,
             playing: false,
             speed: Speed::default(),
-            travel: Travel::compute(&bounce),
+            frame: playback::FRAME,
             heatmap: Heatmap::default(),
-            bounce,
             start: params,
             history: History::default(),
+            settled_history: History::default(),
+            unchanged: "value",
             baseline: None,
             dir: std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
             last_file: None,
-        })
+            file_params: None,
+            quit_asked: false,
+            help_scroll: 0,
+            solver: Solver::default(),
+            changed_at: Instant::now(),
+            stale_marked: false,
+        };
+        app.want();
+        Ok(app)
     }
 
-    /// Takes the heatmap rows that have arrived; true if the map changed.
-    pub fn poll_heatmap(&mut self) -> bool {
-        self.heatmap.poll()
-    }
-
-    /// True while the heatmap is being computed: the event loop then wakes now and then to collect rows.
-    pub fn heatmap_pending(&self) -> bool {
-        self.heatmap.pending()
-    }
-
-    /// Asks for the heatmap of the current parameters if it is on screen.
-    fn refresh_heatmap(&mut self) {
+    /// Asks the workers for what the screen needs now, and takes at once what is already known: the
+    /// bounce always, the sweeps in the sweep view (then the baseline's), the map in the heatmap view.
+    fn want(&mut self) {
+        if let Some(answer) = self.solver.bounce(&self.params) {
+            self.answered(self.params, answer);
+        }
+        if self.view == View::Sweep
+            && let Some(sweeps) = self.solver.sweeps(&self.params)
+        {
+            self.sweeps = Some(sweeps);
+            if let Some(base) = &self.baseline {
+                let params = base.solved.params;
+                self.solver.sweeps(&params);
+            }
+        }
         if self.view == View::Heatmap {
             self.heatmap.request(&self.params);
         }
     }
 
-    /// The contact time T, s.
+    /// Takes what the workers have sent, and marks panels stale whose answer is overdue; true if anything
+    /// on screen changed.
+    pub fn poll(&mut self) -> bool {
+        let arrived = self.solver.collect();
+        let heatmap = self.heatmap.poll();
+        let taken = self.take(arrived);
+        let marked = self.solver.busy() && self.changed_at.elapsed() >= STALE_AFTER;
+        let flipped = marked != self.stale_marked;
+        self.stale_marked = marked;
+        taken || heatmap || flipped
+    }
+
+    /// Waits until every answer asked for has come, or `patience` has passed; true if all came. For tests
+    /// and benchmarks, which step the explorer one settled state at a time; the event loop never waits.
+    pub fn settle(&mut self, patience: Duration) -> bool {
+        let start = Instant::now();
+        loop {
+            self.poll();
+            if !self.busy() {
+                return true;
+            }
+            let left = patience.saturating_sub(start.elapsed());
+            if left.is_zero() {
+                return false;
+            }
+            let wait = left.min(Duration::from_millis(20));
+            if self.solver.busy() {
+                let arrived = self.solver.wait(wait);
+                self.take(arrived);
+            } else {
+                self.heatmap.wait(wait);
+            }
+        }
+    }
+
+    /// True while the bounce or the sweeps asked for have not come yet.
+    pub fn solving(&self) -> bool {
+        self.solver.busy()
+    }
+
+    /// True while something asked for has not come yet: the event loop then wakes now and then to take it.
+    pub fn busy(&self) -> bool {
+        self.solver.busy() || self.heatmap.pending()
+    }
+
+    fn take(&mut self, arrived: Vec<Arrival>) -> bool {
+        let changed = !arrived.is_empty();
+        for arrival in arrived {
+            match arrival {
+                Arrival::Bounce(params, answer) => {
+                    if *params == self.params {
+                        self.answered(*params, answer);
+                    }
+                }
+                Arrival::Sweeps(sweeps) => {
+                    if sweeps.key == Sweeps::key(&self.params) {
+                        self.sweeps = Some(sweeps);
+                    }
+                }
+            }
+        }
+        if changed {
+            self.want();
+        }
+        changed
+    }
+
+    /// The answer for `params`, the current parameters: shown, or if refused, the parameters go back to
+    /// those of the bounce shown and the reason is given.
+    fn answered(&mut self, params: Params, answer: Answer) {
+        match answer {
+            Ok(solved) => {
+                if self.solved.as_ref().is_some_and(|s| s.params == params) {
+                    return;
+                }
+                // The cursor keeps its time if T is unchanged, else its fraction of T; playback goes on.
+                let new = solved.duration();
+                if let Some(old) = self.solved.as_ref().map(|s| s.duration())
+                    && new != old
+                {
+                    self.cursor = (self.cursor / old * new).clamp(0.0, new);
+                }
+                self.cursor = self.cursor.clamp(0.0, new);
+                self.solved = Some(solved);
+                self.settled_history = self.history.clone();
+                self.stale_marked &= self.solver.busy();
+            }
+            Err(reason) => {
+                self.message = Some(Message {
+                    text: format!("{reason} ({} unchanged)", self.unchanged),
+                    tone: Tone::Error,
+                });
+                // Back to the bounce on screen, if there is one (a refused start has none).
+                if let Some(solved) = &self.solved
+                    && solved.params != self.params
+                {
+                    self.params = solved.params;
+                    self.history = self.settled_history.clone();
+                    self.want();
+                }
+            }
+        }
+    }
+
+    /// True while the bounce on screen is not that of the current parameters.
+    pub fn stale(&self) -> bool {
+        self.solved.as_ref().is_none_or(|s| s.params != self.params)
+    }
+
+    /// True while the sweeps on screen are not those of the current parameters.
+    pub fn sweeps_stale(&self) -> bool {
+        self.sweeps
+            .as_ref()
+            .is_none_or(|s| s.key != Sweeps::key(&self.params))
+    }
+
+    /// The baseline's sweeps, if computed.
+    pub fn baseline_sweeps(&self) -> Option<Arc<Sweeps>> {
+        let base = self.baseline.as_ref()?;
+        self.solver.known_sweeps(&base.solved.params)
+    }
+
+    /// The contact time T, s, of the bounce on screen (0 before the first).
     pub fn duration(&self) -> f64 {
-        self.bounce.setup.duration
+        self.solved.as_ref().map_or(0.0, |s| s.duration())
     }
 
     /// The core's sample at the cursor; at a transition, that of the phase that begins there.
-    pub fn cursor_sample(&self) -> Sample {
-        self.bounce.sample_at(self.cursor)
-    }
-
-    /// When the cursor is exactly on a transition, the sample at the end of the phase before it (the
-    /// friction force jumps there; every other value is continuous).
-    pub fn cursor_before(&self) -> Option<Sample> {
-        let index = self.bounce.phase_index_at(self.cursor);
-        (index > 0 && self.bounce.phases[index].start == self.cursor)
-            .then(|| self.bounce.sample_in(index - 1, self.cursor))
-    }
-
-    /// The transitions the cursor can jump to: 0, the start of every phase after the first, and T.
-    fn stops(&self) -> impl Iterator<Item = f64> + '_ {
-        std::iter::once(0.0)
-            .chain(self.bounce.phases.iter().skip(1).map(|p| p.start))
-            .chain(std::iter::once(self.duration()))
+    pub fn cursor_sample(&self) -> Option<Sample> {
+        Some(self.solved.as_ref()?.sample_at(self.cursor))
     }
 
     /// Moves the cursor on by `elapsed` wall time at the playback speed, stopping at T. True if anything
@@ -292,6 +436,8 @@ impl App {
     /// Applies one action; any change of parameters re-solves and recomputes everything shown.
     pub fn update(&mut self, action: Action) {
         self.message = None;
+        // Only a quit right after the question quits.
+        self.quit_asked &= action == Action::Quit;
         match action {
             Action::SelectPrevious => {
                 self.selected = (self.selected + PARAMS.len() - 1) % PARAMS.len();
@@ -320,18 +466,21 @@ impl App {
             Action::ResetAll => self.try_apply(self.start),
             Action::NextView => {
                 self.view = self.view.next();
-                self.refresh_heatmap();
+                self.changed_at = Instant::now();
+                self.want();
             }
             Action::CursorStep { forward } => {
                 self.cursor = playback::step(self.cursor, forward, self.duration());
             }
             Action::CursorPhase { forward } => {
                 let t = self.cursor;
-                let stop = if forward {
-                    self.stops().find(|&s| s > t)
-                } else {
-                    self.stops().filter(|&s| s < t).last()
-                };
+                let stop = self.solved.as_ref().and_then(|s| {
+                    if forward {
+                        s.stops().find(|&s| s > t)
+                    } else {
+                        s.stops().filter(|&s| s < t).last()
+                    }
+                });
                 if let Some(stop) = stop {
                     self.cursor = stop;
                 }
@@ -359,13 +508,21 @@ impl App {
                 }
             }
             Action::ToggleHelp => {
+                self.help_scroll = 0;
                 self.mode = if self.mode == Mode::Help {
                     Mode::Normal
                 } else {
                     Mode::Help
                 }
             }
-            Action::Quit => self.quit = true,
+            Action::ScrollHelp { down } => {
+                self.help_scroll = if down {
+                    (self.help_scroll + 1).min(HELP_SCROLL_LIMIT)
+                } else {
+                    self.help_scroll.saturating_sub(1)
+                };
+            }
+            Action::Quit => self.quit_or_ask(),
             Action::OpenPicker
             | Action::PickerUp
             | Action::PickerDown
@@ -385,6 +542,22 @@ impl App {
             | Action::ClearBaseline
             | Action::Export => self.update_scenarios(action),
         }
+    }
+
+    /// Quits, unless the parameters differ from the scenario file last opened or saved and this is the
+    /// first quit since: then it says so once, and the next quit goes.
+    fn quit_or_ask(&mut self) {
+        let unsaved = self.file_params.is_some_and(|p| p != self.params);
+        if !unsaved || self.quit_asked {
+            self.quit = true;
+            return;
+        }
+        self.quit_asked = true;
+        let file = self.last_file.clone().unwrap_or_default();
+        self.message = Some(Message {
+            text: format!("changes since {file} are not saved: quit again to quit, s saves"),
+            tone: Tone::Info,
+        });
     }
 
     fn step(&mut self, up: bool, coarse: bool) {
@@ -420,47 +593,31 @@ impl App {
                 params.set(spec.id, value);
                 self.try_apply(params);
             }
-            Err(e) => self.refuse(e.to_string()),
+            // The core names the command-line flag; the panel's name is what the user sees here.
+            Err(e) => self.refuse(e.to_string().replace(
+                &format!("--{}", spec.flag),
+                &format!("{} {}", spec.label, spec.symbol),
+            )),
         }
     }
 
-    /// Solves `params`; on success they become current (a change `u` undoes), otherwise the old ones stay
-    /// and the reason is shown.
+    /// Makes `params` current (a change `u` undoes) and asks for their bounce; if the core refuses it,
+    /// the old ones come back and the reason is shown.
     fn try_apply(&mut self, params: Params) {
         if params == self.params {
             return;
         }
-        let before = self.params;
-        match self.set_params(params) {
-            Ok(()) => self.history.record(before),
-            Err(e) => self.refuse(e.to_string()),
-        }
+        self.history.record(self.params);
+        self.set_params(params, "value");
     }
 
-    /// Solves `params` and makes them current with everything derived from them; on failure nothing
-    /// changes. The history is the caller's business.
-    pub(super) fn set_params(&mut self, params: Params) -> Result<(), SolveError> {
-        let bounce = solve(&params)?;
-        // The cursor keeps its time if T is unchanged, else its fraction of T; playback goes on.
-        let (old, new) = (self.duration(), bounce.setup.duration);
-        if new != old {
-            self.cursor = (self.cursor / old * new).clamp(0.0, new);
-        }
-        // The sweeps do not depend on the angle: stepping it needs no new sweep.
-        let angle_free = |p: &Params| Params {
-            angle_deg: 0.0,
-            ..*p
-        };
-        if angle_free(&params) != angle_free(&self.params) {
-            self.sweep = Sweep::compute(&params);
-            self.sweep_comparison = Sweep::comparison(&params);
-        }
+    /// Makes `params` current and asks for everything derived from them. The history is the caller's
+    /// business; `unchanged` names what a refusal leaves as it was (`value` or `parameters`).
+    pub(super) fn set_params(&mut self, params: Params, unchanged: &'static str) {
         self.params = params;
-        self.refresh_heatmap();
-        self.series = bounce.series(SERIES_SAMPLES);
-        self.travel = Travel::compute(&bounce);
-        self.bounce = bounce;
-        Ok(())
+        self.changed_at = Instant::now();
+        self.unchanged = unchanged;
+        self.want();
     }
 
     fn refuse(&mut self, reason: String) {

@@ -1,20 +1,18 @@
-//! A pinned bounce to compare against: `b` keeps the current bounce, its time series and its sweep, so
-//! the charts can draw them as a second, dimmer curve and the outcome panel can give the differences.
+//! A pinned bounce to compare against: `b` keeps the current bounce and its time series (its sweep is
+//! asked of the worker when the sweep view shows it), so the charts can draw them as a second, dimmer
+//! curve and the outcome panel can give the differences.
+
+use std::sync::Arc;
 
 use crate::model::params::PARAMS;
-use crate::model::{Bounce, Params, Sample};
+use crate::model::{Bounce, Params};
 
-use super::sweep::Sweep;
+use super::solved::Solved;
 
 /// A bounce kept for comparison.
 #[derive(Clone, Debug)]
 pub struct Baseline {
-    pub params: Params,
-    pub bounce: Bounce,
-    /// The same samples the contact charts draw for the current bounce.
-    pub series: Vec<Sample>,
-    /// omega2 against theta1 for the baseline's parameters.
-    pub sweep: Sweep,
+    pub solved: Arc<Solved>,
 }
 
 /// The current bounce minus the baseline.
@@ -29,7 +27,7 @@ pub struct Deltas {
 impl Baseline {
     /// The differences `current - baseline` of the outcomes the panel shows.
     pub fn deltas(&self, current: &Bounce) -> Deltas {
-        let (now, then) = (&current.outcome, &self.bounce.outcome);
+        let (now, then) = (&current.outcome, &self.solved.bounce.outcome);
         Deltas {
             omega2: now.omega2 - then.omega2,
             ex: now.ex.zip(then.ex).map(|(a, b)| a - b),
@@ -40,7 +38,7 @@ impl Baseline {
     pub fn differences(&self, current: &Params) -> Vec<&'static str> {
         PARAMS
             .iter()
-            .filter(|s| self.params.get(s.id) != current.get(s.id))
+            .filter(|s| self.solved.params.get(s.id) != current.get(s.id))
             .map(|s| s.symbol)
             .collect()
     }

@@ -1,17 +1,18 @@
 //! The heatmap view's data: the rebound spin omega2 over a grid of cart masses and spring stiffnesses
 //! (log-spaced, [`MASSES`] x [`STIFFNESSES`] cells), every other parameter as it is now.
 //!
-//! The grid is solved on a worker thread, a row of stiffness at a time, so the explorer keeps answering
-//! keys while it fills in. Each request carries a generation number; a request supersedes any older one
-//! still running (the worker checks between rows), and rows that arrive from an older generation are
-//! dropped, so a map never mixes two sets of parameters.
+//! The grid is solved on a worker thread ([`super::worker`]), a row of stiffness at a time, so the
+//! explorer keeps answering keys while it fills in. A request supersedes any older one still running (its
+//! solves are cancelled), and rows that arrive from an older request are dropped, so a map never mixes two
+//! sets of parameters.
 
-use std::sync::mpsc::{self, Receiver, Sender, TryRecvError};
-use std::thread;
+use std::time::Duration;
 
 use rayon::prelude::*;
 
-use crate::model::{ParamId, Params, solve};
+use super::peak::{self, Peak};
+use super::worker::Worker;
+use crate::model::{ParamId, Params, SolveError, solve_cancellable};
 
 /// Cells across: cart masses.
 pub const MASSES: usize = 60;
@@ -47,17 +48,27 @@ pub fn cell_of(value: f64, range: [f64; 2], n: usize) -> Option<usize> {
         .then(|| ((f * (n - 1) as f64).round() as usize).min(n - 1))
 }
 
-/// omega2 along row `j` (stiffness `stiffness(j)`), for every cart mass; `None` where the core refuses.
-pub fn compute_row(params: &Params, j: usize) -> Vec<Option<f64>> {
+/// omega2 along row `j` (stiffness `stiffness(j)`), for every cart mass, `None` where the core refuses;
+/// `None` for the whole row once `cancelled` says so.
+pub fn compute_row(
+    params: &Params,
+    j: usize,
+    cancelled: &(impl Fn() -> bool + Sync),
+) -> Option<Vec<Option<f64>>> {
     (0..MASSES)
         .into_par_iter()
         .map(|i| {
             let mut p = *params;
             p.set(ParamId::CartMass, mass(i));
             p.set(ParamId::Stiffness, stiffness(j));
-            solve(&p).ok().map(|b| b.outcome.omega2)
+            match solve_cancellable(&p, cancelled) {
+                Ok(b) => Ok(Some(b.outcome.omega2)),
+                Err(SolveError::Cancelled) => Err(()),
+                Err(_) => Ok(None),
+            }
         })
-        .collect()
+        .collect::<Result<_, ()>>()
+        .ok()
 }
 
 /// The map depends on every parameter but the two on its axes.
@@ -77,48 +88,20 @@ pub struct Row {
     pub omega2: Vec<Option<f64>>,
 }
 
-/// The worker thread's ends of the channels.
-#[derive(Debug)]
-struct Worker {
-    jobs: Sender<(u64, Params)>,
-    rows: Receiver<Row>,
-}
+/// The worker: a job is the parameters of a map, its results the rows as they are solved.
+type RowWorker = Worker<Params, (usize, Vec<Option<f64>>)>;
 
-impl Worker {
-    fn spawn() -> Worker {
-        let (jobs, job_rx) = mpsc::channel::<(u64, Params)>();
-        let (row_tx, rows) = mpsc::channel();
-        thread::spawn(move || {
-            // Ends when the explorer drops its end of either channel.
-            let Ok(mut job) = job_rx.recv() else { return };
-            'jobs: loop {
-                let (generation, params) = job;
-                for j in 0..STIFFNESSES {
-                    match job_rx.try_recv() {
-                        Ok(newer) => {
-                            job = newer;
-                            continue 'jobs;
-                        }
-                        Err(TryRecvError::Disconnected) => return,
-                        Err(TryRecvError::Empty) => {}
-                    }
-                    let row = Row {
-                        generation,
-                        index: j,
-                        omega2: compute_row(&params, j),
-                    };
-                    if row_tx.send(row).is_err() {
-                        return;
-                    }
-                }
-                match job_rx.recv() {
-                    Ok(next) => job = next,
-                    Err(_) => return,
-                }
+fn spawn() -> RowWorker {
+    Worker::spawn("heatmap", |params: Params, job| {
+        for j in 0..STIFFNESSES {
+            let Some(row) = compute_row(&params, j, &|| job.cancelled()) else {
+                return;
+            };
+            if !job.send((j, row)) {
+                return;
             }
-        });
-        Worker { jobs, rows }
-    }
+        }
+    })
 }
 
 /// The map as far as it has been computed.
@@ -131,7 +114,22 @@ pub struct Heatmap {
     /// Row by row (index 0 the softest spring), once computed.
     pub rows: Vec<Option<Vec<Option<f64>>>>,
     /// Started on the first request.
-    worker: Option<Worker>,
+    worker: Option<RowWorker>,
+    /// The best point, refined from the best cell once the map is complete ([`peak`]).
+    pub peak: Option<Peak>,
+    /// The refinement asked for (its generation), until it answers.
+    refining: Option<u64>,
+    /// Started when the first map is complete.
+    refiner: Option<PeakWorker>,
+}
+
+/// The worker that refines the best cell: a job is the parameters and the cell.
+type PeakWorker = Worker<(Params, usize, usize), Option<Peak>>;
+
+fn spawn_refiner() -> PeakWorker {
+    Worker::spawn("peak", |(params, i, j): (Params, usize, usize), job| {
+        job.send(peak::refine(&params, i, j, &|| job.cancelled()));
+    })
 }
 
 impl Heatmap {
@@ -142,15 +140,14 @@ impl Heatmap {
         if self.requested == Some(key) {
             return false;
         }
-        self.generation += 1;
         self.requested = Some(key);
         self.rows = vec![None; STIFFNESSES];
-        let worker = self.worker.get_or_insert_with(Worker::spawn);
-        if worker.jobs.send((self.generation, key)).is_err() {
-            // The worker is gone (it cannot be, short of a panic in the core): start another.
-            let worker = self.worker.insert(Worker::spawn());
-            let _ = worker.jobs.send((self.generation, key));
+        self.peak = None;
+        self.refining = None;
+        if let Some(refiner) = &self.refiner {
+            refiner.cancel();
         }
+        self.generation = self.worker.get_or_insert_with(spawn).submit(key);
         true
     }
 
@@ -166,19 +163,64 @@ impl Heatmap {
     /// Takes every row that has arrived; true if any was for the newest request.
     pub fn poll(&mut self) -> bool {
         let arrived: Vec<Row> = match &self.worker {
-            Some(worker) => worker.rows.try_iter().collect(),
+            Some(worker) => worker.try_iter().map(row).collect(),
             None => return false,
         };
         let mut changed = false;
         for row in arrived {
             changed |= self.accept(row);
         }
-        changed
+        self.refine() || changed
     }
 
-    /// True while a requested map is not complete.
+    /// Asks for the peak once the map is complete, and takes it when it comes; true if it came.
+    fn refine(&mut self) -> bool {
+        let (Some(params), Some((i, j, _))) = (self.requested, self.best()) else {
+            return false;
+        };
+        if self.rows.iter().any(Option::is_none) {
+            return false;
+        }
+        let refiner = self.refiner.get_or_insert_with(spawn_refiner);
+        match self.refining {
+            None if self.peak.is_none() => {
+                self.refining = Some(refiner.submit((params, i, j)));
+                false
+            }
+            Some(generation) => {
+                let answer = refiner.try_iter().filter(|(g, _)| *g == generation).last();
+                match answer {
+                    Some((_, peak)) => {
+                        self.refining = None;
+                        // A cell the core refuses has no peak: the cell stands.
+                        self.peak = Some(peak.unwrap_or(Peak {
+                            mass: mass(i),
+                            stiffness: stiffness(j),
+                            omega2: self.at(i, j).unwrap_or(f64::NAN),
+                        }));
+                        true
+                    }
+                    None => false,
+                }
+            }
+            None => false,
+        }
+    }
+
+    /// Waits up to `timeout` for a row, and takes it and any others that have arrived; true if the map
+    /// changed.
+    pub fn wait(&mut self, timeout: Duration) -> bool {
+        let first = match &self.worker {
+            Some(worker) => worker.wait(timeout).map(row),
+            None => return false,
+        };
+        let changed = first.is_some_and(|r| self.accept(r));
+        self.poll() || changed
+    }
+
+    /// True while a requested map, or its peak, is not complete.
     pub fn pending(&self) -> bool {
-        self.requested.is_some() && self.rows.iter().any(Option::is_none)
+        self.requested.is_some() && (self.rows.iter().any(Option::is_none) || self.peak.is_none())
     }
 
     /// How many rows are in.
@@ -211,6 +253,15 @@ impl Heatmap {
             .fold(None, |acc: Option<(f64, f64)>, &w| {
                 Some(acc.map_or((w, w), |(lo, hi)| (lo.min(w), hi.max(w))))
             })
+    }
+}
+
+/// A row as the worker sent it.
+fn row((generation, (index, omega2)): (u64, (usize, Vec<Option<f64>>))) -> Row {
+    Row {
+        generation,
+        index,
+        omega2,
     }
 }
 
@@ -271,7 +322,10 @@ mod tests {
             std::thread::sleep(Duration::from_millis(5));
         }
         for j in [0, 13, STIFFNESSES - 1] {
-            assert_eq!(map.rows[j].as_ref().unwrap(), &compute_row(&second, j));
+            assert_eq!(
+                map.rows[j].as_ref().unwrap(),
+                &compute_row(&second, j, &|| false).unwrap()
+            );
         }
         let (i, j, best) = map.best().unwrap();
         assert_eq!(map.at(i, j), Some(best));

@@ -4,6 +4,8 @@
 use crate::model::Params;
 use crate::model::params::PARAMS;
 
+use super::ui::shown;
+
 /// The parameter changes that can be undone and redone.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct History {
@@ -62,8 +64,8 @@ pub fn describe(from: &Params, to: &Params) -> String {
         [spec] => format!(
             "{} {} → {}",
             spec.symbol,
-            spec.show(from.get(spec.id)),
-            spec.show(to.get(spec.id))
+            shown(spec, from.get(spec.id)),
+            shown(spec, to.get(spec.id))
         ),
         many => format!(
             "{} parameters ({})",

@@ -115,7 +115,8 @@ const fn bind(
 
 use Key::{Ctrl, Plain, Shift};
 
-/// The keys of the explorer (also while the help overlay is open, where Esc closes the overlay instead).
+/// The keys of the explorer (also while the help overlay is open, where q and Esc close the overlay
+/// instead and the up and down keys scroll it).
 pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Up), Plain(KeyCode::Char('k'))],
@@ -247,7 +248,7 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Char('q')), Plain(KeyCode::Esc), Ctrl('c')],
         Action::Quit,
-        "quit (Esc closes this help first)",
+        "quit (in this help, q and Esc close it)",
         hint("q", "quit"),
     ),
     bind(
@@ -413,8 +414,18 @@ pub fn action_for(event: &KeyEvent, mode: &Mode) -> Option<Action> {
     if event.kind == KeyEventKind::Release {
         return None;
     }
-    if *mode == Mode::Help && Plain(KeyCode::Esc).matches(event) {
-        return Some(Action::CloseHelp);
+    // In the help, q and Esc close it rather than quit, and the arrows scroll it.
+    if *mode == Mode::Help {
+        let any = |keys: &[Key]| keys.iter().any(|k| k.matches(event));
+        if any(&[Plain(KeyCode::Esc), Plain(KeyCode::Char('q'))]) {
+            return Some(Action::CloseHelp);
+        }
+        if any(&[Plain(KeyCode::Down), Plain(KeyCode::Char('j'))]) {
+            return Some(Action::ScrollHelp { down: true });
+        }
+        if any(&[Plain(KeyCode::Up), Plain(KeyCode::Char('k'))]) {
+            return Some(Action::ScrollHelp { down: false });
+        }
     }
     let bound = bindings(mode)
         .iter()

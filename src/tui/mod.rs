@@ -1,35 +1,45 @@
 //! The explorer: a full-screen terminal UI that redraws the force, displacement and spin charts as keys
 //! change the parameters.
 //!
-//! A key press becomes an [`Action`] ([`keys`]), [`App::update`] applies it and re-solves, and [`ui::draw`]
-//! draws a frame from the [`App`] without changing it. While the bounce plays in slow motion, clock ticks
-//! move the time cursor ([`App::advance`]). [`run`] is that loop, generic over the ratatui backend and the
-//! [`EventSource`], so tests drive it with scripted events and ticks on a `TestBackend`; [`open`] runs it
-//! on the real terminal.
+//! A key press becomes an [`Action`] ([`keys`]), [`App::update`] applies it and asks the workers for the
+//! new bounce ([`solver`]), and [`ui::draw`] draws a frame from the [`App`] without changing it; charts
+//! whose answer is pending are drawn stale until it comes. While the bounce plays in slow motion, clock
+//! ticks move the time cursor ([`App::advance`]). [`run`] is that loop, generic over the ratatui backend
+//! and the [`EventSource`], so tests drive it with scripted events and ticks on a `TestBackend`; [`open`]
+//! runs it on the real terminal.
 
 pub mod app;
 pub mod baseline;
+pub mod decode;
 pub mod heatmap;
 pub mod history;
+pub mod input;
 pub mod keys;
+pub mod locale;
+pub mod output;
+pub mod peak;
 pub mod playback;
 pub mod scenarios;
+pub mod solved;
+pub mod solver;
 pub mod sweep;
 pub mod terminal;
 pub mod travel;
 pub mod ui;
+pub mod worker;
 
 use std::collections::VecDeque;
 use std::io::{self, IsTerminal};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
-use crossterm::event::{self, Event, MouseButton, MouseEvent, MouseEventKind};
+use crossterm::event::{Event, MouseButton, MouseEvent, MouseEventKind};
 use ratatui::Terminal;
 use ratatui::backend::Backend;
 use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
 pub use app::{Action, App, Mode, View};
+pub use input::TerminalEvents;
 pub use terminal::FrameSync;
 use ui::theme::Theme;
 
@@ -51,39 +61,28 @@ impl From<Event> for Input {
 
 /// Where inputs come from: the terminal and a clock, or a script in tests.
 pub trait EventSource {
-    /// The next input. With `frame` set (while playing), a [`Input::Tick`] comes at least every `frame` of
-    /// wall time if no event comes first; with `None` (paused), wait for an event for as long as it takes:
-    /// time passing alone brings nothing. `None` when there will be no more inputs.
-    fn next_input(&mut self, frame: Option<Duration>) -> io::Result<Option<Input>>;
-}
+    /// The next input. With `wait` set (while playing, or while an answer is awaited), a
+    /// [`Input::Tick`] comes at least every `wait` of wall time if no event comes first; with `None`,
+    /// wait for an event for as long as it takes: time passing alone brings nothing. `None` when there
+    /// will be no more inputs.
+    fn next_input(&mut self, wait: Option<Duration>) -> io::Result<Option<Input>>;
 
-/// The terminal's events and the wall clock. Paused, it blocks until an event arrives, so an idle
-/// explorer uses no CPU; playing, it also wakes once a frame.
-#[derive(Debug, Default)]
-pub struct TerminalEvents {
-    /// When the last tick was, while playing.
-    last_tick: Option<Instant>,
-}
+    /// An event that has already arrived, without waiting: the loop takes them all before it draws, so a
+    /// burst of keys costs one frame.
+    fn ready_input(&mut self) -> io::Result<Option<Input>> {
+        Ok(None)
+    }
 
-impl EventSource for TerminalEvents {
-    fn next_input(&mut self, frame: Option<Duration>) -> io::Result<Option<Input>> {
-        let Some(frame) = frame else {
-            self.last_tick = None;
-            return event::read().map(|e| Some(Input::Event(e)));
-        };
-        let last = *self.last_tick.get_or_insert_with(Instant::now);
-        let wait = (last + frame).saturating_duration_since(Instant::now());
-        if event::poll(wait)? {
-            return event::read().map(|e| Some(Input::Event(e)));
-        }
-        let now = Instant::now();
-        self.last_tick = Some(now);
-        Ok(Some(Input::Tick(now - last)))
+    /// True when the loop should let the workers finish before each input, as scripted tests want: each
+    /// step then sees the answers to the one before.
+    fn settles(&self) -> bool {
+        false
     }
 }
 
-/// Inputs given in advance; the loop ends when they run out. A tick scripted while the bounce is paused
-/// stands for time passing with nothing happening, as on the terminal: it is skipped.
+/// Inputs given in advance; the loop ends when they run out. A tick scripted while the loop is not
+/// waking on a timer stands for time passing with nothing happening, as on the terminal: it is skipped.
+/// The workers finish before each input ([`EventSource::settles`]).
 pub struct Scripted(pub VecDeque<Input>);
 
 impl<I, T> From<I> for Scripted
@@ -97,13 +96,17 @@ where
 }
 
 impl EventSource for Scripted {
-    fn next_input(&mut self, frame: Option<Duration>) -> io::Result<Option<Input>> {
+    fn next_input(&mut self, wait: Option<Duration>) -> io::Result<Option<Input>> {
         while let Some(input) = self.0.pop_front() {
-            if frame.is_some() || !matches!(input, Input::Tick(_)) {
+            if wait.is_some() || !matches!(input, Input::Tick(_)) {
                 return Ok(Some(input));
             }
         }
         Ok(None)
+    }
+
+    fn settles(&self) -> bool {
+        true
     }
 }
 
@@ -131,53 +134,76 @@ fn mouse_action(mouse: &MouseEvent, screen: Rect, app: &App) -> Option<Action> {
     }
 }
 
-/// The event loop: draw, then for each input that matters update and draw again, until the app quits or
-/// the inputs end. While the bounce plays, the loop asks for a tick every [`playback::FRAME`] and draws
-/// each; while the heatmap is computed on its worker thread, it ticks as often to draw the rows that have
-/// arrived; otherwise nothing is drawn between events.
+/// How long a scripted run lets the workers take before each input.
+const PATIENCE: Duration = Duration::from_secs(120);
+
+/// How often the loop wakes to take the workers' answers while one is awaited and nothing plays.
+pub const ANSWER_POLL: Duration = Duration::from_millis(15);
+
+/// The event loop: draw, then wait for an input; take it and every other input already there, the
+/// workers' answers too, and draw once if anything changed; until the app quits or the inputs end. While
+/// the bounce plays, the loop asks for a tick every [`App::frame`] and draws each; while an answer is awaited it
+/// wakes every [`ANSWER_POLL`] to take it; otherwise nothing is drawn between events.
 pub fn run<B, E>(terminal: &mut Terminal<B>, app: &mut App, events: &mut E) -> io::Result<()>
 where
     B: Backend + FrameSync,
     B::Error: Send + Sync + 'static,
     E: EventSource,
 {
+    if events.settles() {
+        app.settle(PATIENCE);
+    }
     draw(terminal, app)?;
     while !app.quit {
-        // A frame's wait while playing, or while the heatmap fills in (to collect its rows); else none.
-        let frame = (app.playing || app.heatmap_pending()).then_some(playback::FRAME);
-        let Some(input) = events.next_input(frame)? else {
+        if events.settles() && app.busy() {
+            app.settle(PATIENCE);
+            draw(terminal, app)?;
+        }
+        let wait = if app.playing {
+            Some(app.frame)
+        } else {
+            app.busy().then_some(ANSWER_POLL)
+        };
+        let Some(input) = events.next_input(wait)? else {
             break;
         };
-        let redraw = match input {
-            Input::Tick(elapsed) => {
-                let moved = app.advance(elapsed);
-                app.poll_heatmap() || moved
-            }
-            Input::Event(Event::Key(key)) => match keys::action_for(&key, &app.mode) {
-                Some(action) => {
-                    app.update(action);
-                    true
-                }
-                None => false,
-            },
-            Input::Event(Event::Mouse(mouse)) => {
-                let size = terminal.size().map_err(io::Error::other)?;
-                match mouse_action(&mouse, Rect::from((Position::ORIGIN, size)), app) {
-                    Some(action) => {
-                        app.update(action);
-                        true
-                    }
-                    None => false,
-                }
-            }
-            Input::Event(Event::Resize(..)) => true,
-            Input::Event(_) => false,
-        };
+        let mut redraw = handle(terminal, app, input)?;
+        while !app.quit
+            && let Some(input) = events.ready_input()?
+        {
+            redraw |= handle(terminal, app, input)?;
+        }
+        redraw |= app.poll();
         if redraw && !app.quit {
             draw(terminal, app)?;
         }
     }
     Ok(())
+}
+
+/// Applies one input; true if the screen should be drawn again. Behind the "terminal too small" notice
+/// only quitting is taken.
+fn handle<B>(terminal: &mut Terminal<B>, app: &mut App, input: Input) -> io::Result<bool>
+where
+    B: Backend,
+    B::Error: Send + Sync + 'static,
+{
+    let size = terminal.size().map_err(io::Error::other)?;
+    let screen = Rect::from((Position::ORIGIN, size));
+    let action = match input {
+        Input::Tick(elapsed) => return Ok(app.advance(elapsed)),
+        Input::Event(Event::Key(key)) => keys::action_for(&key, &app.mode),
+        Input::Event(Event::Mouse(mouse)) => mouse_action(&mouse, screen, app),
+        Input::Event(Event::Resize(..)) => return Ok(true),
+        Input::Event(_) => None,
+    };
+    match action {
+        Some(action) if ui::fits(screen) || action == Action::Quit => {
+            app.update(action);
+            Ok(true)
+        }
+        _ => Ok(false),
+    }
 }
 
 /// How to start the explorer.
@@ -189,6 +215,10 @@ pub struct Options {
     pub marker: Marker,
     /// False to draw without colours (NO_COLOR).
     pub color: bool,
+    /// Write ASCII only (a locale that is not UTF-8, or `--ascii`).
+    pub ascii: bool,
+    /// Frames a second while the bounce plays.
+    pub fps: u32,
 }
 
 /// Why the explorer could not run.
@@ -212,16 +242,20 @@ pub fn open(options: Options) -> Result<(), OpenError> {
     if !io::stdout().is_terminal() {
         return Err(OpenError::NotATerminal);
     }
+    // Braille is not ASCII: dots stand in for it.
+    let marker = match options.marker {
+        Marker::Braille if options.ascii => Marker::Dot,
+        marker => marker,
+    };
     let theme = Theme {
         color: options.color,
-        marker: options.marker,
+        marker,
+        ascii: options.ascii,
     };
     let mut app = App::new(options.params, theme)?;
-    let mut session = terminal::Session::start()?;
-    run(
-        &mut session.terminal,
-        &mut app,
-        &mut TerminalEvents::default(),
-    )?;
+    app.frame = Duration::from_secs_f64(1.0 / f64::from(options.fps.max(1)));
+    let mut session = terminal::Session::start(options.ascii)?;
+    let mut events = TerminalEvents::start()?;
+    run(&mut session.terminal, &mut app, &mut events)?;
     Ok(())
 }

@@ -2,9 +2,12 @@
 
 use std::time::Duration;
 
-/// Wall time between frames while playing (about 30 frames a second). Nothing is drawn on a timer while
-/// paused.
-pub const FRAME: Duration = Duration::from_millis(33);
+/// Frames a second while playing, unless `--fps` says otherwise: smooth enough to follow the ball and
+/// light enough for a slow link (about 10 KB/s at 160 x 48). Nothing is drawn on a timer while paused.
+pub const DEFAULT_FPS: u32 = 12;
+
+/// Wall time between frames while playing, at [`DEFAULT_FPS`].
+pub const FRAME: Duration = Duration::from_nanos(1_000_000_000 / DEFAULT_FPS as u64);
 
 /// What `[` and `]` move the time cursor by, s: to the previous or next multiple of 0.05 ms.
 pub const STEP: f64 = 0.05e-3;

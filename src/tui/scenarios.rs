@@ -124,18 +124,17 @@ impl App {
             Action::Undo => self.walk_history(true),
             Action::Redo => self.walk_history(false),
             Action::PinBaseline => {
+                let Some(solved) = self.solved.clone() else {
+                    self.info("nothing to pin yet: the bounce is being solved".into());
+                    return;
+                };
                 let replaced = self.baseline.is_some();
-                self.baseline = Some(Baseline {
-                    params: self.params,
-                    bounce: self.bounce.clone(),
-                    series: self.series.clone(),
-                    sweep: self.sweep.clone(),
-                });
                 let text = format!(
                     "baseline {}: ω2 {:.1} rad/s, drawn dimmer; b pins again, B clears",
                     if replaced { "replaced" } else { "pinned" },
-                    self.bounce.outcome.omega2
+                    solved.bounce.outcome.omega2
                 );
+                self.baseline = Some(Baseline { solved });
                 self.info(text);
             }
             Action::ClearBaseline => {
@@ -170,25 +169,16 @@ impl App {
         resolve(&self.dir, name)
     }
 
-    /// Makes `params` current as one change that can be undone; `what` says what it was. False (with
-    /// the reason shown) when the solver refuses them.
-    fn change_to(&mut self, params: Params, what: String) -> bool {
+    /// Makes `params` current as one change that can be undone; `what` says what it was. If the solver
+    /// refuses them, the parameters go back and the reason replaces `what`.
+    fn change_to(&mut self, params: Params, what: String) {
         if params == self.params {
             self.info(format!("{what} (the parameters were already these)"));
-            return true;
+            return;
         }
-        let before = self.params;
-        match self.set_params(params) {
-            Ok(()) => {
-                self.history.record(before);
-                self.info(what);
-                true
-            }
-            Err(e) => {
-                self.error(format!("{e} (parameters unchanged)"));
-                false
-            }
-        }
+        self.history.record(self.params);
+        self.info(what);
+        self.set_params(params, "parameters");
     }
 
     fn apply_preset(&mut self, index: usize) {
@@ -225,12 +215,18 @@ impl App {
         let name = path
             .file_stem()
             .map_or_else(String::new, |s| s.to_string_lossy().into_owned());
-        let description = format!(
-            "Saved from the snapback explorer (ω2 {:.1} rad/s)",
-            self.bounce.outcome.omega2
-        );
+        let description = match &self.solved {
+            Some(s) if s.params == self.params => format!(
+                "Saved from the snapback explorer (ω2 {:.1} rad/s)",
+                s.bounce.outcome.omega2
+            ),
+            _ => "Saved from the snapback explorer".to_string(),
+        };
         match Scenario::from_params(&name, &description, &self.params).save(path) {
-            Ok(()) => self.info(format!("saved {}", path.display())),
+            Ok(()) => {
+                self.file_params = Some(self.params);
+                self.info(format!("saved {}", path.display()));
+            }
             Err(e) => self.error(format!("not saved: {e}")),
         }
     }
@@ -238,6 +234,11 @@ impl App {
     fn submit_open(&mut self, typed: &str) {
         if typed.is_empty() {
             self.error("open: no file name given".into());
+            return;
+        }
+        // Standard input is the terminal the explorer reads its keys from.
+        if crate::input::is_stdin(Path::new(typed)) {
+            self.error("open: the explorer reads its keys from standard input; give a file".into());
             return;
         }
         // `what-if` opens what-if.toml when there is no file called what-if.
@@ -248,6 +249,7 @@ impl App {
         match load(&self.resolve(&name), &name) {
             Ok(scenario) => {
                 self.last_file = Some(name.clone());
+                self.file_params = Some(scenario.apply(Params::default()));
                 let what = if scenario.description.is_empty() {
                     format!("opened {name}")
                 } else {
@@ -270,35 +272,28 @@ impl App {
             return;
         };
         let from = self.params;
-        match self.set_params(target) {
-            Ok(()) => {
-                let left = if back {
-                    self.history.undo_len()
-                } else {
-                    self.history.redo_len()
-                };
-                let text = format!(
-                    "{word}: {} ({left} more to {word})",
-                    history::describe(&from, &target)
-                );
-                self.info(text);
-            }
-            Err(e) => {
-                // Parameters that solved once solve again; put the history back all the same (the
-                // opposite walk from `target` restores both lists).
-                if back {
-                    self.history.redo(target);
-                } else {
-                    self.history.undo(target);
-                }
-                self.error(format!("{word}: {e}"));
-            }
-        }
+        let left = if back {
+            self.history.undo_len()
+        } else {
+            self.history.redo_len()
+        };
+        let text = format!(
+            "{word}: {} ({left} more to {word})",
+            history::describe(&from, &target)
+        );
+        self.info(text);
+        self.set_params(target, "parameters");
     }
 
     /// Writes `snapback-N.csv` (the time series) and `snapback-N.json` (the outcome) into [`App::dir`],
     /// N the first number that names neither file yet.
     fn export(&mut self) {
+        let Some(solved) = self.solved.clone().filter(|s| s.params == self.params) else {
+            self.error(
+                "not exported: the bounce is still being solved; try again in a moment".into(),
+            );
+            return;
+        };
         let Some(n) = (1..10_000).find(|n| {
             let (csv, json) = export_paths(&self.dir, *n);
             !csv.exists() && !json.exists()
@@ -310,8 +305,8 @@ impl App {
             return;
         };
         let (csv, json) = export_paths(&self.dir, n);
-        let series = export::csv::series(&self.bounce.series(EXPORT_SAMPLES));
-        let outcome = export::json::bounce(&self.bounce);
+        let series = export::csv::series(&solved.bounce.series(EXPORT_SAMPLES));
+        let outcome = export::json::bounce(&solved.bounce);
         let written = scenario::write_atomically(&csv, series.as_bytes())
             .map_err(|e| format!("{}: {e}", csv.display()))
             .and_then(|()| {

@@ -1,8 +1,11 @@
 //! The paper's Fig. 2 for the current parameters: rebound spin omega2 against incidence angle theta1,
 //! solved at [`Sweep::ANGLES`] angles evenly spaced over (0, 90] degrees, and the same for a comparison
 //! incident spin (the paper's two cases, omega1 = 0 and -100 rad/s), with the angles where the two cross.
+//! Solved on the worker, the angles in parallel, and abandoned as soon as a newer request comes.
 
-use crate::model::{ParamId, Params, solve};
+use rayon::prelude::*;
+
+use crate::model::{ParamId, Params, SolveError, solve_cancellable};
 
 /// One solved angle of the sweep.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -25,20 +28,29 @@ impl Sweep {
     /// How many angles are solved: every half degree from 0.5 to 90.
     pub const ANGLES: usize = 180;
 
-    pub fn compute(params: &Params) -> Sweep {
-        let points = (1..=Self::ANGLES)
-            .filter_map(|i| {
+    /// The sweep for `params`; `None` once `cancelled` says so.
+    pub fn compute(params: &Params, cancelled: &(impl Fn() -> bool + Sync)) -> Option<Sweep> {
+        let solved: Vec<Option<SweepPoint>> = (1..=Self::ANGLES)
+            .into_par_iter()
+            .map(|i| {
                 let angle_deg = 90.0 * i as f64 / Self::ANGLES as f64;
                 let mut p = *params;
                 p.set(ParamId::Angle, angle_deg);
-                solve(&p).ok().map(|b| SweepPoint {
-                    angle_deg,
-                    omega2: b.outcome.omega2,
-                    slides_throughout: b.slides_throughout(),
-                })
+                match solve_cancellable(&p, cancelled) {
+                    Ok(b) => Ok(Some(SweepPoint {
+                        angle_deg,
+                        omega2: b.outcome.omega2,
+                        slides_throughout: b.slides_throughout(),
+                    })),
+                    Err(SolveError::Cancelled) => Err(()),
+                    Err(_) => Ok(None),
+                }
             })
-            .collect();
-        Sweep { points }
+            .collect::<Result<_, ()>>()
+            .ok()?;
+        Some(Sweep {
+            points: solved.into_iter().flatten().collect(),
+        })
     }
 
     /// The incident spin the comparison curve is drawn for: none, or the paper's backspin of -100 rad/s
@@ -48,10 +60,10 @@ impl Sweep {
     }
 
     /// The sweep for the comparison spin, other parameters as in `params`.
-    pub fn comparison(params: &Params) -> Sweep {
+    pub fn comparison(params: &Params, cancelled: &(impl Fn() -> bool + Sync)) -> Option<Sweep> {
         let mut p = *params;
         p.set(ParamId::Spin, Self::comparison_spin(params.spin));
-        Self::compute(&p)
+        Self::compute(&p, cancelled)
     }
 
     /// The angles, degrees, where this curve crosses `other` (linearly interpolated between the solved
@@ -95,13 +107,40 @@ impl Sweep {
     }
 }
 
+/// Both curves of the sweep view for one set of parameters (the angle aside: it changes neither).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Sweeps {
+    pub key: Params,
+    pub current: Sweep,
+    pub comparison: Sweep,
+}
+
+impl Sweeps {
+    /// What the sweeps depend on: every parameter but the angle.
+    pub fn key(params: &Params) -> Params {
+        Params {
+            angle_deg: 0.0,
+            ..*params
+        }
+    }
+
+    /// Both sweeps for `params`; `None` once `cancelled` says so.
+    pub fn compute(params: &Params, cancelled: &(impl Fn() -> bool + Sync)) -> Option<Sweeps> {
+        Some(Sweeps {
+            key: Self::key(params),
+            current: Sweep::compute(params, cancelled)?,
+            comparison: Sweep::comparison(params, cancelled)?,
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
 
     #[test]
     fn default_sweep_slides_at_glancing_angles_only() {
-        let sweep = Sweep::compute(&Params::default());
+        let sweep = Sweep::compute(&Params::default(), &|| false).unwrap();
         assert_eq!(sweep.points.len(), Sweep::ANGLES);
         let ranges = sweep.sliding_ranges();
         assert_eq!(ranges.len(), 1, "{ranges:?}");
@@ -116,8 +155,11 @@ mod tests {
         // The paper's Fig. 2: for the 10 g cart, omega1 = -100 rad/s gives less spin than omega1 = 0 below
         // about 60 degrees and can give more above.
         let params = Params::default();
-        let current = Sweep::compute(&params);
-        let other = Sweep::comparison(&params);
+        let Sweeps {
+            current,
+            comparison: other,
+            ..
+        } = Sweeps::compute(&params, &|| false).unwrap();
         assert_eq!(Sweep::comparison_spin(params.spin), 0.0);
         let crossings = current.crossings(&other);
         assert_eq!(crossings.len(), 1, "{crossings:?}");

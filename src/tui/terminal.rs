@@ -1,34 +1,32 @@
 //! The real terminal: raw mode and the alternate screen on the way in; on the way out, whether by quit,
-//! error or panic, the terminal is given back as it was.
+//! error, panic or signal, the terminal is given back as it was.
+//!
+//! SIGTERM, SIGQUIT and SIGINT (a `kill`, not Ctrl-C, which raw mode turns into a key) restore the
+//! terminal and exit with 128 + the signal's number; after SIGHUP the terminal is gone, so the explorer
+//! exits at once without writing to it.
 
 use std::io::{self, Stdout, Write, stdout};
+use std::thread;
+
+use signal_hook::consts::{SIGHUP, SIGINT, SIGQUIT, SIGTERM};
+use signal_hook::iterator::Signals;
 
 use crossterm::cursor::{Hide, Show};
-use crossterm::event::{DisableMouseCapture, EnableMouseCapture};
+use crossterm::event::DisableMouseCapture;
+use crossterm::execute;
 use crossterm::terminal::{
-    BeginSynchronizedUpdate, EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen,
-    disable_raw_mode, enable_raw_mode,
+    EndSynchronizedUpdate, EnterAlternateScreen, LeaveAlternateScreen, disable_raw_mode,
+    enable_raw_mode,
 };
-use crossterm::{execute, queue};
 use ratatui::Terminal;
-use ratatui::backend::{CrosstermBackend, TestBackend};
+use ratatui::backend::TestBackend;
+
+use super::output::Output;
 
 /// A backend that can bracket each frame so that a slow link never shows half of one.
 pub trait FrameSync {
     fn begin_frame(&mut self) -> io::Result<()>;
     fn end_frame(&mut self) -> io::Result<()>;
-}
-
-/// Synchronized updates (DEC mode 2026): the terminal shows the frame once it is complete. Terminals
-/// without the mode ignore it.
-impl<W: Write> FrameSync for CrosstermBackend<W> {
-    fn begin_frame(&mut self) -> io::Result<()> {
-        queue!(self, BeginSynchronizedUpdate)
-    }
-
-    fn end_frame(&mut self) -> io::Result<()> {
-        execute!(self, EndSynchronizedUpdate)
-    }
 }
 
 /// Frames in memory need no bracket.
@@ -42,19 +40,30 @@ impl FrameSync for TestBackend {
     }
 }
 
+/// Mouse reports of presses, releases and drags (not of every motion, which would flood a slow link),
+/// in the SGR encoding.
+const MOUSE_ON: &str = "\x1b[?1000h\x1b[?1002h\x1b[?1006h";
+
 /// The terminal in explorer mode; dropping it restores the terminal.
 pub struct Session {
-    pub terminal: Terminal<CrosstermBackend<Stdout>>,
+    pub terminal: Terminal<Output<Stdout>>,
 }
 
 impl Session {
-    /// Installs the panic hook, then enters raw mode and the alternate screen and asks for mouse events
-    /// (a click on a chart moves the time cursor; terminals that do not report the mouse ignore this).
-    pub fn start() -> io::Result<Session> {
+    /// Installs the panic hook and the signal watcher, then enters raw mode and the alternate screen
+    /// and asks for mouse events (a click on a chart moves the time cursor; terminals that do not report
+    /// the mouse ignore this). With `ascii`, every frame is written in ASCII.
+    pub fn start(ascii: bool) -> io::Result<Session> {
         install_panic_hook();
+        watch_signals()?;
         enable_raw_mode()?;
-        let started = execute!(stdout(), EnterAlternateScreen, EnableMouseCapture, Hide)
-            .and_then(|()| Terminal::new(CrosstermBackend::new(stdout())));
+        let started = execute!(stdout(), EnterAlternateScreen, Hide)
+            .and_then(|()| {
+                let mut out = stdout();
+                out.write_all(MOUSE_ON.as_bytes())?;
+                out.flush()
+            })
+            .and_then(|()| Terminal::new(Output::new(stdout(), ascii)));
         match started {
             Ok(terminal) => Ok(Session { terminal }),
             Err(e) => {
@@ -82,6 +91,26 @@ pub fn restore() {
         LeaveAlternateScreen,
         Show
     );
+}
+
+/// A thread that waits for the signals that end the explorer and ends it, the terminal restored. It holds
+/// the output while restoring, so no frame is written after the restore.
+fn watch_signals() -> io::Result<()> {
+    let mut signals = Signals::new([SIGTERM, SIGQUIT, SIGINT, SIGHUP])?;
+    thread::Builder::new()
+        .name("signals".into())
+        .spawn(move || {
+            if let Some(signal) = signals.forever().next() {
+                if signal == SIGHUP {
+                    let _ = disable_raw_mode();
+                } else {
+                    let _output = stdout().lock();
+                    restore();
+                }
+                std::process::exit(128 + signal);
+            }
+        })?;
+    Ok(())
 }
 
 /// Restores the terminal before the default hook prints the panic, so the message is readable.

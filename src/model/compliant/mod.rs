@@ -165,9 +165,17 @@ impl CompliantMotion {
 
     /// The slip of the patch on the cart (0 in a grip).
     pub fn patch_slip(&self, setup: &Setup, t: f64) -> f64 {
+        self.stretch_and_patch_slip(setup, t).1
+    }
+
+    /// The stretch e and the patch's slip on the cart at `t`, from one evaluation.
+    pub fn stretch_and_patch_slip(&self, setup: &Setup, t: f64) -> (f64, f64) {
         match self {
-            CompliantMotion::Slide(s) => s.patch_slip(setup, &s.at(setup, t)).0,
-            CompliantMotion::Grip(_) | CompliantMotion::ChainGrip(_) => 0.0,
+            CompliantMotion::Slide(s) => {
+                let p = s.at(setup, t);
+                (p.e, s.patch_slip(setup, &p).0)
+            }
+            CompliantMotion::Grip(_) | CompliantMotion::ChainGrip(_) => (self.at(setup, t).e, 0.0),
         }
     }
 

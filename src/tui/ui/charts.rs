@@ -18,6 +18,7 @@ use super::baseline;
 use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_extent};
 use crate::model::{Cart, Sample};
 use crate::tui::app::App;
+use crate::tui::solved::Solved;
 use crate::tui::ui::theme::Theme;
 
 /// Points of the dashed grip-limit envelope.
@@ -48,9 +49,9 @@ struct ContactLayout {
     label_width: u16,
 }
 
-fn layout(area: Rect, app: &App) -> ContactLayout {
+fn layout(area: Rect, app: &App, solved: &Solved) -> ContactLayout {
     let theme = &app.theme;
-    let bounce = &app.bounce;
+    let bounce = &solved.bounce;
     let [cursor_row, band_row, charts] = Layout::vertical([
         Constraint::Length(1),
         Constraint::Length(1),
@@ -62,7 +63,8 @@ fn layout(area: Rect, app: &App) -> ContactLayout {
     let ms = |s: &Sample| s.t * 1e3;
     let path = |value: fn(&Sample) -> f64| {
         Mark::Path(
-            app.series
+            solved
+                .series
                 .iter()
                 .map(|s| (ms(s), value(s), theme.phase(s.kind)))
                 .collect(),
@@ -71,7 +73,8 @@ fn layout(area: Rect, app: &App) -> ContactLayout {
     // The pinned baseline, if any, under the current curve.
     let faint = |value: fn(&Sample) -> f64| match &app.baseline {
         Some(b) => {
-            let points: Vec<(f64, f64)> = b.series.iter().map(|s| (ms(s), value(s))).collect();
+            let points: Vec<(f64, f64)> =
+                b.solved.series.iter().map(|s| (ms(s), value(s))).collect();
             baseline::curve(&points, theme, area.width)
         }
         None => Vec::new(),
@@ -103,7 +106,8 @@ fn layout(area: Rect, app: &App) -> ContactLayout {
     displacement.extend(faint(|s| s.x * 1e3));
     // The cart's curve shows where string friction holds it still.
     displacement.push(Mark::Path(
-        app.series
+        solved
+            .series
             .iter()
             .map(|s| {
                 let color = if s.cart_stuck {
@@ -142,7 +146,7 @@ fn layout(area: Rect, app: &App) -> ContactLayout {
     let end = app
         .baseline
         .as_ref()
-        .map_or(duration, |b| b.bounce.setup.duration.max(duration));
+        .map_or(duration, |b| b.solved.duration().max(duration));
     let x = Scale::exact(0.0, end * 1e3, tick_budget(data_width, 6));
     ContactLayout {
         cursor_row,
@@ -160,8 +164,8 @@ const X_TITLE: &str = "t (ms)";
 /// The time, s, under column `column` and row `row` of the contact view in `area`, if that is over the
 /// timeline or a chart: a time the canvas draws in that column, so the cursor's line lands in the column
 /// clicked.
-pub fn time_at(area: Rect, app: &App, column: u16, row: u16) -> Option<f64> {
-    let layout = layout(area, app);
+pub fn time_at(area: Rect, app: &App, solved: &Solved, column: u16, row: u16) -> Option<f64> {
+    let layout = layout(area, app, solved);
     let (first, width) = Plot::data_columns(area, layout.label_width);
     let charts_bottom = layout.rows[2].bottom();
     if width < 2 || !(first..first + width).contains(&column) {
@@ -175,19 +179,24 @@ pub fn time_at(area: Rect, app: &App, column: u16, row: u16) -> Option<f64> {
     // the first and last columns give the ends of the axis (T, or a longer pinned baseline's contact).
     let axis_end = layout.x.bounds[1] * 1e-3;
     let fraction = f64::from(column - first) / f64::from(width - 1);
-    Some((fraction * axis_end).clamp(0.0, app.duration()))
+    Some((fraction * axis_end).clamp(0.0, solved.duration()))
 }
 
 /// The cursor row: `t 1.320 ms · grip, phase 2 of 3` on the left, the playback state on the right.
-fn cursor_line(app: &App, theme: &Theme, width: u16) -> (Line<'static>, Line<'static>) {
-    let now = app.cursor_sample();
-    let phases = app.bounce.phases.len();
+fn cursor_line(
+    app: &App,
+    solved: &Solved,
+    theme: &Theme,
+    width: u16,
+) -> (Line<'static>, Line<'static>) {
+    let now = solved.sample_at(app.cursor);
+    let phases = solved.bounce.phases.len();
     let mut left = vec![
         Span::styled(" t ", theme.dim()),
         Span::styled(format!("{} ms", fixed(app.cursor * 1e3, 3)), theme.key()),
         Span::styled(" · ", theme.dim()),
     ];
-    match app.cursor_before() {
+    match solved.sample_before(app.cursor) {
         Some(before) => {
             left.push(Span::styled(
                 before.kind.name(),
@@ -225,12 +234,15 @@ fn cursor_line(app: &App, theme: &Theme, width: u16) -> (Line<'static>, Line<'st
 }
 
 /// The values at the cursor for each chart, as they sit at the right of its title.
-fn readouts(app: &App, theme: &Theme) -> [Line<'static>; 3] {
-    let s = app.cursor_sample();
+fn readouts(app: &App, solved: &Solved, theme: &Theme) -> [Line<'static>; 3] {
+    let s = solved.sample_at(app.cursor);
     let dim = |text: &'static str| Span::styled(text, theme.dim());
     // A jump shows only where it shows at the readout's precision (a compliant ball's force is
     // continuous, and rounding would otherwise print `123.9→123.9`).
-    let force = match app.cursor_before().map(|b| fixed(b.friction, 1)) {
+    let force = match solved
+        .sample_before(app.cursor)
+        .map(|b| fixed(b.friction, 1))
+    {
         Some(before) if before != fixed(s.friction, 1) => {
             format!("{before}→{}", fixed(s.friction, 1))
         }
@@ -242,7 +254,7 @@ fn readouts(app: &App, theme: &Theme) -> [Line<'static>; 3] {
             Span::raw(force),
             dim(" N  "),
             Span::styled("μN ", Style::new().fg(theme.limit())),
-            Span::raw(fixed(app.bounce.setup.mu * s.normal, 1)),
+            Span::raw(fixed(solved.bounce.setup.mu * s.normal, 1)),
             dim(" N "),
         ]),
         Line::from(vec![
@@ -262,9 +274,9 @@ fn readouts(app: &App, theme: &Theme) -> [Line<'static>; 3] {
     ]
 }
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
     let theme = &app.theme;
-    let bounce = &app.bounce;
+    let bounce = &solved.bounce;
     let ContactLayout {
         cursor_row,
         band_row,
@@ -273,9 +285,9 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         scales,
         x,
         label_width,
-    } = layout(area, app);
+    } = layout(area, app, solved);
 
-    let (left, right) = cursor_line(app, theme, area.width);
+    let (left, right) = cursor_line(app, solved, theme, area.width);
     frame.render_widget(Paragraph::new(left), cursor_row);
     frame.render_widget(Paragraph::new(right).right_aligned(), cursor_row);
 
@@ -329,7 +341,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         .into_iter()
         .zip(scales)
         .zip(titles)
-        .zip(readouts(app, theme))
+        .zip(readouts(app, solved, theme))
         .zip(rows)
     {
         // The long title if it fits beside the readout, else the short one; the readout always. The

@@ -1,5 +1,6 @@
 //! The heatmap view: rebound spin omega2 over cart mass M (across, log) and spring stiffness k (up, log)
-//! for the other parameters as they are, with the current (M, k) marked `+` and the best cell so far `*`,
+//! for the other parameters as they are, with the current (M, k) marked `+` and the best `*` (the best
+//! cell so far, then the peak refined from it by Brent's method, [`crate::tui::peak`]),
 //! and a colour scale beneath. Cells fill in row by row as the worker thread solves them.
 //!
 //! With colour, each character shows two cells one above the other (`▀`, the upper in the foreground
@@ -15,6 +16,7 @@ use ratatui::widgets::{Block, Borders, Paragraph};
 
 use crate::tui::app::App;
 use crate::tui::heatmap::{MASS_RANGE, MASSES, STIFFNESS_RANGE, STIFFNESSES, cell_of};
+use crate::tui::solved::Solved;
 
 /// The colour scale, low to high.
 const RAMP: [Color; 8] = [
@@ -56,7 +58,7 @@ fn log_fraction(value: f64, range: [f64; 2]) -> f64 {
     (value / range[0]).ln() / (range[1] / range[0]).ln()
 }
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
     let theme = &app.theme;
     let map = &app.heatmap;
     let wide = area.width >= 90;
@@ -132,8 +134,22 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         };
         cell.set_symbol(symbol).set_style(style);
     };
-    let best = map.best();
-    if let Some((i, j, _)) = best {
+    // The refined peak once it is known, else the best cell so far.
+    let best = match map.peak {
+        Some(peak) => cell_of(peak.mass, MASS_RANGE, MASSES)
+            .zip(cell_of(peak.stiffness, STIFFNESS_RANGE, STIFFNESSES))
+            .map(|(i, j)| (i, j, peak.omega2, peak.mass, peak.stiffness)),
+        None => map.best().map(|(i, j, w)| {
+            (
+                i,
+                j,
+                w,
+                crate::tui::heatmap::mass(i),
+                crate::tui::heatmap::stiffness(j),
+            )
+        }),
+    };
+    if let Some((i, j, ..)) = best {
         place(buf, i, j, "*");
     }
     let current = (
@@ -193,7 +209,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         }
         None => scale.push(Span::styled("(computing)", theme.dim())),
     }
-    let omega2 = app.bounce.outcome.omega2;
+    let omega2 = solved.bounce.outcome.omega2;
     let here = match (current, wide) {
         ((Some(_), Some(_)), true) => format!(
             "+ now {omega2:.1} (M {}, k {})   ",
@@ -204,11 +220,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         _ => format!("+ now {omega2:.1}, off the map  "),
     };
     let marks = match best {
-        Some((i, j, w)) => format!(
+        Some((_, _, w, m, k)) => format!(
             "{here}* best {w:.1}{} {}, {}",
             if wide { " at M" } else { ":" },
-            grams(crate::tui::heatmap::mass(i)),
-            kilo(crate::tui::heatmap::stiffness(j))
+            grams(m),
+            kilo(k)
         ),
         None => here,
     };

@@ -15,26 +15,29 @@ fn rows<'a>(bindings: &[Binding], theme: &Theme, key_width: usize) -> Vec<Line<'
         .into_iter()
         .map(|(label, help)| {
             Line::from(vec![
-                Span::styled(format!(" {label:<key_width$} "), theme.key()),
-                Span::raw(help),
+                Span::styled(
+                    format!(" {:<key_width$} ", theme.words(&label)),
+                    theme.key(),
+                ),
+                Span::raw(theme.words(help).into_owned()),
             ])
         })
         .collect()
 }
 
 /// The widest key column of the overlay.
-fn key_width() -> usize {
+fn key_width(theme: &Theme) -> usize {
     keys::help_rows(keys::EXPLORER)
         .iter()
         .chain(&keys::help_rows(keys::PROMPT))
-        .map(|(label, _)| label.chars().count())
+        .map(|(label, _)| theme.words(label).chars().count())
         .max()
         .unwrap_or(0)
 }
 
 pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let theme = &app.theme;
-    let key_width = key_width();
+    let key_width = key_width(theme);
     let spec = app.selected_spec();
     let units = spec.dimension.symbols();
     let units = if units.is_empty() {
@@ -52,10 +55,15 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     prompt.extend(rows(keys::PROMPT, theme, key_width));
     let notes = vec![
         Line::styled(
-            format!("{} {} (--{})", spec.label, spec.symbol, spec.flag),
+            format!(
+                "{} {} (--{})",
+                spec.label,
+                theme.words(spec.symbol),
+                spec.flag
+            ),
             theme.title(),
         ),
-        Line::raw(format!(" {}", spec.help)),
+        Line::raw(format!(" {}", theme.words(spec.help))),
         Line::raw(format!(
             " range {}; {units}; default {}",
             spec.range_text(),
@@ -64,15 +72,10 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     ];
 
     let width = area.width.saturating_sub(2).min(100);
-    // Keys come first; on a short screen the sections after them are left out whole, in this order (the
-    // status line shows the prompt's keys while typing).
-    let text_width = width.saturating_sub(2);
-    let room = area.height.saturating_sub(2);
-    for section in [prompt, notes] {
-        if overlay::rows(&lines, text_width) + overlay::rows(&section, text_width) <= room {
-            lines.extend(section);
-        }
-    }
+    // Keys come first, then the prompt's and the parameter's notes; on a short screen the arrows scroll.
+    lines.extend(prompt);
+    lines.extend(notes);
     let title = Span::styled(" help ", theme.title());
-    overlay::render(frame, area, width, title, " ? or Esc closes ", lines);
+    let footer = theme.words(" ↑↓ scroll · ?, q or Esc closes ").into_owned();
+    overlay::render(frame, area, width, title, footer, lines, app.help_scroll);
 }

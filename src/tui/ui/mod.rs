@@ -20,6 +20,8 @@
 //! ```
 //!
 //! help.rs draws its overlay on top, and picker.rs the preset picker; below [`MIN_WIDTH`] x [`MIN_HEIGHT`] only a notice is drawn.
+//! Panels whose answer takes longer than [`crate::tui::app::STALE_AFTER`] are marked "solving…" and the
+//! outcome dimmed (stale.rs); before the first answer they hold the mark alone.
 
 mod baseline;
 mod charts;
@@ -31,6 +33,7 @@ mod params;
 pub mod picker;
 pub mod plot;
 pub mod schematic;
+mod stale;
 mod status;
 mod sweep;
 pub mod theme;
@@ -41,12 +44,18 @@ use ratatui::text::Line;
 use ratatui::widgets::Paragraph;
 
 pub use charts::fixed;
+pub use params::shown;
 
 use super::app::{App, Mode, View};
 
 /// The smallest terminal the layout is drawn in.
 pub const MIN_WIDTH: u16 = 80;
 pub const MIN_HEIGHT: u16 = 24;
+
+/// True when a screen of `area` is large enough for the layout (else only a notice is drawn).
+pub fn fits(area: Rect) -> bool {
+    area.width >= MIN_WIDTH && area.height >= MIN_HEIGHT
+}
 
 /// Where each part of the screen goes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -62,7 +71,7 @@ pub struct Regions {
 
 /// The layout of a screen of `area`; `None` below the smallest size.
 pub fn regions(area: Rect, app: &App) -> Option<Regions> {
-    if area.width < MIN_WIDTH || area.height < MIN_HEIGHT {
+    if !fits(area) {
         return None;
     }
     let status_height = status::height(app, area.width);
@@ -109,7 +118,7 @@ pub fn time_at(area: Rect, app: &App, column: u16, row: u16) -> Option<f64> {
     if app.view != View::Contact || app.mode == Mode::Help {
         return None;
     }
-    charts::time_at(regions.view, app, column, row)
+    charts::time_at(regions.view, app, app.solved.as_deref()?, column, row)
 }
 
 /// Draws the whole screen.
@@ -120,14 +129,43 @@ pub fn draw(frame: &mut Frame, app: &App) {
         return;
     };
     params::render(frame, regions.params, app);
-    outcome::render(frame, regions.outcome, app);
-    if let Some(schematic) = regions.schematic {
-        schematic::render(frame, schematic, app);
-    }
-    match app.view {
-        View::Contact => charts::render(frame, regions.view, app),
-        View::Sweep => sweep::render(frame, regions.view, app),
-        View::Heatmap => heatmap::render(frame, regions.view, app),
+    let stale = app.stale() && app.stale_marked;
+    let view_stale = match app.view {
+        View::Sweep => app.stale() || app.sweeps_stale(),
+        View::Contact | View::Heatmap => app.stale(),
+    };
+    match app.solved.as_deref() {
+        Some(solved) => {
+            outcome::render(frame, regions.outcome, app, solved);
+            if let Some(schematic) = regions.schematic {
+                schematic::render(frame, schematic, app, solved);
+            }
+            match (app.view, app.sweeps.as_deref()) {
+                (View::Contact, _) => charts::render(frame, regions.view, app, solved),
+                (View::Sweep, Some(sweeps)) => {
+                    sweep::render(frame, regions.view, app, solved, sweeps)
+                }
+                (View::Sweep, None) => stale::pending(frame, regions.view, app, app.view.name()),
+                (View::Heatmap, _) => heatmap::render(frame, regions.view, app, solved),
+            }
+            if stale {
+                stale::dim(frame, regions.outcome, app);
+                if let Some(schematic) = regions.schematic {
+                    stale::mark(frame, schematic, app);
+                }
+            }
+            let drawn = app.view != View::Sweep || app.sweeps.is_some();
+            if view_stale && drawn && app.stale_marked {
+                stale::mark(frame, regions.view, app);
+            }
+        }
+        None => {
+            stale::pending(frame, regions.outcome, app, "outcome");
+            if let Some(schematic) = regions.schematic {
+                stale::pending(frame, schematic, app, "schematic");
+            }
+            stale::pending(frame, regions.view, app, app.view.name());
+        }
     }
     status::render(frame, regions.status, app, regions.schematic.is_some());
     // Overlays cover everything above the status line.

@@ -10,6 +10,7 @@ use ratatui::widgets::{Block, Paragraph, Wrap};
 use crate::model::{BallPhase, Bounce};
 use crate::tui::app::App;
 use crate::tui::baseline::signed;
+use crate::tui::solved::Solved;
 use crate::tui::ui::theme::Theme;
 
 /// Phases listed before the rest are summarised as a count.
@@ -57,6 +58,21 @@ pub fn timeline(bounce: &Bounce, theme: &Theme) -> Vec<Span<'static>> {
     spans
 }
 
+/// The sequence of phases, `slide-grip-slide`; past [`LISTED_PHASES`] the first of them and the count,
+/// so that a chattering grip of hundreds of phases keeps the panel short.
+fn summary(bounce: &Bounce) -> String {
+    let all = bounce.phase_summary();
+    let kinds: Vec<&str> = all.split('-').collect();
+    if kinds.len() <= LISTED_PHASES {
+        return all;
+    }
+    format!(
+        "{}-… ({} phases)",
+        kinds[..LISTED_PHASES].join("-"),
+        kinds.len()
+    )
+}
+
 /// Rows a line of text takes when wrapped at word boundaries into `width` columns.
 fn wrapped_rows(line: &Line, width: usize) -> usize {
     let text: String = line.spans.iter().map(|s| s.content.as_ref()).collect();
@@ -82,20 +98,26 @@ fn wrapped_rows(line: &Line, width: usize) -> usize {
 /// Rows the panel needs, borders included, when it is `width` columns wide.
 pub fn height(app: &App, width: u16) -> u16 {
     let inner = usize::from(width.saturating_sub(2)).max(1);
-    let rows: usize = lines(app, inner >= 40)
+    let Some(solved) = &app.solved else {
+        return PENDING_HEIGHT;
+    };
+    let rows: usize = lines(app, solved, inner >= 40)
         .iter()
         .map(|l| wrapped_rows(l, inner))
         .sum();
     rows as u16 + 2
 }
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+/// Rows the panel takes before the first bounce is solved.
+const PENDING_HEIGHT: u16 = 6;
+
+pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
     let theme = &app.theme;
     let block = Block::bordered().title(Span::styled(" outcome ", theme.title()));
     let inner = block.inner(area);
     let wide = inner.width >= 40;
     frame.render_widget(
-        Paragraph::new(lines(app, wide))
+        Paragraph::new(lines(app, solved, wide))
             .block(block)
             .wrap(Wrap { trim: false }),
         area,
@@ -103,13 +125,13 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
 }
 
 /// The panel's lines: long labels and the extra numbers when `wide`.
-fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
+fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
     let theme = &app.theme;
-    let b = &app.bounce;
+    let b = &solved.bounce;
     let o = &b.outcome;
-    let e = b.energy();
+    let e = &solved.energy;
     let label = |short: &'static str, long: &'static str| {
-        let text = if wide { long } else { short };
+        let text = theme.words(if wide { long } else { short });
         Span::styled(
             format!("{text:<w$}", w = if wide { 18 } else { 9 }),
             theme.dim(),
@@ -143,7 +165,7 @@ fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
             ]),
             Line::from(vec![
                 label("phases", "phases (ms)"),
-                Span::styled(b.phase_summary(), theme.dim()),
+                Span::styled(summary(b), theme.dim()),
             ]),
             Line::from(timeline(b, theme)),
         ]

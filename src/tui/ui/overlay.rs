@@ -15,16 +15,20 @@ pub fn rows(lines: &[Line], text_width: u16) -> u16 {
 }
 
 /// Draws `lines` in a box `width` wide centred in `area`, with `title` on the top border and `footer` on
-/// the bottom one, as tall as the lines wrap to and no taller than `area`.
+/// the bottom one, as tall as the lines wrap to and no taller than `area`, scrolled down by `scroll` rows
+/// (at most to the last row).
 pub fn render(
     frame: &mut Frame,
     area: Rect,
     width: u16,
     title: Span<'static>,
-    footer: &'static str,
+    footer: String,
     lines: Vec<Line<'static>>,
+    scroll: u16,
 ) {
-    let height = (rows(&lines, width.saturating_sub(2)) + 2).min(area.height);
+    let total = rows(&lines, width.saturating_sub(2));
+    let height = (total + 2).min(area.height);
+    let scroll = scroll.min(total.saturating_sub(height.saturating_sub(2)));
     let popup = area.centered(Constraint::Length(width), Constraint::Length(height));
     let block = Block::bordered()
         .title(title)
@@ -33,7 +37,8 @@ pub fn render(
     frame.render_widget(
         Paragraph::new(lines)
             .block(block)
-            .wrap(Wrap { trim: false }),
+            .wrap(Wrap { trim: false })
+            .scroll((scroll, 0)),
         popup,
     );
 }

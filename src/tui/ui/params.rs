@@ -8,7 +8,9 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
+use crate::model::ParamSpec;
 use crate::model::params::BOUNCE_PARAMS as PARAMS;
+use crate::model::units::Shown;
 use crate::tui::app::App;
 
 /// The fewest rows the panel is given, borders included, however short the screen.
@@ -36,11 +38,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         }
         lines.push({
             let value = app.params.get(spec.id);
-            let shown = spec.show(value).to_string();
+            let shown = shown(spec, value).to_string();
             let changed = if value == spec.default { ' ' } else { '•' };
             let pointer = if i == app.selected { '▸' } else { ' ' };
             // pointer, symbol in 4, label, value and the changed mark on the right.
-            let head = format!("{pointer}{:<4}", spec.symbol);
+            let head = format!("{pointer}{:<4}", theme.words(spec.symbol));
             let room = width.saturating_sub(head.chars().count() + shown.chars().count() + 2);
             let label: String = if room >= 8 {
                 spec.label.chars().take(room).collect()
@@ -75,6 +77,21 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     }
     let shown: Vec<Line> = lines.into_iter().skip(start).take(visible).collect();
     frame.render_widget(Paragraph::new(shown).block(block), area);
+}
+
+/// `value` as the panel shows it: in the parameter's display unit, but a mass of 1 kg or more in kg.
+pub fn shown(spec: &ParamSpec, value: f64) -> Shown {
+    let shown = spec.show(value);
+    if shown.symbol == "g" && value >= 1.0 {
+        Shown {
+            value,
+            symbol: "kg",
+            decimals: 3,
+            ..shown
+        }
+    } else {
+        shown
+    }
 }
 
 /// The headings between groups of parameters.

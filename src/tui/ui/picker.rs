@@ -62,7 +62,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     }
     let title = Span::styled(" presets ", theme.title());
     let footer = " ↑↓ choose · ⏎ apply (u undoes) · Esc close ";
-    overlay::render(frame, area, width, title, footer, lines);
+    overlay::render(frame, area, width, title, footer.into(), lines, 0);
 }
 
 /// What the status line asks, and the text typed so far, while a file prompt or question is open.

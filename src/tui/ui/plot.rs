@@ -279,7 +279,9 @@ impl Plot<'_> {
             let row = axis_y - 1 - self.y.cell(*tick, data.height, up, true);
             buf.set_string(axis_x, row, "┤", style);
             let width = label.chars().count() as u16;
-            buf.set_string(axis_x.saturating_sub(width + 1), row, &label, style);
+            // A space before the axis, unless the label is as wide as the column: it stays inside the plot.
+            let start = axis_x.saturating_sub(width + 1).max(inner.x);
+            buf.set_string(start, row, &label, style);
         }
         buf.set_string(axis_x, axis_y, "└", style);
         buf.set_string(data.x, axis_y, "─".repeat(usize::from(data.width)), style);

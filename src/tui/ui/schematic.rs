@@ -45,6 +45,7 @@ use ratatui::widgets::{Block, Widget};
 use super::charts::fixed;
 use crate::model::PhaseKind;
 use crate::tui::app::App;
+use crate::tui::solved::Solved;
 
 /// The smallest panel, borders included, the picture is drawn in.
 pub const MIN_WIDTH: u16 = 30;
@@ -133,14 +134,14 @@ fn nice_down(v: f64) -> f64 {
 
 impl Scene {
     /// The picture of `app`'s bounce at its time cursor.
-    pub fn at(app: &App) -> Scene {
-        let bounce = &app.bounce;
+    pub fn at(app: &App, solved: &Solved) -> Scene {
+        let bounce = &solved.bounce;
         let r = bounce.setup.r * 1e3;
-        let sample = app.cursor_sample();
-        let (travel, angle) = app.travel.at(bounce, app.cursor);
-        let (travel_min, travel_max) = app.travel.x_extent();
+        let sample = solved.sample_at(app.cursor);
+        let (travel, angle) = solved.travel.at(bounce, app.cursor);
+        let (travel_min, travel_max) = solved.travel.x_extent();
 
-        let (x_low, x_high) = app
+        let (x_low, x_high) = solved
             .series
             .iter()
             .fold((0.0f64, 0.0f64), |(lo, hi), s| (lo.min(s.x), hi.max(s.x)));
@@ -150,7 +151,7 @@ impl Scene {
         } else {
             1.0
         };
-        let f_max = app
+        let f_max = solved
             .series
             .iter()
             .map(|s| s.friction.abs())
@@ -384,9 +385,9 @@ fn paint(ctx: &mut Context, scene: &Scene, app: &App, x_bounds: [f64; 2], dot: (
     }
 }
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
     let theme = &app.theme;
-    let scene = Scene::at(app);
+    let scene = Scene::at(app, solved);
     let wide = area.width >= 40;
     let title = Line::from(vec![
         Span::styled(

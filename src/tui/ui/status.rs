@@ -55,7 +55,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, schematic_shown: bool) {
         _ => picker::prompt(app),
     };
     if let Some((label, text)) = prompt {
-        spans.push(Span::styled(label, theme.key()));
+        spans.push(Span::styled(theme.words(&label).into_owned(), theme.key()));
         spans.push(Span::raw(text));
         let cursor_x = area.x + spans.iter().map(|s| s.width() as u16).sum::<u16>();
         frame.set_cursor_position((cursor_x.min(area.right().saturating_sub(1)), area.y));
@@ -65,12 +65,12 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, schematic_shown: bool) {
             Tone::Error => theme.error(),
             Tone::Info => Style::new(),
         };
-        spans.push(Span::styled(message.text.clone(), style));
+        spans.push(Span::styled(theme.words(&message.text).into_owned(), style));
         spans.push(Span::raw("   "));
     } else {
         if area.width >= 100 {
             spans.push(Span::styled(
-                format!("[{}]  ", app.view.name()),
+                format!("[{}]  ", theme.words(app.view.name())),
                 theme.dim(),
             ));
         }
@@ -84,7 +84,8 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, schematic_shown: bool) {
         .filter_map(|b| b.hint)
         .collect();
     // Each hint after the first takes two spaces before it.
-    let width = |h: &keys::Hint| 2 + h.keys.chars().count() + 1 + h.word.chars().count();
+    let width =
+        |h: &keys::Hint| 2 + theme.words(h.keys).chars().count() + 1 + h.word.chars().count();
     let mut room = (usize::from(area.width) + 2).saturating_sub(used);
     let mut chosen = vec![false; hints.len()];
     for essential in [true, false] {
@@ -100,7 +101,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, schematic_shown: bool) {
         if i > 0 {
             spans.push(Span::raw("  "));
         }
-        spans.push(Span::styled(h.keys, theme.key()));
+        spans.push(Span::styled(theme.words(h.keys), theme.key()));
         spans.push(Span::styled(format!(" {}", h.word), theme.dim()));
     }
     frame.render_widget(

@@ -13,12 +13,13 @@ use super::baseline;
 use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_extent};
 use crate::model::PhaseKind;
 use crate::tui::app::App;
-use crate::tui::sweep::Sweep;
+use crate::tui::solved::Solved;
+use crate::tui::sweep::{Sweep, Sweeps};
 
 /// Half the angle step of the sweep: a range's edge lies between its last angle and the next one.
 const HALF_STEP: f64 = 45.0 / crate::tui::sweep::Sweep::ANGLES as f64;
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved, sweeps: &Sweeps) {
     let theme = &app.theme;
     let sliding = theme.phase(PhaseKind::Slide);
     let gripping = theme.phase(PhaseKind::Grip);
@@ -26,9 +27,9 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
 
     let angle = app.params.angle_deg;
-    let omega2 = app.bounce.outcome.omega2;
-    let curve = app
-        .sweep
+    let omega2 = solved.bounce.outcome.omega2;
+    let curve = sweeps
+        .current
         .points
         .iter()
         .map(|p| {
@@ -40,8 +41,8 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             (p.angle_deg, p.omega2, color)
         })
         .collect();
-    let comparison = app
-        .sweep_comparison
+    let comparison = sweeps
+        .comparison
         .points
         .iter()
         .map(|p| (p.angle_deg, p.omega2))
@@ -51,9 +52,9 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         Mark::Vertical(angle, theme.current()),
         Mark::Dashed(comparison, theme.comparison()),
     ];
-    if let Some(b) = &app.baseline {
+    if let Some(b) = app.baseline_sweeps() {
         let points: Vec<(f64, f64)> = b
-            .sweep
+            .current
             .points
             .iter()
             .map(|p| (p.angle_deg, p.omega2))
@@ -72,7 +73,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
 
     let mut segments = Vec::new();
     let mut covered = 0.0;
-    for (first, last) in app.sweep.sliding_ranges() {
+    for (first, last) in sweeps.current.sliding_ranges() {
         // The sweep starts half a step above zero: a range from its first angle starts at zero.
         let from = if first <= 2.0 * HALF_STEP {
             0.0
@@ -125,13 +126,13 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             Span::styled(format!("┆ θ1 {angle:.1}°: {omega2:.1} "), current),
         ]),
     ];
-    let crossings: Vec<String> = app
-        .sweep
-        .crossings(&app.sweep_comparison)
+    let crossings: Vec<String> = sweeps
+        .current
+        .crossings(&sweeps.comparison)
         .iter()
         .map(|a| format!("{a:.1}°"))
         .collect();
-    let other = Sweep::comparison_spin(app.params.spin);
+    let other = Sweep::comparison_spin(sweeps.key.spin);
     let legends = if crossings.is_empty() {
         [
             format!(" ┄ ω1 = {other:.0} rad/s: no crossing "),

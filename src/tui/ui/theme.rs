@@ -2,6 +2,8 @@
 //! with colour off (NO_COLOR) every colour is the terminal's own and the charts tell phases apart by
 //! labels and markers instead.
 
+use std::borrow::Cow;
+
 use ratatui::style::{Color, Modifier, Style};
 use ratatui::symbols::Marker;
 
@@ -14,6 +16,8 @@ pub struct Theme {
     pub color: bool,
     /// The marker the charts draw with (braille, dot or block).
     pub marker: Marker,
+    /// True when the terminal gets ASCII only: key names are written as words (`Space`, `hjkl`).
+    pub ascii: bool,
 }
 
 impl Default for Theme {
@@ -21,11 +25,45 @@ impl Default for Theme {
         Theme {
             color: true,
             marker: Marker::Braille,
+            ascii: false,
         }
     }
 }
 
+/// What the ASCII screen writes for the symbols of the Unicode one, longest first: key pairs as the
+/// letters that do the same (`↑↓` as `jk`), key symbols and Greek letters as words.
+const WORDS: [(&str, &str); 15] = [
+    ("↑↓", "jk"),
+    ("←→", "hl"),
+    ("␣", "Space"),
+    ("⏎", "Enter"),
+    ("↑", "Up"),
+    ("↓", "Down"),
+    ("←", "Left"),
+    ("→", "->"),
+    ("ω", "omega"),
+    ("θ", "theta"),
+    ("μ", "mu"),
+    ("Δ", "d"),
+    ("±", "+-"),
+    ("°", " deg"),
+    ("…", "..."),
+];
+
 impl Theme {
+    /// `text` for the screen: as it is, or in ASCII with the symbols spelt out ([`WORDS`]); what is
+    /// left beyond ASCII the output replaces character by character.
+    pub fn words<'a>(&self, text: &'a str) -> Cow<'a, str> {
+        if !self.ascii || text.is_ascii() {
+            return Cow::Borrowed(text);
+        }
+        let mut out = text.to_string();
+        for (symbol, word) in WORDS {
+            out = out.replace(symbol, word);
+        }
+        Cow::Owned(out)
+    }
+
     /// Colour unless colour is off.
     fn pick(&self, color: Color) -> Color {
         if self.color { color } else { Color::Reset }
