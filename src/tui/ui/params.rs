@@ -23,6 +23,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let width = usize::from(inner.width);
     let mut lines: Vec<Line> = Vec::with_capacity(PARAMS.len() + group_headings());
     let mut selected_line = 0;
+    // The symbols' column: 4 wide, wider where ASCII spells a symbol out (`theta1`).
+    let column = PARAMS
+        .iter()
+        .map(|spec| theme.words(spec.symbol).chars().count() + 1)
+        .fold(4, usize::max);
     for (i, spec) in PARAMS.iter().enumerate() {
         if i > 0 && PARAMS[i - 1].group != spec.group {
             let name = format!(" {} ", spec.group.name());
@@ -41,8 +46,8 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             let shown = shown(spec, value).to_string();
             let changed = if value == spec.default { ' ' } else { '•' };
             let pointer = if i == app.selected { '▸' } else { ' ' };
-            // pointer, symbol in 4, label, value and the changed mark on the right.
-            let head = format!("{pointer}{:<4}", theme.words(spec.symbol));
+            // pointer, symbol, label, value and the changed mark on the right.
+            let head = format!("{pointer}{:<column$}", theme.words(spec.symbol));
             let room = width.saturating_sub(head.chars().count() + shown.chars().count() + 2);
             let label: String = if room >= 8 {
                 spec.label.chars().take(room).collect()
