@@ -9,6 +9,7 @@ pub mod cli;
 pub mod export;
 pub mod input;
 pub mod model;
+pub mod output;
 pub mod scenario;
 pub mod shot;
 pub mod tui;

@@ -13,7 +13,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use serde::Deserialize;
 use toml::Spanned;
@@ -22,6 +22,7 @@ use crate::input;
 use crate::model::Params;
 use crate::model::params::{Group, PARAMS, ParamError, spec_named};
 use crate::model::units;
+use crate::output::{self, Replace};
 
 /// A named set of parameter values.
 #[derive(Clone, Debug, PartialEq)]
@@ -101,6 +102,8 @@ pub enum ScenarioError {
         #[source]
         source: std::io::Error,
     },
+    #[error(transparent)]
+    Write(#[from] output::WriteError),
     #[error("{origin}:{line}: {message}")]
     Invalid {
         origin: String,
@@ -122,6 +125,19 @@ struct RawScenario {
     params: BTreeMap<Spanned<String>, Spanned<toml::Value>>,
 }
 
+/// The key of the line holding byte `offset` (`speed` in `speed = 5`, `params` in `[params]`), for a
+/// parser's message that does not name it.
+fn key_at(text: &str, offset: usize) -> Option<&str> {
+    let start = text.get(..offset)?.rfind('\n').map_or(0, |i| i + 1);
+    let line = text[start..].lines().next()?;
+    let key = match line.split_once('=') {
+        Some((key, _)) => key,
+        None => line.trim().trim_start_matches('[').trim_end_matches(']'),
+    };
+    let key = key.trim().trim_matches(['"', '\'']);
+    (!key.is_empty() && key.len() <= 64).then_some(key)
+}
+
 /// 1-based line of byte `offset` in `text`.
 fn line_of(text: &str, offset: usize) -> usize {
     1 + text[..offset.min(text.len())]
@@ -141,7 +157,11 @@ impl Scenario {
         };
         let raw: RawScenario = toml::from_str(text).map_err(|e| {
             let offset = e.span().map_or(0, |s| s.start);
-            invalid(offset, None, e.message().trim_end().to_string())
+            let message = e.message().trim_end();
+            match key_at(text, offset) {
+                Some(key) => invalid(offset, Some(key), format!("{key}: {message}")),
+                None => invalid(offset, None, message.to_string()),
+            }
         })?;
         let mut values = BTreeMap::new();
         for (key, value) in &raw.params {
@@ -264,32 +284,15 @@ impl Scenario {
         out
     }
 
-    /// Writes the scenario to `path` atomically: a temporary file beside it, then a rename, so an
-    /// existing file is never left truncated.
+    /// Writes the scenario to `path` through [`output::write`]: never replacing a read-only file, a
+    /// device or a symlink, and never leaving a half-written file.
     pub fn save(&self, path: &Path) -> Result<(), ScenarioError> {
-        write_atomically(path, self.to_toml().as_bytes()).map_err(|source| ScenarioError::Io {
-            path: path.display().to_string(),
-            source,
-        })
+        Ok(output::write(
+            path,
+            self.to_toml().as_bytes(),
+            Replace::Writable,
+        )?)
     }
-}
-
-/// Writes `bytes` to a temporary file next to `path` and renames it into place.
-pub fn write_atomically(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
-    let file_name = path
-        .file_name()
-        .ok_or_else(|| std::io::Error::new(std::io::ErrorKind::InvalidInput, "not a file name"))?;
-    let mut temporary = PathBuf::from(path);
-    temporary.set_file_name(format!(
-        ".{}.{}.tmp",
-        file_name.to_string_lossy(),
-        std::process::id()
-    ));
-    let result = std::fs::write(&temporary, bytes).and_then(|()| std::fs::rename(&temporary, path));
-    if result.is_err() {
-        let _ = std::fs::remove_file(&temporary);
-    }
-    result
 }
 
 /// A short text for a value of parameter `key` in its people unit, e.g. `10.00 g`.

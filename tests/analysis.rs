@@ -11,6 +11,7 @@ use snapback::analysis::{Span, retune, sweep, timeline};
 use snapback::export::svg;
 use snapback::model::params::{ParamId, spec_named};
 use snapback::model::{Params, solve};
+use snapback::output::Replace;
 
 #[test]
 fn sweep_rows_are_single_solves_in_order() {
@@ -521,11 +522,11 @@ fn svg_is_written_atomically_or_not_at_all() {
     std::fs::create_dir_all(&dir).unwrap();
     let fig = Which::Fig3.data(&Params::default()).unwrap();
     let path = dir.join("fig3.svg");
-    svg::write(&fig, &path).unwrap();
+    svg::write(&fig, &path, Replace::Writable).unwrap();
     svg_texts(&std::fs::read_to_string(&path).unwrap());
     let leftovers = std::fs::read_dir(&dir).unwrap().count();
     assert_eq!(leftovers, 1);
-    let err = svg::write(&fig, &dir.join("missing").join("x.svg")).unwrap_err();
+    let err = svg::write(&fig, &dir.join("missing").join("x.svg"), Replace::Writable).unwrap_err();
     assert!(err.to_string().contains("missing"), "{err}");
     std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -565,9 +565,10 @@ fn figure_writes_svg_and_reports_bad_paths() {
     std::fs::create_dir_all(&dir).unwrap();
     for (which, title) in [("fig2", "ω2 (rad/s)"), ("fig3", "X (mm)")] {
         let path = dir.join(format!("{which}.svg"));
-        let (code, out, _) = run(&["figure", which, "--out", path.to_str().unwrap()]);
+        let (code, out, stderr) = run(&["figure", which, "--out", path.to_str().unwrap()]);
         assert_eq!(code, 0);
-        assert!(out.contains(path.to_str().unwrap()));
+        assert_eq!(out, "", "stdout is kept for --out -");
+        assert!(stderr.contains(path.to_str().unwrap()), "{stderr}");
         let svg = std::fs::read_to_string(&path).unwrap();
         let doc = roxmltree::Document::parse(&svg).unwrap();
         assert!(

@@ -61,7 +61,7 @@ impl Which {
             .ok_or_else(|| {
                 AnalysisError::Input(format!(
                     "FIGURE must be one of fig2, fig3; got {}",
-                    text.trim()
+                    crate::model::units::echo(text.trim())
                 ))
             })
     }

@@ -59,7 +59,7 @@ impl Objective {
                 AnalysisError::Input(format!(
                     "--objective must be one of {}; got {}",
                     names.join(", "),
-                    text.trim()
+                    crate::model::units::echo(text.trim())
                 ))
             })
     }

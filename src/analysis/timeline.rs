@@ -13,11 +13,15 @@ pub fn first_grip(b: &Bounce) -> Option<usize> {
     b.phases.iter().position(|p| p.kind == PhaseKind::Grip)
 }
 
-/// The samples just before and just after the start of phase `index` (> 0): the same instant, the
-/// ending phase's forces on one side and the starting phase's on the other.
+/// The samples just before and just after the start of phase `index`: the same instant, the ending
+/// phase's forces on one side and the starting phase's on the other (for the first phase, which nothing
+/// precedes, its own on both).
 pub fn sides(b: &Bounce, index: usize) -> (Sample, Sample) {
     let t = b.phases[index].start;
-    (b.sample_in(index - 1, t), b.sample_in(index, t))
+    (
+        b.sample_in(index.saturating_sub(1), t),
+        b.sample_in(index, t),
+    )
 }
 
 /// The largest value of `f` over the contact and the time it happens; see [`peak_between`].

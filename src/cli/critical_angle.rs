@@ -50,6 +50,7 @@ fn describe_grip(c: Critical) -> String {
 }
 
 pub fn run(args: &CriticalAngleArgs) -> Result<(), Failure> {
+    crate::model::limits::limit_work(crate::model::limits::COMMAND_WORK);
     let params = args
         .params
         .apply(Params::default())

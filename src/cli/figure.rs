@@ -1,14 +1,16 @@
 //! `snapback figure fig2|fig3 --out FILE.svg`: the paper's Fig. 2 or Fig. 3 as SVG, at the given
 //! parameters.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use clap::Args;
 
-use super::{Failure, ParamArgs, emit};
+use super::{Failure, ParamArgs};
 use crate::analysis::figures::Which;
-use crate::export::svg;
+use crate::export::svg::{self, SvgError};
 use crate::model::Params;
+use crate::output::{self, Replace, WriteError};
 
 #[derive(Clone, Debug, Args)]
 pub struct FigureArgs {
@@ -18,20 +20,27 @@ pub struct FigureArgs {
     /// fig2 (omega2 against theta1, for omega1 = 0 and the given spin) or fig3 (F, X and omega against t).
     #[arg(value_name = "FIGURE")]
     pub which: String,
-    /// The SVG file to write (SVG is the one format figure writes).
+    /// The SVG file to write (SVG is the one format figure writes): a symlink is written through, a
+    /// device or FIFO written into, `-` is standard output. A read-only file is kept unless --force.
     #[arg(long, value_name = "FILE.svg")]
     pub out: PathBuf,
+    /// Replace --out even when it is a read-only file (it stays read-only).
+    #[arg(long)]
+    pub force: bool,
 }
 
 /// The extensions `--out` may end in.
 const EXTENSIONS: [&str; 1] = ["svg"];
 
 pub fn run(args: &FigureArgs) -> Result<(), Failure> {
+    crate::model::limits::limit_work(crate::model::limits::COMMAND_WORK);
     let extension = args
         .out
         .extension()
         .map(|e| e.to_string_lossy().to_lowercase());
-    if !extension.is_some_and(|e| EXTENSIONS.contains(&e.as_str())) {
+    // A stream (`-`, a device, a FIFO) has no name to say its format.
+    if !output::is_stream(&args.out) && !extension.is_some_and(|e| EXTENSIONS.contains(&e.as_str()))
+    {
         return Err(Failure::usage(format!(
             "--out must end in .{} (the one format figure writes); got {}",
             EXTENSIONS.join(", ."),
@@ -44,6 +53,20 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         .apply(Params::default())
         .map_err(Failure::usage)?;
     let figure = which.data(&base).map_err(Failure::usage)?;
-    svg::write(&figure, &args.out).map_err(Failure::usage)?;
-    emit(&format!("wrote {}\n", args.out.display()))
+    let replace = if args.force {
+        Replace::Any
+    } else {
+        Replace::Writable
+    };
+    match svg::write(&figure, &args.out, replace) {
+        Err(e @ SvgError::Write(WriteError::ReadOnly { .. })) => {
+            Err(Failure::usage(format!("{e} (--force replaces it)")))
+        }
+        Err(e) => Err(Failure::usage(e)),
+        // Said on stderr: stdout may be where the figure went (`--out -`, `--out /dev/stdout`).
+        Ok(()) => {
+            let _ = writeln!(std::io::stderr(), "wrote {}", args.out.display());
+            Ok(())
+        }
+    }
 }

@@ -7,6 +7,7 @@ mod man;
 mod optimize;
 mod params_args;
 mod presets;
+mod progress;
 mod reproduce;
 mod shot;
 mod simulate;
@@ -46,6 +47,12 @@ pub enum Commands {
     /// The value of a parameter that maximises (or minimises) an outcome, and the bounce there.
     Optimize(optimize::OptimizeArgs),
     /// Check every number the paper prints (assets/claims.md) against the model.
+    #[command(
+        after_help = "Exit status: 0 when every claim is reproduced, close, or differs for a \
+        reason shown in its note; 1 when a claim differs without a demonstrated reason or cannot be \
+        computed (flags far from the paper's parameters: the rows say which claims and why); 2 on bad \
+        input."
+    )]
     Reproduce(reproduce::ReproduceArgs),
     /// Draw the paper's Fig. 2 or Fig. 3 as SVG, at the given parameters.
     Figure(figure::FigureArgs),
@@ -78,15 +85,15 @@ impl Failure {
 /// Runs the parsed command line.
 pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
-        Some(Commands::Simulate(args)) => simulate::run(&args),
+        Some(Commands::Simulate(args)) => headless(|| simulate::run(&args)),
         Some(Commands::Tui(args)) => tui::run(&args),
-        Some(Commands::Presets(args)) => presets::run(&args),
-        Some(Commands::Sweep(args)) => sweep::run(&args),
-        Some(Commands::CriticalAngle(args)) => critical_angle::run(&args),
-        Some(Commands::Optimize(args)) => optimize::run(&args),
-        Some(Commands::Reproduce(args)) => reproduce::run(&args),
-        Some(Commands::Figure(args)) => figure::run(&args),
-        Some(Commands::Shot(args)) => shot::run(&args),
+        Some(Commands::Presets(args)) => headless(|| presets::run(&args)),
+        Some(Commands::Sweep(args)) => headless(|| sweep::run(&args)),
+        Some(Commands::CriticalAngle(args)) => headless(|| critical_angle::run(&args)),
+        Some(Commands::Optimize(args)) => headless(|| optimize::run(&args)),
+        Some(Commands::Reproduce(args)) => headless(|| reproduce::run(&args)),
+        Some(Commands::Figure(args)) => headless(|| figure::run(&args)),
+        Some(Commands::Shot(args)) => headless(|| shot::run(&args)),
         Some(Commands::Completions(args)) => completions::run(&args),
         Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),
@@ -98,6 +105,19 @@ pub fn run(cli: Cli) -> ExitCode {
             ExitCode::from(failure.status)
         }
     }
+}
+
+/// A command without the explorer, watched by [`progress::watch`]; interrupted, it fails with status
+/// 130 whatever it was doing.
+fn headless(command: impl FnOnce() -> Result<(), Failure>) -> Result<(), Failure> {
+    let result = progress::watch(command);
+    if crate::model::limits::interrupted() {
+        return Err(Failure {
+            message: "interrupted".into(),
+            status: progress::INTERRUPTED,
+        });
+    }
+    result
 }
 
 /// Writes `text` to stdout; a closed pipe (`| head`) is not an error.

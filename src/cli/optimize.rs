@@ -79,6 +79,7 @@ pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
     let objective = Objective::parse(&args.objective).map_err(Failure::usage)?;
     let best =
         optimize::optimize(&base, &span, objective, args.minimize, scan).map_err(Failure::usage)?;
+    crate::model::limits::reportable(&best.bounce).map_err(Failure::usage)?;
     let spec = span.spec;
     let unit = spec.dimension.base_symbol();
     // What was solved: the scan points, or every whole number of the range.

@@ -13,7 +13,8 @@ pub enum Format {
     /// One line per printed number, its note below it, and a summary.
     #[default]
     Table,
-    /// An array of objects: `id`, `quantity`, `paper`, `computed`, `unit`, `status`, `note`, `difference`.
+    /// An array of objects: `id`, `quantity`, `paper`, `computed`, `unit`, `status`, `note`, `difference`;
+    /// `computed` and `difference` are null when the status is `not-computed` (the note says why).
     Json,
 }
 
@@ -35,7 +36,9 @@ fn table(report: &Report) -> String {
         "id", "quantity", "paper", "computed", "unit", "diff"
     );
     for r in &report.rows {
-        let relative = if r.paper != 0.0 {
+        let relative = if r.status == Status::NotComputed {
+            "-".to_string()
+        } else if r.paper != 0.0 {
             format!("{:+.1}%", 100.0 * r.difference / r.paper)
         } else {
             format!("{:+.2}", r.difference)
@@ -57,11 +60,15 @@ fn table(report: &Report) -> String {
     }
     let _ = writeln!(
         out,
-        "\n{} numbers: {} reproduced, {} close (within 3 %), {} differ",
+        "\n{} numbers: {} reproduced, {} close (within 3 %), {} differ{}",
         report.rows.len(),
         report.count(Status::Reproduced),
         report.count(Status::Close),
-        report.count(Status::Differs)
+        report.count(Status::Differs),
+        match report.count(Status::NotComputed) {
+            0 => String::new(),
+            n => format!(", {n} not computed"),
+        }
     );
     for id in &report.missing {
         let _ = writeln!(out, "missing: claim {id} has no check");
@@ -80,6 +87,7 @@ fn table(report: &Report) -> String {
 }
 
 pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
+    crate::model::limits::limit_work(crate::model::limits::COMMAND_WORK);
     let base = args
         .params
         .apply(Params::default())
@@ -100,9 +108,13 @@ pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
     } else {
         Err(Failure {
             message: format!(
-                "{} claim(s) without a check, {} difference(s) without a demonstrated reason",
+                "{} claim(s) without a check, {} difference(s) without a demonstrated reason{}",
                 report.missing.len(),
-                report.unexplained().len()
+                report.unexplained().len(),
+                match report.count(Status::NotComputed) {
+                    0 => String::new(),
+                    n => format!(", {n} number(s) not computed under these parameters"),
+                }
             ),
             status: 1,
         })

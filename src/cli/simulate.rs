@@ -4,7 +4,7 @@ use clap::{Args, ValueEnum};
 
 use super::{Failure, ParamArgs, emit};
 use crate::export;
-use crate::model::{Params, solve};
+use crate::model::{Params, limits, solve};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -35,6 +35,7 @@ pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
         .apply(Params::default())
         .map_err(Failure::usage)?;
     let bounce = solve(&params).map_err(Failure::usage)?;
+    limits::reportable(&bounce).map_err(Failure::usage)?;
     let text = match args.format {
         Format::Table => export::table::summary(&bounce),
         Format::Json => export::json::bounce(&bounce),

@@ -1,24 +1,20 @@
 //! Figures as SVG, drawn with plotters: one chart per panel, axis titles with units, a legend per
-//! panel placed where the curves leave room. Files are written atomically (a temporary file beside
-//! the target, then a rename).
+//! panel placed where the curves leave room. Files are written by [`output::write`].
 
-use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use plotters::prelude::*;
 
 use crate::analysis::figures::{Figure, Panel};
+use crate::output::{self, Replace, WriteError};
 
 /// Why a figure could not be drawn or written.
 #[derive(Debug, thiserror::Error)]
 pub enum SvgError {
     #[error("cannot draw the figure: {0}")]
     Draw(String),
-    #[error("cannot write {}: {source}", path.display())]
-    Write {
-        path: PathBuf,
-        source: std::io::Error,
-    },
+    #[error("cannot write the figure: {0}")]
+    Write(#[from] WriteError),
 }
 
 /// Line colours, one per curve of a panel.
@@ -150,30 +146,8 @@ pub fn render(figure: &Figure) -> Result<String, SvgError> {
     Ok(svg)
 }
 
-/// Draws the figure into `path`: written to a temporary file in the same directory, then renamed,
-/// so the target is never left half written.
-pub fn write(figure: &Figure, path: &Path) -> Result<(), SvgError> {
+/// Draws the figure into `path` (`-`: standard output) through [`output::write`].
+pub fn write(figure: &Figure, path: &Path, replace: Replace) -> Result<(), SvgError> {
     let svg = render(figure)?;
-    let failed = |source| SvgError::Write {
-        path: path.to_path_buf(),
-        source,
-    };
-    let name = path
-        .file_name()
-        .ok_or_else(|| failed(std::io::Error::other("not a file name")))?;
-    let mut temp_name = std::ffi::OsString::from(".");
-    temp_name.push(name);
-    temp_name.push(format!(".{}.tmp", std::process::id()));
-    let temp = path.with_file_name(temp_name);
-    let written = std::fs::File::create(&temp)
-        .and_then(|mut file| {
-            file.write_all(svg.as_bytes())
-                .and_then(|()| file.sync_all())
-        })
-        .and_then(|()| std::fs::rename(&temp, path));
-    if let Err(source) = written {
-        let _ = std::fs::remove_file(&temp);
-        return Err(failed(source));
-    }
-    Ok(())
+    Ok(output::write(path, svg.as_bytes(), replace)?)
 }

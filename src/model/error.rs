@@ -1,5 +1,7 @@
 //! Why a bounce could not be solved, and the limits behind the refusals.
 
+use super::events::Stall;
+use super::limits::Unsolvable;
 use super::params::ParamError;
 
 /// The largest number of cart radians per contact the solver accepts (about 16 000 oscillations).
@@ -43,4 +45,21 @@ pub enum SolveError {
         /// The parameters that would make the bounce solvable.
         advice: String,
     },
+    #[error(transparent)]
+    Unsolvable(#[from] Unsolvable),
+    #[error("{stall}{hint}")]
+    Stalled {
+        stall: Stall,
+        /// What would help, where the parameters say (empty otherwise).
+        hint: &'static str,
+    },
+    #[error(
+        "the command used up its work budget: under these parameters its bounces are too costly to \
+         solve them all (parameters nearer the paper's take seconds)"
+    )]
+    CommandBudget,
+    #[error(
+        "{quantity} is not a finite number: the parameters are beyond what f64 carries through"
+    )]
+    NotFinite { quantity: &'static str },
 }

@@ -6,6 +6,12 @@
 //! (b - t)²/2`; when the lower of the two stays below the noise floor, the interval provably holds no
 //! rise. Otherwise it is halved, earliest half first, so the crossing found is the first one, however
 //! close two crossings lie (a short phase is never skipped).
+//!
+//! Every search is metered ([`metered`]): a solve has a budget of evaluations, and a search whose step
+//! no longer advances time stops. Either way the search gives up, and the solve is refused with the
+//! [`Stall`] rather than left to run for ever.
+
+use std::cell::Cell;
 
 /// The smallest interval the search splits, relative to the time: below it, a rise is taken as found.
 const FINEST: f64 = 1e-14;
@@ -13,6 +19,103 @@ const FINEST: f64 = 1e-14;
 /// A Newton step this small relative to the time (a few units in the last place) means the iteration
 /// has converged.
 const CONVERGED: f64 = 4.0 * f64::EPSILON;
+
+/// Why an event search gave up.
+#[derive(Clone, Copy, Debug, PartialEq, thiserror::Error)]
+pub enum Stall {
+    #[error(
+        "the solve used up its budget of {evaluations} evaluations of the event functions near t = \
+         {t:.3e} s: the contact switches or oscillates faster than the solver can follow"
+    )]
+    Budget { evaluations: u64, t: f64 },
+    #[error(
+        "the event search cannot advance past t = {t:.3e} s: the bounce's fastest timescale is below \
+         what f64 resolves at that time"
+    )]
+    Resolution { t: f64 },
+}
+
+/// The work left to the solve running on this thread, and why its search stalled, if it did. A solve
+/// runs on one thread from start to end, and the searches' signature is shared by every contact model,
+/// so the meter is kept here rather than passed through them.
+#[derive(Clone, Copy)]
+struct Meter {
+    armed: bool,
+    budget: u64,
+    left: u64,
+    stall: Option<Stall>,
+}
+
+const IDLE: Meter = Meter {
+    armed: false,
+    budget: u64::MAX,
+    left: u64::MAX,
+    stall: None,
+};
+
+thread_local! {
+    static METER: Cell<Meter> = const { Cell::new(IDLE) };
+    /// The evaluations the last outermost metered solve on this thread spent.
+    static SPENT: Cell<u64> = const { Cell::new(0) };
+}
+
+/// Runs `solve` with a budget of `budget` event evaluations; `Err` when one of its searches gave up
+/// (its result, which a search that gave up has cut short, is then dropped). Nested calls share the
+/// outermost budget.
+pub fn metered<T>(budget: u64, solve: impl FnOnce() -> T) -> Result<T, Stall> {
+    let outer = METER.get();
+    if !outer.armed {
+        METER.set(Meter {
+            armed: true,
+            budget,
+            left: budget,
+            stall: None,
+        });
+    }
+    let result = solve();
+    let meter = METER.get();
+    if !outer.armed {
+        SPENT.set(meter.budget - meter.left);
+        METER.set(IDLE);
+    }
+    meter.stall.map_or(Ok(result), Err)
+}
+
+/// The evaluations the last (outermost) [`metered`] solve on this thread spent.
+pub fn spent() -> u64 {
+    SPENT.get()
+}
+
+/// True while a metered solve runs on this thread.
+pub fn metering() -> bool {
+    METER.get().armed
+}
+
+/// Records one evaluation at `t`.
+fn spend(t: f64) {
+    let mut meter = METER.get();
+    if meter.left == 0 {
+        meter.stall.get_or_insert(Stall::Budget {
+            evaluations: meter.budget,
+            t,
+        });
+    } else {
+        meter.left -= 1;
+    }
+    METER.set(meter);
+}
+
+/// Records that the search cannot advance past `t`.
+fn stall_at(t: f64) {
+    let mut meter = METER.get();
+    meter.stall.get_or_insert(Stall::Resolution { t });
+    METER.set(meter);
+}
+
+/// True once this thread's solve has stalled: every search then ends at once.
+fn stalled() -> bool {
+    METER.get().stall.is_some()
+}
 
 /// The event: `K` branches, each a value and its time derivative at `t`. The phase ends when any
 /// branch rises (a grip, for example, breaks when F_s reaches +mu N or -mu N).
@@ -74,7 +177,7 @@ fn search<const K: usize>(
     noise: [f64; K],
     start: Start,
 ) -> Option<(f64, usize)> {
-    if t1 <= t0 {
+    if t1 <= t0 || stalled() {
         return None;
     }
     let mut a = Point::at(&f, t0);
@@ -104,8 +207,13 @@ fn search<const K: usize>(
         a = b;
         search.ends_only = [false; K];
     }
-    while a.t < t1 {
-        let b = Point::at(&f, (a.t + step).min(t1));
+    while a.t < t1 && !stalled() {
+        let next = (a.t + step).min(t1);
+        if next <= a.t {
+            stall_at(a.t);
+            return None;
+        }
+        let b = Point::at(&f, next);
         if let Some(t) = search.first_in(&a, &b) {
             return Some(t);
         }
@@ -122,6 +230,7 @@ struct Point<const K: usize> {
 
 impl<const K: usize> Point<K> {
     fn at(f: &impl Event<K>, t: f64) -> Self {
+        spend(t);
         Point { t, branches: f(t) }
     }
 }
@@ -145,6 +254,9 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
     /// The first rise in `[a, b]`, given that every branch is at most `noise` at `a` and nothing rose
     /// before `a`.
     fn first_in(&self, a: &Point<K>, b: &Point<K>) -> Option<(f64, usize)> {
+        if stalled() {
+            return None;
+        }
         let risen = self.risen(b);
         let below = |i: usize| {
             b.branches[i].0 <= self.noise[i] && (self.ends_only[i] || self.proved_below(a, b, i))
@@ -174,7 +286,7 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
         let branch = |t: f64| (self.f)(t)[i];
         let (mut low, mut high) = ((a.t, a.branches[i].0), (b.t, b.branches[i].0));
         let mut step = b.t - a.t;
-        while low.1 > 0.0 && low.0 > self.start {
+        while low.1 > 0.0 && low.0 > self.start && step > 0.0 {
             high = low;
             let t = (low.0 - step).max(self.start);
             low = (t, branch(t).0);
@@ -314,6 +426,35 @@ mod tests {
         assert_eq!(
             first_rise(|t| [grazes(t)], 0.0, 1.0, 0.5, [100.0], [0.0]),
             None
+        );
+    }
+
+    #[test]
+    fn a_step_below_the_rounding_of_t_stalls_instead_of_spinning() {
+        let f = |t: f64| [(-1.0 - t, -1.0)];
+        let found = metered(1000, || first_rise(f, 1.0, 2.0, 1e-20, [0.0], [0.0]));
+        assert_eq!(found, Err(Stall::Resolution { t: 1.0 }));
+    }
+
+    #[test]
+    fn a_search_that_proves_nothing_stops_at_its_budget() {
+        // An infinite curvature proves no interval empty: unmetered, the halving would never end.
+        let f = |t: f64| [(-1.0 - t, -1.0)];
+        let found = metered(500, || first_rise(f, 0.0, 1.0, 0.1, [f64::INFINITY], [0.0]));
+        assert!(
+            matches!(
+                found,
+                Err(Stall::Budget {
+                    evaluations: 500,
+                    ..
+                })
+            ),
+            "{found:?}"
+        );
+        // The meter is the solve's own: the next one starts afresh.
+        assert_eq!(
+            metered(500, || first_rise(f, 0.0, 1.0, 0.1, [0.0], [0.0])),
+            Ok(None)
         );
     }
 }

@@ -14,6 +14,7 @@ pub mod driver;
 pub mod energy;
 pub mod error;
 pub mod events;
+pub mod limits;
 pub mod memo;
 pub mod oscillator;
 pub mod params;

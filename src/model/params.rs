@@ -251,11 +251,11 @@ impl ParamSpec {
         let value = units::parse_bare(text, self.dimension, bare).map_err(|source| {
             ParamError::Unparsable {
                 flag: self.flag,
-                given: text.trim().to_string(),
+                given: units::echo(text.trim()),
                 source: Box::new(source),
             }
         })?;
-        self.check(value, text.trim())?;
+        self.check(value, &units::echo(text.trim()))?;
         Ok(value)
     }
 

@@ -6,13 +6,15 @@ use super::chain::ChainOfMasses;
 use super::compliant::CompliantBall;
 use super::driver::run;
 use super::error::SolveError;
+use super::limits;
 use super::params::Params;
 use super::setup::Setup;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
-/// located by root finding on the exact expressions.
+/// located by root finding on the exact expressions. Cancelled once the process is interrupted
+/// ([`limits::interrupt`]).
 pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
-    solve_cancellable(params, &|| false)
+    solve_cancellable(params, &limits::interrupted)
 }
 
 /// [`solve`], abandoned with [`SolveError::Cancelled`] as soon as `cancelled` returns true: it is asked
@@ -22,6 +24,10 @@ pub fn solve_cancellable(
     params: &Params,
     cancelled: &impl Fn() -> bool,
 ) -> Result<Bounce, SolveError> {
+    limits::bounded(params, || solve_model(params, cancelled))
+}
+
+fn solve_model(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Bounce, SolveError> {
     params.validate()?;
     if params.ball_stiffness > 0.0 {
         let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
@@ -46,6 +52,10 @@ pub fn solve_cancellable(
 /// The rigid ball on a chain of `params.chain` masses, for any N including 1, where it reproduces the
 /// single cart to rounding (a compliant ball goes to its own model, as in [`solve`]).
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
+    limits::bounded(params, || solve_chain_model(params))
+}
+
+fn solve_chain_model(params: &Params) -> Result<Bounce, SolveError> {
     params.validate()?;
     if params.ball_stiffness > 0.0 {
         return solve(params);
@@ -62,9 +72,11 @@ pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
         chain: 1.0,
         ..*params
     };
-    let (model, setup) = CompliantBall::new(&params, false)?;
-    let (phases, last) = run(&model, &setup, &|| false)?;
-    Ok(finish(&params, setup, phases, last))
+    limits::bounded(&params, || {
+        let (model, setup) = CompliantBall::new(&params, false)?;
+        let (phases, last) = run(&model, &setup, &|| false)?;
+        Ok(finish(&params, setup, phases, last))
+    })
 }
 
 #[cfg(test)]

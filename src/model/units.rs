@@ -181,6 +181,21 @@ fn split_number(text: &str) -> (&str, &str) {
     (&text[..end], text[end..].trim())
 }
 
+/// The longest text a message echoes whole.
+const ECHO: usize = 40;
+
+/// User text as a message echoes it: whole up to [`ECHO`] characters, else its start and its length, so
+/// that a value 100 000 digits long does not flood the terminal.
+pub fn echo(text: &str) -> String {
+    let length = text.chars().count();
+    if length <= ECHO {
+        text.to_string()
+    } else {
+        let start: String = text.chars().take(ECHO).collect();
+        format!("{start}... ({length} characters)")
+    }
+}
+
 /// Parses a value with an optional unit suffix into the dimension's base unit.
 /// A bare number is taken to be in the base unit.
 pub fn parse(text: &str, dimension: Dimension) -> Result<f64, UnitError> {
@@ -198,12 +213,12 @@ pub fn parse_bare(text: &str, dimension: Dimension, bare_to_base: f64) -> Result
         Ok(v) => v,
         // "inf", "NaN" and friends are numbers to Rust but never a valid parameter.
         Err(_) if text.parse::<f64>().is_ok() => {
-            return Err(UnitError::NotFinite(text.to_string()));
+            return Err(UnitError::NotFinite(echo(text)));
         }
-        Err(_) => return Err(UnitError::NotANumber(text.to_string())),
+        Err(_) => return Err(UnitError::NotANumber(echo(text))),
     };
     if !value.is_finite() {
-        return Err(UnitError::NotFinite(text.to_string()));
+        return Err(UnitError::NotFinite(echo(text)));
     }
     if suffix.is_empty() {
         return Ok(value * bare_to_base);
@@ -214,13 +229,13 @@ pub fn parse_bare(text: &str, dimension: Dimension, bare_to_base: f64) -> Result
     let accepted = dimension.accepted();
     match ALL.iter().find(|d| d.find(suffix).is_some()) {
         Some(other) => Err(UnitError::WrongDimension {
-            unit: suffix.to_string(),
+            unit: echo(suffix),
             found: other.noun(),
             wanted: dimension.noun(),
             accepted,
         }),
         None => Err(UnitError::UnknownUnit {
-            unit: suffix.to_string(),
+            unit: echo(suffix),
             accepted,
         }),
     }

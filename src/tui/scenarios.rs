@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 
 use crate::export;
 use crate::model::Params;
-use crate::scenario::{self, PRESETS, Scenario, ScenarioError};
+use crate::output::{self, Replace};
+use crate::scenario::{PRESETS, Scenario, ScenarioError};
 
 use super::app::{Action, App, Message, Mode, Tone};
 use super::baseline::Baseline;
@@ -307,12 +308,8 @@ impl App {
         let (csv, json) = export_paths(&self.dir, n);
         let series = export::csv::series(&solved.bounce.series(EXPORT_SAMPLES));
         let outcome = export::json::bounce(&solved.bounce);
-        let written = scenario::write_atomically(&csv, series.as_bytes())
-            .map_err(|e| format!("{}: {e}", csv.display()))
-            .and_then(|()| {
-                scenario::write_atomically(&json, outcome.as_bytes())
-                    .map_err(|e| format!("{}: {e}", json.display()))
-            });
+        let written = output::write(&csv, series.as_bytes(), Replace::Writable)
+            .and_then(|()| output::write(&json, outcome.as_bytes(), Replace::Writable));
         match written {
             Ok(()) => self.info(format!(
                 "exported the series to {} and the outcome to {}",

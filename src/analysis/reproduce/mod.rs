@@ -6,6 +6,8 @@ mod causes;
 mod checks;
 mod stepping;
 
+use std::fmt;
+
 use serde::Serialize;
 
 use crate::model::Params;
@@ -24,6 +26,10 @@ pub enum Status {
     Close,
     /// Further off; the row says why, with evidence the model computes.
     Differs,
+    /// The model gives no finite value under these parameters (no critical angle, no grip, ...); the
+    /// note says why.
+    #[serde(rename = "not-computed")]
+    NotComputed,
 }
 
 impl Status {
@@ -32,6 +38,7 @@ impl Status {
             Status::Reproduced => "reproduced",
             Status::Close => "close",
             Status::Differs => "differs",
+            Status::NotComputed => "not computed",
         }
     }
 }
@@ -82,12 +89,20 @@ impl Row {
             .parse()
             .expect("printed values in the check table are numbers");
         let difference = computed - paper;
-        let status = if difference.abs() <= precision(printed) * (1.0 + 1e-9) {
+        let status = if !computed.is_finite() {
+            Status::NotComputed
+        } else if difference.abs() <= precision(printed) * (1.0 + 1e-9) {
             Status::Reproduced
         } else if difference.abs() <= CLOSE * paper.abs() {
             Status::Close
         } else {
             Status::Differs
+        };
+        let note = if status == Status::NotComputed {
+            "not computed: the model has no such value under these parameters (no critical angle, no \
+             grip or no crossover where the paper's case has one)"
+        } else {
+            ""
         };
         Row {
             id,
@@ -96,7 +111,7 @@ impl Row {
             computed,
             unit,
             status,
-            note: String::new(),
+            note: note.to_string(),
             difference,
             printed,
             explained: false,
@@ -121,10 +136,10 @@ impl Row {
         self
     }
 
-    /// The computed value with two more decimals than the paper prints.
+    /// The computed value with two more decimals than the paper prints (`none` when not computed).
     pub fn computed_text(&self) -> String {
         let decimals = self.printed.split_once('.').map_or(0, |(_, f)| f.len()) + 2;
-        format!("{:.*}", decimals, self.computed)
+        format!("{:.*}", decimals, Num(self.computed))
     }
 
     /// Adds the demonstrated cause of a close value; `find` is asked only while the row is close and
@@ -158,6 +173,19 @@ impl Row {
     }
 }
 
+/// A number in a note or a table: as formatted, or `none` where the model gives no finite value.
+pub struct Num(pub f64);
+
+impl fmt::Display for Num {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.0.is_finite() {
+            fmt::Display::fmt(&self.0, f)
+        } else {
+            f.write_str("none")
+        }
+    }
+}
+
 /// Every row, and the claims left without a row.
 #[derive(Clone, Debug)]
 pub struct Report {
@@ -174,7 +202,9 @@ impl Report {
 
     /// True when every claim is checked and every row is reproduced, close or explained.
     pub fn complete(&self) -> bool {
-        self.missing.is_empty() && self.unexplained().is_empty()
+        self.missing.is_empty()
+            && self.unexplained().is_empty()
+            && self.count(Status::NotComputed) == 0
     }
 
     pub fn count(&self, status: Status) -> usize {
