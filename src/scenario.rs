@@ -20,7 +20,7 @@ use toml::Spanned;
 
 use crate::input;
 use crate::model::Params;
-use crate::model::params::{PARAMS, ParamError, spec_named};
+use crate::model::params::{Group, PARAMS, ParamError, spec_named};
 use crate::model::units;
 use crate::output::{self, Replace};
 
@@ -58,6 +58,10 @@ pub const PRESETS: &[Preset] = presets![
     "billiard-cushion",
     "golf-compliant-face",
     "superball-rigid-floor",
+    "flat-drive",
+    "topspin-forehand",
+    "slice",
+    "kick-serve",
 ];
 
 impl Preset {
@@ -231,6 +235,13 @@ impl Scenario {
             source: String::new(),
             values: PARAMS.iter().map(|s| (s.key, params.get(s.id))).collect(),
         }
+    }
+
+    /// True when the scenario sets a shot parameter (a stroke on court, for `snapback shot`).
+    pub fn is_shot(&self) -> bool {
+        self.values
+            .keys()
+            .any(|key| spec_named(key).is_some_and(|s| s.group == Group::Shot))
     }
 
     /// `base` with the scenario's values set.

@@ -43,6 +43,7 @@ fn random_params(rng: &mut Rng, chain: f64) -> Params {
         chain,
         ball_stiffness: 0.0,
         ball_damping: 0.0,
+        ..Params::default()
     }
 }
 
@@ -387,6 +388,7 @@ fn chains() -> impl Strategy<Value = Params> {
             chain: n as f64,
             ball_stiffness: 0.0,
             ball_damping: 0.0,
+            ..Params::default()
         }
     })
 }

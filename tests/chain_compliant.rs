@@ -544,6 +544,7 @@ fn a_grip_that_breaks_at_once_is_caught() {
         chain: 1.0,
         ball_stiffness: 17284628.623523846,
         ball_damping: 0.0,
+        ..Params::default()
     };
     let chain = Params {
         angle_deg: 25.211168726501548,
@@ -561,6 +562,7 @@ fn a_grip_that_breaks_at_once_is_caught() {
         chain: 4.0,
         ball_stiffness: 9867998.643414477,
         ball_damping: 4.064748246341654e-9,
+        ..Params::default()
     };
     for p in [single, chain] {
         let b = solve(&p).expect("solves");
@@ -590,6 +592,7 @@ fn a_free_chain_lets_go_as_the_normal_force_vanishes() {
         chain: 2.0,
         ball_stiffness: 52109735.78964785,
         ball_damping: 2.2926835101250718,
+        ..Params::default()
     };
     let b = solve(&p).expect("solves");
     check_physical(&p, &b).unwrap();
@@ -617,6 +620,7 @@ fn the_force_is_continuous_into_a_grip_behind_a_stiff_dashpot() {
         chain: 9.0,
         ball_stiffness: 4880302.334310299,
         ball_damping: 2.649681831365766,
+        ..Params::default()
     };
     let b = solve(&p).expect("solves");
     check_physical(&p, &b).unwrap();

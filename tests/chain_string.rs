@@ -50,6 +50,7 @@ fn random_params(rng: &mut Rng, chain: f64) -> Params {
         chain,
         ball_stiffness: 0.0,
         ball_damping: 0.0,
+        ..Params::default()
     };
     p.cart_friction = rng.log_uniform(1e-3, 3.0) * peak_friction(&p);
     p
@@ -257,6 +258,7 @@ fn chains() -> impl Strategy<Value = Params> {
             chain: n as f64,
             ball_stiffness: 0.0,
             ball_damping: 0.0,
+            ..Params::default()
         };
         p.cart_friction = string * peak_friction(&p);
         p

@@ -85,7 +85,7 @@ fn man_for_an_unknown_command_names_the_choices() {
     assert_eq!(
         String::from_utf8_lossy(&out.stderr),
         "error: COMMAND must be one of simulate, tui, presets, sweep, critical-angle, optimize, \
-         reproduce, fit, figure, completions, man; got simulat\n"
+         reproduce, fit, figure, shot, completions, man; got simulat\n"
     );
 }
 

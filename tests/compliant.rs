@@ -440,6 +440,7 @@ fn a_slide_that_should_grip_at_once_does() {
         chain: 1.0,
         ball_stiffness: 88842742.57416368,
         ball_damping: 0.0,
+        ..Params::default()
     };
     let b = solve(&p).expect("solves");
     let e = b.energy();

@@ -36,6 +36,7 @@ fn random_params(rng: &mut Rng) -> Params {
         chain: 1.0,
         ball_stiffness: 0.0,
         ball_damping: 0.0,
+        ..Params::default()
     }
 }
 

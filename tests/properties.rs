@@ -46,6 +46,7 @@ fn params() -> impl Strategy<Value = Params> {
             chain: 1.0,
             ball_stiffness: 0.0,
             ball_damping: 0.0,
+            ..Params::default()
         }
     })
 }

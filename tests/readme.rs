@@ -161,7 +161,6 @@ fn flag_table() -> String {
         "| flag | parameter | bare unit | other units | range | default |\n|---|---|---|---|---|---|\n",
     );
     for spec in PARAMS {
-        let symbols = spec.dimension.symbols();
         let or_dash = |s: &str| {
             if s.is_empty() {
                 "-".to_string()
@@ -174,8 +173,8 @@ fn flag_table() -> String {
             spec.flag,
             spec.symbol,
             spec.label,
-            or_dash(spec.dimension.base_symbol()),
-            or_dash(&symbols.get(1..).unwrap_or_default().join(", ")),
+            or_dash(spec.bare_symbol()),
+            or_dash(&spec.other_symbols().join(", ")),
             spec.range_text(),
             spec.show(spec.default),
         ));

@@ -5,7 +5,7 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use ratatui::style::Color;
 use ratatui::symbols::Marker;
-use snapback::model::params::{PARAMS, spec};
+use snapback::model::params::{BOUNCE_PARAMS as PARAMS, spec};
 use snapback::model::{ParamId, Params, solve};
 use snapback::tui::keys::{self, keys_label};
 use snapback::tui::ui::theme::Theme;

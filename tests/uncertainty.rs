@@ -92,9 +92,9 @@ fn the_table_gains_a_section_and_csv_is_refused() {
             "--vary",
             "stiffness",
             "--from",
-            "1k",
+            "1kN/m",
             "--to",
-            "2k",
+            "2kN/m",
             "--angle",
             "50±1",
         ])

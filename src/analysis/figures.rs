@@ -3,7 +3,7 @@
 //! the comparison spin, each for the given cart and the paper's other carts. At the defaults (the
 //! paper's Fig. 3(c) case) these are the paper's figures: the three carts, omega1 = 0 and -100 rad/s.
 
-use crate::model::params::{PARAMS, ParamId, spec};
+use crate::model::params::{BOUNCE_PARAMS, ParamId, spec};
 use crate::model::{Params, solve};
 
 use super::cases::{CARTS, SPINS};
@@ -128,7 +128,7 @@ fn cases(base: &Params) -> Vec<Case> {
 /// The parameters of `base` away from their defaults, other than `shown` and those the figure
 /// draws, as `, v1 = 12.0 m/s, N = 8`; empty at the defaults.
 fn conditions(base: &Params, shown: &[ParamId]) -> String {
-    PARAMS
+    BOUNCE_PARAMS
         .iter()
         .filter(|s| !DRAWN.contains(&s.id) && !shown.contains(&s.id))
         .filter(|s| base.get(s.id) != s.default)

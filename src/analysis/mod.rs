@@ -12,6 +12,7 @@ pub mod fit;
 pub mod optimize;
 pub mod reproduce;
 pub mod retune;
+pub mod shots;
 pub mod span;
 pub mod sweep;
 pub mod timeline;

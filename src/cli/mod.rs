@@ -10,6 +10,7 @@ mod params_args;
 mod presets;
 mod progress;
 mod reproduce;
+mod shot;
 mod simulate;
 mod sweep;
 mod tui;
@@ -19,7 +20,7 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
-pub use params_args::{InputError, ParamArgs};
+pub use params_args::{InputError, ParamArgs, ShotParamArgs};
 
 /// Explore a ball bouncing obliquely off a surface that can move sideways (Cross, Am. J. Phys. 78, 2010).
 #[derive(Debug, Parser)]
@@ -58,6 +59,9 @@ pub enum Commands {
     Fit(fit::FitArgs),
     /// Draw the paper's Fig. 2 or Fig. 3 as SVG, at the given parameters.
     Figure(figure::FigureArgs),
+    /// Play a stroke on court: the strings in the racquet's frame, the flight with drag and Magnus
+    /// lift, the bounce on the court and the kick at the opponent's baseline.
+    Shot(shot::ShotArgs),
     /// Print a shell completion script (bash, zsh, fish, elvish, powershell).
     Completions(completions::CompletionsArgs),
     /// Print the manual page (roff): snapback(1), or snapback-COMMAND(1) for one command.
@@ -93,6 +97,7 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Reproduce(args)) => headless(|| reproduce::run(&args)),
         Some(Commands::Figure(args)) => headless(|| figure::run(&args)),
         Some(Commands::Fit(args)) => headless(|| fit::run(&args)),
+        Some(Commands::Shot(args)) => headless(|| shot::run(&args)),
         Some(Commands::Completions(args)) => completions::run(&args),
         Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),

@@ -4,8 +4,9 @@ use std::fmt::Write;
 
 use clap::{Args, ValueEnum};
 
-use super::{Failure, ParamArgs, emit};
+use super::{Failure, ShotParamArgs, emit, shot};
 use crate::analysis::optimize::{self, DEFAULT_SCAN, Objective};
+use crate::analysis::shots::{self, ShotObjective};
 use crate::analysis::{Span, span};
 use crate::export;
 use crate::model::Params;
@@ -25,7 +26,7 @@ pub enum Format {
 #[derive(Clone, Debug, Args)]
 pub struct OptimizeArgs {
     #[command(flatten)]
-    pub params: ParamArgs,
+    pub params: ShotParamArgs,
     /// The parameter to vary: a parameter flag without dashes (stiffness, cart-mass, angle, ...).
     #[arg(long, value_name = "PARAM")]
     pub vary: String,
@@ -35,9 +36,14 @@ pub struct OptimizeArgs {
     /// The other end.
     #[arg(long, value_name = "B", allow_hyphen_values = true)]
     pub to: String,
-    /// What to maximise: omega2 (rad/s), ex, vx2 (m/s) or theta2 (deg).
+    /// What to maximise: omega2 (rad/s), ex, vx2 (m/s) or theta2 (deg) of one bounce; or of a shot on
+    /// court (`snapback shot`): kick_height, net_clearance, landing (m), launch_speed (m/s) or
+    /// launch_topspin (rpm), among the shots that land in.
     #[arg(long, value_name = "NAME", default_value = "omega2")]
     pub objective: String,
+    /// With a shot objective, count the shots that land out too.
+    #[arg(long)]
+    pub allow_out: bool,
     /// Minimise instead of maximise.
     #[arg(long)]
     pub minimize: bool,
@@ -54,13 +60,23 @@ pub struct OptimizeArgs {
 }
 
 pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
+    let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
+    let scan = span::parse_count("--scan", &args.scan, 3).map_err(Failure::usage)?;
+    if let Some(objective) = ShotObjective::named(&args.objective) {
+        return run_shot(args, &span, objective, scan);
+    }
+    let fix = "choose a shot objective (kick_height, net_clearance, landing, launch_speed, launch_topspin)";
+    shot::refuse_shot_flags(&args.params.given, Some(span.spec), fix)?;
+    if args.allow_out {
+        return Err(Failure::usage(format!(
+            "--allow-out needs a shot objective: {fix}"
+        )));
+    }
     let base = args
         .params
         .apply(Params::default())
         .map_err(Failure::usage)?;
-    let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
     let objective = Objective::parse(&args.objective).map_err(Failure::usage)?;
-    let scan = span::parse_count("--scan", &args.scan, 3).map_err(Failure::usage)?;
     let best =
         optimize::optimize(&base, &span, objective, args.minimize, scan).map_err(Failure::usage)?;
     crate::model::limits::reportable(&best.bounce).map_err(Failure::usage)?;
@@ -141,6 +157,82 @@ pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
                 objective.unit()
             );
             out.push_str(&export::table::summary(&best.bounce));
+            out
+        }
+    };
+    emit(&text)
+}
+
+/// The value that maximises a shot outcome, and the shot there (as `snapback shot` prints it).
+fn run_shot(
+    args: &OptimizeArgs,
+    span: &Span,
+    objective: ShotObjective,
+    scan: usize,
+) -> Result<(), Failure> {
+    shot::refuse_bounce_incidence(&args.params.given, Some(span.spec))?;
+    if span.spec.integer {
+        return Err(Failure::usage(format!(
+            "--vary {} takes whole numbers; a shot objective needs a continuous parameter",
+            span.spec.flag
+        )));
+    }
+    let base = args.params.apply(shot::base()).map_err(Failure::usage)?;
+    let best = shots::optimize(&base, span, objective, args.minimize, args.allow_out, scan)
+        .map_err(Failure::usage)?;
+    let spec = span.spec;
+    let text = match args.format {
+        Format::Json => {
+            let doc = serde_json::json!({
+                "vary": spec.flag,
+                "value": best.value,
+                "unit": spec.dimension.base_symbol(),
+                "objective": objective.name(),
+                "objective_value": best.objective_value,
+                "objective_unit": objective.unit(),
+                "minimize": args.minimize,
+                "allow_out": args.allow_out,
+                "scan": scan,
+                "log": best.span.log,
+                "exhaustive": false,
+                "shot": export::shot::value(&best.shot),
+            });
+            let mut text =
+                serde_json::to_string_pretty(&doc).expect("JSON values always serialize");
+            text.push('\n');
+            text
+        }
+        Format::Table => {
+            let goal = if args.minimize {
+                "minimises"
+            } else {
+                "maximises"
+            };
+            let among = if args.allow_out {
+                ""
+            } else {
+                " among the shots that land in"
+            };
+            let mut out = format!(
+                "The {} that {goal} {}{among} ({scan} scan points{}, then Brent's method)\n",
+                spec.label,
+                objective.name(),
+                if best.span.log { ", geometric" } else { "" }
+            );
+            let _ = writeln!(
+                out,
+                "  {:<24}{}",
+                format!("{} {}", spec.label, spec.symbol),
+                spec.show(best.value)
+            );
+            let _ = writeln!(
+                out,
+                "  {:<24}{} {}\n",
+                objective.name(),
+                units::brief(best.objective_value, 8),
+                objective.unit()
+            );
+            out.push_str(&export::shot::table(&best.shot));
             out
         }
     };

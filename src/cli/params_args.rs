@@ -1,23 +1,53 @@
 //! The parameter flags (`--angle`, `--cart-mass`, ...), generated from the parameter table so that
-//! every command takes the same flags with the same help.
+//! every command takes the same flags with the same help. A command takes the bounce's flags
+//! ([`BounceFlags`]) or, if it can play a shot on court, those and the shot's too ([`ShotFlags`]).
 
+use std::fmt::Debug;
+use std::marker::PhantomData;
 use std::path::PathBuf;
 
 use clap::{Arg, ArgMatches, Args, Command, FromArgMatches};
 
 use crate::analysis::uncertainty::Spread;
-use crate::model::params::{PARAMS, ParamError, ParamId, Params, spec};
+use crate::model::params::{BOUNCE_PARAMS, PARAMS, ParamError, ParamId, ParamSpec, Params, spec};
 use crate::model::units;
 use crate::scenario::{self, Scenario, ScenarioError};
 
+/// Which rows of the parameter table a command takes as flags.
+pub trait FlagSet: Clone + Debug + Default + Send + Sync + 'static {
+    const SPECS: &'static [ParamSpec];
+}
+
+/// The flags of one bounce: every group but the shot's.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct BounceFlags;
+
+impl FlagSet for BounceFlags {
+    const SPECS: &'static [ParamSpec] = BOUNCE_PARAMS;
+}
+
+/// Every flag, the shot's included.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct ShotFlags;
+
+impl FlagSet for ShotFlags {
+    const SPECS: &'static [ParamSpec] = PARAMS;
+}
+
 /// The starting point given on the command line: a preset, a scenario file, and parameter values as
-/// typed (units are parsed by [`ParamArgs::apply`]).
+/// typed (units are parsed by [`FlagArgs::apply`]), for the flags of `F`.
 #[derive(Clone, Debug, Default)]
-pub struct ParamArgs {
+pub struct FlagArgs<F: FlagSet> {
     pub preset: Option<String>,
     pub scenario: Option<PathBuf>,
     pub given: Vec<(ParamId, String)>,
+    flags: PhantomData<F>,
 }
+
+/// The bounce's flags: `simulate`, the explorer, `critical-angle`, `figure`, `reproduce`.
+pub type ParamArgs = FlagArgs<BounceFlags>;
+/// Every flag, the shot's included: `shot`, `sweep`, `optimize`.
+pub type ShotParamArgs = FlagArgs<ShotFlags>;
 
 /// A bad starting point: a parameter value or a scenario.
 #[derive(Debug, thiserror::Error)]
@@ -48,7 +78,7 @@ fn suffix(value: &str) -> &str {
         .trim_start_matches(|c: char| c.is_ascii_digit() || "+-.eE ".contains(c))
 }
 
-impl ParamArgs {
+impl<F: FlagSet> FlagArgs<F> {
     /// `base`, then the preset, then the scenario file, then each flag given (flags override the
     /// scenario), every value parsed and checked; the first bad one is the error.
     pub fn apply(&self, base: Params) -> Result<Params, InputError> {
@@ -103,10 +133,9 @@ impl ParamArgs {
     }
 }
 
-fn help_for(spec: &crate::model::params::ParamSpec) -> String {
-    let unit = spec.dimension.base_symbol();
-    let default = units::brief(spec.default, 6);
-    let accepted = spec.dimension.symbols();
+fn help_for(spec: &ParamSpec) -> String {
+    let unit = spec.bare_symbol();
+    let default = units::brief(units::in_unit(spec.default, spec.dimension, unit), 6);
     if unit.is_empty() {
         format!(
             "{} [range {}; default {default}]",
@@ -117,13 +146,13 @@ fn help_for(spec: &crate::model::params::ParamSpec) -> String {
         format!(
             "{} [bare number in {unit}; also {}; range {}; default {default} {unit}]",
             spec.help,
-            accepted[1..].join(", "),
+            spec.other_symbols().join(", "),
             spec.range_text()
         )
     }
 }
 
-impl Args for ParamArgs {
+impl<F: FlagSet> Args for FlagArgs<F> {
     fn augment_args(mut cmd: Command) -> Command {
         cmd = cmd
             .arg(
@@ -141,7 +170,7 @@ impl Args for ParamArgs {
                     .help_heading("Scenario")
                     .help("start from a scenario file (TOML; - reads standard input); parameter flags override its values"),
             );
-        for spec in PARAMS {
+        for spec in F::SPECS {
             cmd = cmd.arg(
                 Arg::new(spec.key)
                     .long(spec.flag)
@@ -159,9 +188,9 @@ impl Args for ParamArgs {
     }
 }
 
-impl FromArgMatches for ParamArgs {
+impl<F: FlagSet> FromArgMatches for FlagArgs<F> {
     fn from_arg_matches(matches: &ArgMatches) -> Result<Self, clap::Error> {
-        let mut args = ParamArgs::default();
+        let mut args = Self::default();
         args.update_from_arg_matches(matches)?;
         Ok(args)
     }
@@ -173,7 +202,7 @@ impl FromArgMatches for ParamArgs {
         if let Some(path) = matches.get_one::<PathBuf>("scenario") {
             self.scenario = Some(path.clone());
         }
-        for spec in PARAMS {
+        for spec in F::SPECS {
             if let Some(text) = matches.get_one::<String>(spec.key) {
                 self.given.retain(|(id, _)| *id != spec.id);
                 self.given.push((spec.id, text.clone()));

@@ -40,13 +40,26 @@ pub fn run(args: &PresetsArgs) -> Result<(), Failure> {
             for preset in PRESETS {
                 let scenario = preset.scenario();
                 let params = scenario.apply(crate::model::Params::default());
-                let spin = solve(&params).map_or("does not solve".to_string(), |b| {
-                    format!("ω2 = {:.1} rad/s", b.outcome.omega2)
-                });
+                let spin = if scenario.is_shot() {
+                    crate::shot::play(&params, false).map_or("does not play".to_string(), |s| {
+                        let l = &s.strings.leaving;
+                        format!(
+                            "shot: launch {:.1} m/s at {:.1} deg, {:.0} rpm topspin, {}",
+                            l.speed(),
+                            l.angle_deg(),
+                            l.topspin() * 30.0 / std::f64::consts::PI,
+                            if s.is_in() { "in" } else { "out" }
+                        )
+                    })
+                } else {
+                    solve(&params).map_or("does not solve".to_string(), |b| {
+                        format!("ω2 = {:.1} rad/s", b.outcome.omega2)
+                    })
+                };
                 let _ = writeln!(out, "{:<width$}  {}", preset.name, scenario.description);
                 let _ = writeln!(out, "{:<width$}  ({spin})", "");
             }
-            out.push_str("\nUse one with --preset NAME on any command, e.g. `snapback simulate --preset light-1g`.\n");
+            out.push_str("\nUse one with --preset NAME on any command, e.g. `snapback simulate --preset light-1g`;\nthe shot presets with `snapback shot --preset kick-serve`.\n");
             out
         }
         Format::Json => {

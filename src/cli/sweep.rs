@@ -5,12 +5,13 @@ use std::io::{BufWriter, Write};
 use clap::{Args, ValueEnum};
 
 use super::simulate::MonteCarloArgs;
-use super::{Failure, ParamArgs, emit};
+use super::{Failure, ShotParamArgs, emit, shot};
 use crate::analysis::AnalysisError;
 use crate::analysis::fit::data::Quantity;
 use crate::analysis::sweep::{Layout, WriteError};
 use crate::analysis::uncertainty::{Spread, monte_carlo};
-use crate::analysis::{Span, span, sweep};
+use crate::analysis::{Span, shots, span, sweep};
+use crate::export;
 use crate::model::Params;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -27,7 +28,11 @@ pub enum Format {
 #[derive(Clone, Debug, Args)]
 pub struct SweepArgs {
     #[command(flatten)]
-    pub params: ParamArgs,
+    pub params: ShotParamArgs,
+    /// One shot on court per value instead of one bounce (`snapback shot`'s outcomes; any shot flag may
+    /// be varied).
+    #[arg(long)]
+    pub shot: bool,
     /// The parameter to vary: a parameter flag without dashes (angle, spin, speed, mu, cart-mass, stiffness, duration, ...).
     #[arg(long, value_name = "PARAM")]
     pub vary: String,
@@ -51,12 +56,16 @@ pub struct SweepArgs {
 }
 
 pub fn run(args: &SweepArgs) -> Result<(), Failure> {
+    let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
+    let steps = span::parse_count("--steps", &args.steps, 2).map_err(Failure::usage)?;
+    if args.shot {
+        return run_shots(args, &span, steps);
+    }
+    shot::refuse_shot_flags(&args.params.given, Some(span.spec), "add --shot")?;
     let (base, spreads) = args
         .params
         .apply_uncertain(Params::default())
         .map_err(Failure::usage)?;
-    let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
-    let steps = span::parse_count("--steps", &args.steps, 2).map_err(Failure::usage)?;
     let layout = match args.format {
         Format::Csv => Layout::Csv,
         Format::Json => Layout::Json,
@@ -151,4 +160,32 @@ fn with_bands(
         text = serde_json::to_string_pretty(&objects).expect("JSON values always serialize") + "\n";
     }
     Ok(text)
+}
+
+/// `sweep --shot`: one shot per value, in order, as CSV (an empty field for a null), JSON or JSON Lines,
+/// with `snapback shot`'s keys.
+fn run_shots(args: &SweepArgs, span: &Span, steps: usize) -> Result<(), Failure> {
+    shot::refuse_bounce_incidence(&args.params.given, Some(span.spec))?;
+    let base = args.params.apply(shot::base()).map_err(Failure::usage)?;
+    let rows = shots::sweep(&base, span, steps).map_err(Failure::usage)?;
+    let column = span.column();
+    let docs = rows.iter().map(|(value, s)| {
+        let mut doc = serde_json::json!({ column.as_str(): value });
+        let serde_json::Value::Object(fields) = export::shot::value(s) else {
+            unreachable!("a shot is an object")
+        };
+        doc.as_object_mut().expect("an object").extend(fields);
+        doc
+    });
+    let text = match args.format {
+        Format::Csv => export::shot::csv(&column, &rows),
+        Format::Json => {
+            let mut text =
+                serde_json::to_string_pretty(&docs.collect::<Vec<_>>()).expect("shots serialize");
+            text.push('\n');
+            text
+        }
+        Format::Jsonl => docs.map(|d| format!("{d}\n")).collect(),
+    };
+    emit(&text)
 }

@@ -2,6 +2,7 @@
 
 pub mod csv;
 pub mod json;
+pub mod shot;
 pub mod svg;
 pub mod table;
 pub mod uncertainty;

@@ -2,7 +2,7 @@
 
 use std::fmt::Write;
 
-use crate::model::params::PARAMS;
+use crate::model::params::BOUNCE_PARAMS as PARAMS;
 use crate::model::units::{Dimension, show};
 use crate::model::{Bounce, Cart, PhaseKind};
 

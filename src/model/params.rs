@@ -131,6 +131,8 @@ pub enum Group {
     Ball,
     /// The surface that moves sideways: the cart, its spring and its string friction.
     Surface,
+    /// A stroke on court (`snapback shot`): the incoming ball, the racquet's swing, the court.
+    Shot,
 }
 
 impl Group {
@@ -138,6 +140,7 @@ impl Group {
         match self {
             Group::Ball => "ball and impact",
             Group::Surface => "surface",
+            Group::Shot => "shot",
         }
     }
 }
@@ -156,6 +159,9 @@ pub struct ParamSpec {
     /// Short name for people.
     pub label: &'static str,
     pub dimension: Dimension,
+    /// The unit of a bare number on the command line and in scenario files, where it is not the base unit
+    /// (spin in rpm); `None` for the base unit.
+    pub bare_unit: Option<&'static str>,
     /// The unit people think in, for display.
     pub display_unit: &'static str,
     /// Decimals shown in `display_unit`.
@@ -175,18 +181,48 @@ impl ParamSpec {
         format!("--{}", self.flag)
     }
 
-    /// The allowed range in the base unit, e.g. `(0, 90] deg`.
+    /// The unit of a bare number: [`ParamSpec::bare_unit`], else the base unit (`""` for a pure number).
+    pub fn bare_symbol(&self) -> &'static str {
+        self.bare_unit
+            .unwrap_or_else(|| self.dimension.base_symbol())
+    }
+
+    /// Every other unit suffix the value may carry (`g`, `mg` for a mass in kg).
+    pub fn other_symbols(&self) -> Vec<&'static str> {
+        let bare = self.bare_symbol();
+        self.dimension
+            .symbols()
+            .into_iter()
+            .filter(|s| *s != bare)
+            .collect()
+    }
+
+    /// A base-unit value in the bare unit.
+    fn in_bare(&self, base_value: f64) -> f64 {
+        units::in_unit(base_value, self.dimension, self.bare_symbol())
+    }
+
+    /// The allowed range in the bare unit, e.g. `(0, 90] deg`.
     pub fn range_text(&self) -> String {
         if let (true, Bound::Closed(low), Bound::Closed(high)) =
             (self.integer, self.range.low, self.range.high)
         {
             return format!("{{{low}, {}, ..., {high}}}", low + 1.0);
         }
-        let unit = self.dimension.base_symbol();
+        let unit = self.bare_symbol();
+        let bound = |b: Bound| match b {
+            Bound::Open(v) => Bound::Open(self.in_bare(v)),
+            Bound::Closed(v) => Bound::Closed(self.in_bare(v)),
+            Bound::Unbounded => Bound::Unbounded,
+        };
+        let range = Range {
+            low: bound(self.range.low),
+            high: bound(self.range.high),
+        };
         if unit.is_empty() {
-            self.range.to_string()
+            range.to_string()
         } else {
-            format!("{} {unit}", self.range)
+            format!("{range} {unit}")
         }
     }
 
@@ -208,12 +244,17 @@ impl ParamSpec {
 
     /// Parses user text (with an optional unit suffix) and checks the range.
     pub fn parse(&self, text: &str) -> Result<f64, ParamError> {
-        let value =
-            units::parse(text, self.dimension).map_err(|source| ParamError::Unparsable {
+        let bare = self
+            .dimension
+            .find(self.bare_symbol())
+            .map_or(1.0, |u| u.to_base);
+        let value = units::parse_bare(text, self.dimension, bare).map_err(|source| {
+            ParamError::Unparsable {
                 flag: self.flag,
                 given: units::echo(text.trim()),
                 source: Box::new(source),
-            })?;
+            }
+        })?;
         self.check(value, &units::echo(text.trim()))?;
         Ok(value)
     }
@@ -223,15 +264,15 @@ impl ParamSpec {
         self.range.contains(value) && (!self.integer || value.fract() == 0.0)
     }
 
-    /// Checks a base-unit value against the range; the message shows it in the base unit.
+    /// Checks a base-unit value against the range; the message shows it in the bare unit.
     pub fn check_value(&self, value: f64) -> Result<(), ParamError> {
         if self.allows(value) {
             return Ok(());
         }
-        let unit = self.dimension.base_symbol();
+        let unit = self.bare_symbol();
         self.check(
             value,
-            format!("{} {unit}", units::brief(value, 6)).trim_end(),
+            format!("{} {unit}", units::brief(self.in_bare(value), 6)).trim_end(),
         )
     }
 
@@ -279,9 +320,10 @@ const NON_NEGATIVE: Range = Range {
 /// (name, unit, range, steps, default, help), in the order the explorer lists them; `get` and `set` follow.
 macro_rules! parameters {
     ($($(#[$attr:meta])* $field:ident: $id:ident { $($spec:tt)* },)*) => {
-        /// Inputs of one bounce. SI units, except the incidence angle, in degrees measured from the
-        /// surface. The defaults are the paper's Fig. 3(c) case.
+        /// Inputs of one bounce, and of a shot on court. SI units, except the angles (fields ending in
+        /// `_deg`), in degrees. The bounce's defaults are the paper's Fig. 3(c) case.
         #[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+        #[serde(default)]
         pub struct Params {
             $($(#[$attr])* pub $field: f64,)*
         }
@@ -329,6 +371,7 @@ parameters! {
         symbol: "θ1",
         label: "incidence angle",
         dimension: Dimension::Angle,
+        bare_unit: None,
         display_unit: "deg",
         decimals: 1,
         range: Range {
@@ -349,6 +392,7 @@ parameters! {
         symbol: "v1",
         label: "incident speed",
         dimension: Dimension::Speed,
+        bare_unit: None,
         display_unit: "m/s",
         decimals: 1,
         range: POSITIVE,
@@ -366,6 +410,7 @@ parameters! {
         symbol: "ω1",
         label: "incident spin",
         dimension: Dimension::AngularVelocity,
+        bare_unit: None,
         display_unit: "rad/s",
         decimals: 0,
         range: Range {
@@ -386,6 +431,7 @@ parameters! {
         symbol: "μ",
         label: "sliding friction",
         dimension: Dimension::Dimensionless,
+        bare_unit: None,
         display_unit: "",
         decimals: 2,
         range: NON_NEGATIVE,
@@ -403,6 +449,7 @@ parameters! {
         symbol: "T",
         label: "impact duration",
         dimension: Dimension::Time,
+        bare_unit: None,
         display_unit: "ms",
         decimals: 2,
         range: POSITIVE,
@@ -420,6 +467,7 @@ parameters! {
         symbol: "e_y",
         label: "normal restitution",
         dimension: Dimension::Dimensionless,
+        bare_unit: None,
         display_unit: "",
         decimals: 2,
         range: Range {
@@ -440,6 +488,7 @@ parameters! {
         symbol: "m",
         label: "ball mass",
         dimension: Dimension::Mass,
+        bare_unit: None,
         display_unit: "g",
         decimals: 1,
         range: POSITIVE,
@@ -457,6 +506,7 @@ parameters! {
         symbol: "r",
         label: "ball radius",
         dimension: Dimension::Length,
+        bare_unit: None,
         display_unit: "mm",
         decimals: 1,
         range: POSITIVE,
@@ -474,6 +524,7 @@ parameters! {
         symbol: "α",
         label: "inertia factor",
         dimension: Dimension::Dimensionless,
+        bare_unit: None,
         display_unit: "",
         decimals: 3,
         range: POSITIVE,
@@ -492,6 +543,7 @@ parameters! {
         symbol: "k_b",
         label: "ball stiffness",
         dimension: Dimension::Stiffness,
+        bare_unit: None,
         display_unit: "kN/m",
         decimals: 1,
         range: NON_NEGATIVE,
@@ -514,6 +566,7 @@ parameters! {
         symbol: "ζ_b",
         label: "ball damping",
         dimension: Dimension::Dimensionless,
+        bare_unit: None,
         display_unit: "",
         decimals: 3,
         range: Range {
@@ -536,6 +589,7 @@ parameters! {
         symbol: "M",
         label: "cart mass",
         dimension: Dimension::Mass,
+        bare_unit: None,
         display_unit: "g",
         decimals: 2,
         range: POSITIVE,
@@ -553,6 +607,7 @@ parameters! {
         symbol: "k",
         label: "spring stiffness",
         dimension: Dimension::Stiffness,
+        bare_unit: None,
         display_unit: "kN/m",
         decimals: 2,
         range: NON_NEGATIVE,
@@ -571,6 +626,7 @@ parameters! {
         symbol: "F_c",
         label: "string friction",
         dimension: Dimension::Force,
+        bare_unit: None,
         display_unit: "N",
         decimals: 1,
         range: NON_NEGATIVE,
@@ -591,6 +647,7 @@ parameters! {
         symbol: "N",
         label: "chain masses",
         dimension: Dimension::Dimensionless,
+        bare_unit: None,
         display_unit: "",
         decimals: 0,
         range: Range {
@@ -604,6 +661,221 @@ parameters! {
         help: "number N of equal masses the cart is split into: a chain of masses M/N joined by springs N k, \
                the last tied to the wall (static stiffness k at the ball); 1 = the paper's single cart",
     },
+    /// Height of the ball's centre where the racquet meets it, m (court frame: y up).
+    height: Height {
+        group: Group::Shot,
+        flag: "height",
+        key: "height",
+        symbol: "h",
+        label: "contact height",
+        dimension: Dimension::Length,
+        bare_unit: None,
+        display_unit: "m",
+        decimals: 2,
+        range: Range {
+            low: Bound::Open(0.0),
+            high: Bound::Closed(5.0),
+        },
+        fine: Step::Add(0.05),
+        coarse: Step::Add(0.5),
+        default: 1.0,
+        integer: false,
+        help: "height of the ball's centre above the court where the racquet meets it, over the hitter's baseline",
+    },
+    /// Speed of the incoming ball, m/s, travelling towards -x.
+    ball_speed: BallSpeed {
+        group: Group::Shot,
+        flag: "ball-speed",
+        key: "ball_speed",
+        symbol: "v_b",
+        label: "incoming speed",
+        dimension: Dimension::Speed,
+        bare_unit: None,
+        display_unit: "m/s",
+        decimals: 1,
+        range: Range {
+            low: Bound::Closed(0.0),
+            high: Bound::Closed(100.0),
+        },
+        fine: Step::Add(1.0),
+        coarse: Step::Add(5.0),
+        default: 20.0,
+        integer: false,
+        help: "speed of the incoming ball, travelling towards the hitter (0 = a ball at rest, as at the top of a serve toss)",
+    },
+    /// Angle of the incoming ball's path below the horizontal, degrees (negative: rising).
+    ball_descent_deg: BallDescent {
+        group: Group::Shot,
+        flag: "ball-descent",
+        key: "ball_descent",
+        symbol: "δ_b",
+        label: "incoming descent",
+        dimension: Dimension::Angle,
+        bare_unit: None,
+        display_unit: "deg",
+        decimals: 1,
+        range: Range {
+            low: Bound::Closed(-90.0),
+            high: Bound::Closed(90.0),
+        },
+        fine: Step::Add(1.0),
+        coarse: Step::Add(5.0),
+        default: 10.0,
+        integer: false,
+        help: "angle of the incoming ball's path below the horizontal (negative = rising)",
+    },
+    /// Spin of the incoming ball, rad/s; topspin positive relative to its own direction of travel.
+    ball_topspin: BallTopspin {
+        group: Group::Shot,
+        flag: "ball-topspin",
+        key: "ball_topspin",
+        symbol: "ω_b",
+        label: "incoming topspin",
+        dimension: Dimension::AngularVelocity,
+        bare_unit: Some("rpm"),
+        display_unit: "rpm",
+        decimals: 0,
+        range: Range {
+            low: Bound::Closed(-10000.0 * std::f64::consts::PI / 30.0),
+            high: Bound::Closed(10000.0 * std::f64::consts::PI / 30.0),
+        },
+        fine: Step::Add(100.0 * std::f64::consts::PI / 30.0),
+        coarse: Step::Add(1000.0 * std::f64::consts::PI / 30.0),
+        default: 1000.0 * std::f64::consts::PI / 30.0,
+        integer: false,
+        help: "spin of the incoming ball, topspin positive relative to its own direction of travel, negative = backspin",
+    },
+    /// Speed of the racquet (the strings where they meet the ball), m/s.
+    racquet_speed: RacquetSpeed {
+        group: Group::Shot,
+        flag: "racquet-speed",
+        key: "racquet_speed",
+        symbol: "V_r",
+        label: "racquet speed",
+        dimension: Dimension::Speed,
+        bare_unit: None,
+        display_unit: "m/s",
+        decimals: 1,
+        range: Range {
+            low: Bound::Closed(0.0),
+            high: Bound::Closed(100.0),
+        },
+        fine: Step::Add(1.0),
+        coarse: Step::Add(5.0),
+        default: 20.0,
+        integer: false,
+        help: "speed of the racquet where it meets the ball, along the swing path",
+    },
+    /// Direction of the racquet's motion above the horizontal, towards +x, degrees (low to high positive).
+    swing_path_deg: SwingPath {
+        group: Group::Shot,
+        flag: "swing-path",
+        key: "swing_path",
+        symbol: "ψ",
+        label: "swing path",
+        dimension: Dimension::Angle,
+        bare_unit: None,
+        display_unit: "deg",
+        decimals: 1,
+        range: Range {
+            low: Bound::Open(-90.0),
+            high: Bound::Open(90.0),
+        },
+        fine: Step::Add(1.0),
+        coarse: Step::Add(5.0),
+        default: 25.0,
+        integer: false,
+        help: "direction of the racquet's motion above the horizontal, towards the net (low to high = positive)",
+    },
+    /// Tilt of the string plane's normal below the horizontal, degrees (positive = closed face).
+    face_angle_deg: FaceAngle {
+        group: Group::Shot,
+        flag: "face-angle",
+        key: "face_angle",
+        symbol: "φ",
+        label: "face angle",
+        dimension: Dimension::Angle,
+        bare_unit: None,
+        display_unit: "deg",
+        decimals: 1,
+        range: Range {
+            low: Bound::Open(-90.0),
+            high: Bound::Open(90.0),
+        },
+        fine: Step::Add(1.0),
+        coarse: Step::Add(5.0),
+        default: 0.0,
+        integer: false,
+        help: "tilt of the string plane's normal from the horizontal; positive = a closed face (normal tilted down)",
+    },
+    /// Coefficient of sliding friction between ball and court.
+    court_mu: CourtMu {
+        group: Group::Shot,
+        flag: "court-mu",
+        key: "court_mu",
+        symbol: "μ_c",
+        label: "court friction",
+        dimension: Dimension::Dimensionless,
+        bare_unit: None,
+        display_unit: "",
+        decimals: 2,
+        range: NON_NEGATIVE,
+        fine: Step::Add(0.01),
+        coarse: Step::Add(0.1),
+        default: 0.6,
+        integer: false,
+        help: "coefficient of sliding friction mu between ball and court",
+    },
+    /// Normal coefficient of restitution on the court.
+    court_ey: CourtEy {
+        group: Group::Shot,
+        flag: "court-ey",
+        key: "court_ey",
+        symbol: "e_c",
+        label: "court restitution",
+        dimension: Dimension::Dimensionless,
+        bare_unit: None,
+        display_unit: "",
+        decimals: 2,
+        range: Range {
+            low: Bound::Closed(0.0),
+            high: Bound::Closed(1.0),
+        },
+        fine: Step::Add(0.01),
+        coarse: Step::Add(0.1),
+        default: 0.75,
+        integer: false,
+        help: "normal coefficient of restitution e_y of the bounce on the court",
+    },
+    /// Duration of the bounce on the court, s.
+    court_duration: CourtDuration {
+        group: Group::Shot,
+        flag: "court-duration",
+        key: "court_duration",
+        symbol: "T_c",
+        label: "court contact",
+        dimension: Dimension::Time,
+        bare_unit: None,
+        display_unit: "ms",
+        decimals: 2,
+        range: POSITIVE,
+        fine: Step::Add(0.1e-3),
+        coarse: Step::Add(1e-3),
+        default: 4e-3,
+        integer: false,
+        help: "duration of the bounce on the court (the normal force is a half sine, as on the strings)",
+    },
+}
+
+/// The parameters of one bounce: every group but the shot's, which come last in [`PARAMS`].
+pub const BOUNCE_PARAMS: &[ParamSpec] = PARAMS.split_at(bounce_count()).0;
+
+const fn bounce_count() -> usize {
+    let mut n = 0;
+    while n < PARAMS.len() && !matches!(PARAMS[n].group, Group::Shot) {
+        n += 1;
+    }
+    n
 }
 
 /// The spec of one parameter.
@@ -664,6 +936,35 @@ mod tests {
             assert_eq!(spec_named(spec.flag).map(|s| s.id), Some(spec.id));
             assert_eq!(spec_named(spec.key).map(|s| s.id), Some(spec.id));
         }
+    }
+
+    #[test]
+    fn the_shot_group_comes_last() {
+        let (bounce, shot) = PARAMS.split_at(BOUNCE_PARAMS.len());
+        assert!(bounce.iter().all(|s| s.group != Group::Shot));
+        assert!(!shot.is_empty() && shot.iter().all(|s| s.group == Group::Shot));
+    }
+
+    #[test]
+    fn a_bare_spin_of_the_incoming_ball_is_in_rpm() {
+        let topspin = spec(ParamId::BallTopspin);
+        let rpm = std::f64::consts::PI / 30.0;
+        assert_eq!(topspin.parse("1000"), Ok(1000.0 * rpm));
+        assert_eq!(topspin.parse("10 rad/s"), Ok(10.0));
+        assert_eq!(topspin.bare_symbol(), "rpm");
+        assert_eq!(topspin.other_symbols(), ["rad/s", "rps", "rev/s"]);
+        let err = topspin.parse("20000").unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            "--ball-topspin must be in [-10000, 10000] rpm; got 20000"
+        );
+        let err = Params::default()
+            .with(ParamId::BallTopspin, 2000.0)
+            .unwrap_err();
+        assert!(err.to_string().ends_with("got 19098.6 rpm"), "{err}");
+        // Everyone else's bare number stays in the base unit.
+        assert_eq!(spec(ParamId::Spin).parse("100"), Ok(100.0));
+        assert_eq!(spec(ParamId::Spin).other_symbols(), ["rpm", "rps", "rev/s"]);
     }
 
     #[test]

@@ -199,6 +199,11 @@ pub fn echo(text: &str) -> String {
 /// Parses a value with an optional unit suffix into the dimension's base unit.
 /// A bare number is taken to be in the base unit.
 pub fn parse(text: &str, dimension: Dimension) -> Result<f64, UnitError> {
+    parse_bare(text, dimension, 1.0)
+}
+
+/// Like [`parse`], but a bare number is in the unit whose factor to the base unit is `bare_to_base`.
+pub fn parse_bare(text: &str, dimension: Dimension, bare_to_base: f64) -> Result<f64, UnitError> {
     let text = text.trim();
     if text.is_empty() {
         return Err(UnitError::Empty);
@@ -216,7 +221,7 @@ pub fn parse(text: &str, dimension: Dimension) -> Result<f64, UnitError> {
         return Err(UnitError::NotFinite(echo(text)));
     }
     if suffix.is_empty() {
-        return Ok(value);
+        return Ok(value * bare_to_base);
     }
     if let Some(unit) = dimension.find(suffix) {
         return Ok(value * unit.to_base);

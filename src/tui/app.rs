@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crate::model::params::{PARAMS, ParamSpec};
+use crate::model::params::{BOUNCE_PARAMS as PARAMS, ParamSpec};
 use crate::model::{Params, Sample, SolveError};
 
 use super::baseline::Baseline;
@@ -331,8 +331,8 @@ impl App {
         for arrival in arrived {
             match arrival {
                 Arrival::Bounce(params, answer) => {
-                    if params == self.params {
-                        self.answered(params, answer);
+                    if *params == self.params {
+                        self.answered(*params, answer);
                     }
                 }
                 Arrival::Sweeps(sweeps) => {

@@ -51,7 +51,8 @@ impl<T> Default for Recent<T> {
 /// Something that arrived from a worker.
 #[derive(Debug)]
 pub enum Arrival {
-    Bounce(Params, Answer),
+    /// Boxed: the parameters are the largest part (clippy's large_enum_variant).
+    Bounce(Box<Params>, Answer),
     Sweeps(Arc<Sweeps>),
 }
 
@@ -164,7 +165,7 @@ impl Solver {
             if generation == self.bounces.latest() && self.bounce_wanted == Some(params) {
                 self.bounce_wanted = None;
                 self.bounce_cache.put(params, answer.clone());
-                arrived.push(Arrival::Bounce(params, answer));
+                arrived.push(Arrival::Bounce(Box::new(params), answer));
             }
         }
         for (generation, sweeps) in sweeps {

@@ -33,6 +33,7 @@ pub fn random_compliant(rng: &mut Rng, chain: usize) -> Params {
         } else {
             rng.uniform(0.05, 1.5)
         },
+        ..Params::default()
     }
 }
 
@@ -75,6 +76,7 @@ pub fn compliant_strategy(
             chain: n as f64,
             ball_stiffness: kb,
             ball_damping: zeta,
+            ..Params::default()
         },
     )
 }

@@ -8,8 +8,9 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
+use crate::model::ParamSpec;
+use crate::model::params::BOUNCE_PARAMS as PARAMS;
 use crate::model::units::Shown;
-use crate::model::{PARAMS, ParamSpec};
 use crate::tui::app::App;
 
 /// The fewest rows the panel is given, borders included, however short the screen.
