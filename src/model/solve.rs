@@ -27,8 +27,8 @@ pub fn solve_cancellable(
     limits::bounded(params, || solve_model(params, cancelled))
 }
 
+/// The model for `params`, run by the driver (`limits::bounded` has validated them).
 fn solve_model(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Bounce, SolveError> {
-    params.validate()?;
     if params.ball_stiffness > 0.0 {
         let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
         let (phases, last) = run(&model, &setup, cancelled).map_err(|e| match e {
@@ -56,7 +56,6 @@ pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
 }
 
 fn solve_chain_model(params: &Params) -> Result<Bounce, SolveError> {
-    params.validate()?;
     if params.ball_stiffness > 0.0 {
         return solve(params);
     }
