@@ -70,8 +70,11 @@ impl Preset {
     /// # Panics
     /// When a shipped preset does not parse: a build error caught by the tests, never user input.
     pub fn scenario(&self) -> Scenario {
-        Scenario::parse(self.text, self.name)
-            .unwrap_or_else(|e| panic!("shipped preset {} is broken: {e}", self.name))
+        let mut scenario = Scenario::parse(self.text, self.name)
+            .unwrap_or_else(|e| panic!("shipped preset {} is broken: {e}", self.name));
+        // The name as it is: `light-0.1g` is no file whose extension is `.1g`.
+        scenario.name = self.name.to_string();
+        scenario
     }
 }
 

@@ -178,3 +178,25 @@ fn the_configs_defaults_reach_the_explorer_and_a_flag_wins() {
     pty.send(b"q");
     assert!(pty.exit(pty::PATIENCE).expect("it quits").success());
 }
+
+#[test]
+fn the_explorers_picker_lists_a_user_preset_and_applies_it() {
+    let dir = config_dir("picker");
+    std::fs::write(dir.join("presets/my-soft.toml"), MY_PRESET).unwrap();
+    let dir_text = dir.display().to_string();
+    let mut pty = Pty::spawn(&[], &[("SNAPBACK_CONFIG_DIR", dir_text.as_str())], 160, 48);
+    pty.wait_for("the first frame", |s| s.contains("60.0 deg"));
+    pty.send(b"p");
+    pty.wait_for("the picker with the user's preset", |s| {
+        s.contains("my-soft (user)") && s.contains("light-1g")
+    });
+    // The user's presets come last: up from the first wraps to it.
+    pty.send(b"\x1b[A");
+    std::thread::sleep(std::time::Duration::from_millis(100));
+    pty.send(b"\r");
+    pty.wait_for("the preset applied", |s| {
+        s.contains("preset my-soft: My softer strings")
+    });
+    pty.send(b"q");
+    assert!(pty.exit(pty::PATIENCE).is_some());
+}

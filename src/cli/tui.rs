@@ -51,7 +51,7 @@ pub struct TuiArgs {
     /// Colours for a dark (default) or a light terminal background.
     #[arg(long, value_enum)]
     pub theme: Option<ThemeArg>,
-    /// Frames a second while the bounce plays (fewer send fewer bytes over a slow link; default 30).
+    /// Frames a second while the bounce plays (fewer send fewer bytes over a slow link; default 12).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=60))]
     pub fps: Option<u32>,
     /// Write ASCII only (the default when the locale is not UTF-8: LC_ALL, LC_CTYPE, LANG).
