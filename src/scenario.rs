@@ -70,25 +70,31 @@ impl Preset {
     /// # Panics
     /// When a shipped preset does not parse: a build error caught by the tests, never user input.
     pub fn scenario(&self) -> Scenario {
-        Scenario::parse(self.text, self.name)
-            .unwrap_or_else(|e| panic!("shipped preset {} is broken: {e}", self.name))
+        let mut scenario = Scenario::parse(self.text, self.name)
+            .unwrap_or_else(|e| panic!("shipped preset {} is broken: {e}", self.name));
+        // The name as it is: `light-0.1g` is no file whose extension is `.1g`.
+        scenario.name = self.name.to_string();
+        scenario
     }
 }
 
-/// The preset called `name`.
+/// The preset called `name`: a built-in one, or one of the user's (see [`crate::config`]). A user's
+/// file that takes a built-in name is refused, naming the file.
 pub fn preset(name: &str) -> Result<Scenario, ScenarioError> {
-    PRESETS
-        .iter()
-        .find(|p| p.name == name)
-        .map(Preset::scenario)
-        .ok_or_else(|| ScenarioError::UnknownPreset {
+    let user = crate::config::user_preset(name)?;
+    if let Some(builtin) = PRESETS.iter().find(|p| p.name == name) {
+        return Ok(builtin.scenario());
+    }
+    user.ok_or_else(|| {
+        let mut known: Vec<String> = PRESETS.iter().map(|p| p.name.to_string()).collect();
+        if let Ok(users) = crate::config::user_presets() {
+            known.extend(users.into_iter().map(|u| u.scenario.name));
+        }
+        ScenarioError::UnknownPreset {
             name: name.to_string(),
-            known: PRESETS
-                .iter()
-                .map(|p| p.name)
-                .collect::<Vec<_>>()
-                .join(", "),
-        })
+            known: known.join(", "),
+        }
+    })
 }
 
 /// Why a scenario cannot be used. Errors in a file name the file, the line and the key.
@@ -96,6 +102,10 @@ pub fn preset(name: &str) -> Result<Scenario, ScenarioError> {
 pub enum ScenarioError {
     #[error("unknown preset '{name}' (known: {known})")]
     UnknownPreset { name: String, known: String },
+    #[error(
+        "{path}: a user preset may not take the name of the built-in preset '{name}'; rename the file"
+    )]
+    Shadows { path: String, name: String },
     #[error("{path}: {source}")]
     Io {
         path: String,
@@ -127,7 +137,7 @@ struct RawScenario {
 
 /// The key of the line holding byte `offset` (`speed` in `speed = 5`, `params` in `[params]`), for a
 /// parser's message that does not name it.
-fn key_at(text: &str, offset: usize) -> Option<&str> {
+pub(crate) fn key_at(text: &str, offset: usize) -> Option<&str> {
     let start = text.get(..offset)?.rfind('\n').map_or(0, |i| i + 1);
     let line = text[start..].lines().next()?;
     let key = match line.split_once('=') {
@@ -139,7 +149,7 @@ fn key_at(text: &str, offset: usize) -> Option<&str> {
 }
 
 /// 1-based line of byte `offset` in `text`.
-fn line_of(text: &str, offset: usize) -> usize {
+pub(crate) fn line_of(text: &str, offset: usize) -> usize {
     1 + text[..offset.min(text.len())]
         .bytes()
         .filter(|&b| b == b'\n')

@@ -374,6 +374,7 @@ fn no_color_draws_without_colours() {
         color: false,
         marker: Marker::Braille,
         ascii: false,
+        light: false,
     };
     for events in [
         vec![],
@@ -407,6 +408,7 @@ fn dot_and_block_markers_draw_without_braille() {
             color: true,
             marker,
             ascii: false,
+            light: false,
         };
         let (_, terminal) = explore_with(theme, 160, 48, vec![]);
         let screen = text(&terminal);

@@ -155,6 +155,7 @@ fn without_colour_the_map_is_drawn_in_shades() {
         color: false,
         marker: Marker::Braille,
         ascii: false,
+        light: false,
     };
     let tab = key(KeyCode::Tab);
     let (_, terminal, _, _) = fill(theme, 80, 24, vec![tab.clone(), tab]);

@@ -542,6 +542,7 @@ fn every_marker_draws_the_cursor_and_the_schematic() {
             color: true,
             marker,
             ascii: false,
+            light: false,
         };
         let mut app = App::new(Params::default(), theme).unwrap();
         let inputs = vec![key('}'), key(']'), key(' '), tick(500)];

@@ -1,4 +1,5 @@
-//! `snapback presets`: the presets compiled into the binary, with their descriptions.
+//! `snapback presets`: the presets compiled into the binary and the user's own (see [`crate::config`]),
+//! with their descriptions; `--path` prints the folder the user's live in.
 
 use std::fmt::Write;
 
@@ -6,8 +7,9 @@ use clap::{Args, ValueEnum};
 use serde::Serialize;
 
 use super::{Failure, emit};
+use crate::config;
 use crate::model::solve;
-use crate::scenario::PRESETS;
+use crate::scenario::{PRESETS, Scenario};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -22,23 +24,53 @@ pub enum Format {
 pub struct PresetsArgs {
     #[arg(long, value_enum, default_value_t = Format::Table)]
     pub format: Format,
+    /// Print the folder your own presets live in (`*.toml` there are listed as `(user)`), and nothing else.
+    #[arg(long, conflicts_with = "format")]
+    pub path: bool,
 }
 
 #[derive(Serialize)]
 struct PresetJson {
-    name: &'static str,
+    name: String,
+    /// True for the user's own presets.
+    user: bool,
     description: String,
     source: String,
     params: crate::model::Params,
 }
 
 pub fn run(args: &PresetsArgs) -> Result<(), Failure> {
+    if args.path {
+        let dir = config::presets_dir().ok_or_else(|| {
+            Failure::usage(format!(
+                "no config directory here (no home directory); set {}",
+                config::DIR_VAR
+            ))
+        })?;
+        return emit(&format!("{}\n", dir.display()));
+    }
+    let users = config::user_presets().map_err(Failure::usage)?;
+    let all: Vec<(Scenario, bool)> = PRESETS
+        .iter()
+        .map(|p| (p.scenario(), false))
+        .chain(users.into_iter().map(|u| (u.scenario, true)))
+        .collect();
     let text = match args.format {
         Format::Table => {
             let mut out = String::new();
-            let width = PRESETS.iter().map(|p| p.name.len()).max().unwrap_or(0);
-            for preset in PRESETS {
-                let scenario = preset.scenario();
+            let label = |s: &Scenario, user: bool| {
+                if user {
+                    format!("{} (user)", s.name)
+                } else {
+                    s.name.clone()
+                }
+            };
+            let width = all
+                .iter()
+                .map(|(s, user)| label(s, *user).len())
+                .max()
+                .unwrap_or(0);
+            for (scenario, user) in &all {
                 let params = scenario.apply(crate::model::Params::default());
                 let spin = if scenario.is_shot() {
                     crate::shot::play(&params, false).map_or("does not play".to_string(), |s| {
@@ -56,23 +88,22 @@ pub fn run(args: &PresetsArgs) -> Result<(), Failure> {
                         format!("ω2 = {:.1} rad/s", b.outcome.omega2)
                     })
                 };
-                let _ = writeln!(out, "{:<width$}  {}", preset.name, scenario.description);
+                let name = label(scenario, *user);
+                let _ = writeln!(out, "{name:<width$}  {}", scenario.description);
                 let _ = writeln!(out, "{:<width$}  ({spin})", "");
             }
             out.push_str("\nUse one with --preset NAME on any command, e.g. `snapback simulate --preset light-1g`;\nthe shot presets with `snapback shot --preset kick-serve`.\n");
             out
         }
         Format::Json => {
-            let list: Vec<PresetJson> = PRESETS
-                .iter()
-                .map(|preset| {
-                    let scenario = preset.scenario();
-                    PresetJson {
-                        name: preset.name,
-                        params: scenario.apply(crate::model::Params::default()),
-                        description: scenario.description,
-                        source: scenario.source,
-                    }
+            let list: Vec<PresetJson> = all
+                .into_iter()
+                .map(|(scenario, user)| PresetJson {
+                    name: scenario.name.clone(),
+                    user,
+                    params: scenario.apply(crate::model::Params::default()),
+                    description: scenario.description,
+                    source: scenario.source,
                 })
                 .collect();
             let mut text = serde_json::to_string_pretty(&list).expect("presets serialize");

@@ -4,6 +4,8 @@ use clap::{Args, ValueEnum};
 use ratatui::symbols::Marker;
 
 use super::{Failure, ParamArgs};
+pub use crate::config::Theme as ThemeArg;
+use crate::config::{self, Charset};
 use crate::model::Params;
 use crate::tui::{self, OpenError, Options, playback};
 
@@ -17,6 +19,16 @@ pub enum MarkerArg {
     Dot,
     /// One block per cell, for fonts without braille.
     Block,
+}
+
+impl From<config::Marker> for MarkerArg {
+    fn from(marker: config::Marker) -> MarkerArg {
+        match marker {
+            config::Marker::Braille => MarkerArg::Braille,
+            config::Marker::Dot => MarkerArg::Dot,
+            config::Marker::Block => MarkerArg::Block,
+        }
+    }
 }
 
 impl From<MarkerArg> for Marker {
@@ -34,11 +46,14 @@ pub struct TuiArgs {
     #[command(flatten)]
     pub params: ParamArgs,
     /// Chart marker: braille (default), or dot or block for fonts without braille.
-    #[arg(long, value_enum, default_value_t = MarkerArg::Braille)]
-    pub marker: MarkerArg,
-    /// Frames a second while the bounce plays (fewer send fewer bytes over a slow link).
-    #[arg(long, default_value_t = playback::DEFAULT_FPS, value_parser = clap::value_parser!(u32).range(1..=60))]
-    pub fps: u32,
+    #[arg(long, value_enum)]
+    pub marker: Option<MarkerArg>,
+    /// Colours for a dark (default) or a light terminal background.
+    #[arg(long, value_enum)]
+    pub theme: Option<ThemeArg>,
+    /// Frames a second while the bounce plays (fewer send fewer bytes over a slow link; default 12).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=60))]
+    pub fps: Option<u32>,
     /// Write ASCII only (the default when the locale is not UTF-8: LC_ALL, LC_CTYPE, LANG).
     #[arg(long, conflicts_with = "unicode")]
     pub ascii: bool,
@@ -52,12 +67,30 @@ pub fn run(args: &TuiArgs) -> Result<(), Failure> {
         .params
         .apply(Params::default())
         .map_err(Failure::usage)?;
+    // The user's config gives the defaults; a flag on the command line wins.
+    let config = config::load().map_err(Failure::usage)?;
+    let marker = args
+        .marker
+        .or(config.marker.map(MarkerArg::from))
+        .unwrap_or_default();
+    let ascii = if args.ascii {
+        true
+    } else if args.unicode {
+        false
+    } else {
+        match config.charset {
+            Some(Charset::Ascii) => true,
+            Some(Charset::Unicode) => false,
+            Some(Charset::Auto) | None => !tui::locale::utf8_here(),
+        }
+    };
     let options = Options {
         params,
-        marker: args.marker.into(),
+        marker: marker.into(),
         color: !tui::no_color_requested(),
-        ascii: args.ascii || !(args.unicode || tui::locale::utf8_here()),
-        fps: args.fps,
+        light: args.theme.or(config.theme).unwrap_or_default() == ThemeArg::Light,
+        ascii,
+        fps: args.fps.or(config.fps).unwrap_or(playback::DEFAULT_FPS),
     };
     tui::open(options).map_err(|e| match e {
         OpenError::NotATerminal | OpenError::Solve(_) => Failure::usage(e),

@@ -138,7 +138,7 @@ pub enum Mode {
     Help,
     /// The value prompt is open with the text typed so far.
     Editing(String),
-    /// The preset picker is open with this preset (an index into `scenario::PRESETS`) highlighted.
+    /// The preset picker is open with this preset (an index into [`App::presets`]) highlighted.
     Picker(usize),
     /// A file name is being typed, to save to or open.
     File(FilePrompt),
@@ -193,6 +193,8 @@ pub struct App {
     pub dir: PathBuf,
     /// The scenario file last opened or saved, as typed, offered by the next prompt.
     pub last_file: Option<String>,
+    /// What the picker lists, read when it opens: the built-in presets, then the user's (true).
+    pub presets: Vec<(crate::scenario::Scenario, bool)>,
     /// The parameters as that file holds them: quitting with others asks once.
     pub(super) file_params: Option<Params>,
     /// True after a quit that was asked about: the next quit goes.
@@ -250,6 +252,7 @@ impl App {
             baseline: None,
             dir: std::env::current_dir().unwrap_or_else(|_| PathBuf::from(".")),
             last_file: None,
+            presets: Vec::new(),
             file_params: None,
             quit_asked: false,
             help_scroll: 0,

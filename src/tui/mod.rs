@@ -215,6 +215,8 @@ pub struct Options {
     pub marker: Marker,
     /// False to draw without colours (NO_COLOR).
     pub color: bool,
+    /// Colours for a light background (`--theme light`).
+    pub light: bool,
     /// Write ASCII only (a locale that is not UTF-8, or `--ascii`).
     pub ascii: bool,
     /// Frames a second while the bounce plays.
@@ -251,6 +253,7 @@ pub fn open(options: Options) -> Result<(), OpenError> {
         color: options.color,
         marker,
         ascii: options.ascii,
+        light: options.light,
     };
     let mut app = App::new(options.params, theme)?;
     app.frame = Duration::from_secs_f64(1.0 / f64::from(options.fps.max(1)));

@@ -39,14 +39,24 @@ impl App {
     pub(super) fn update_scenarios(&mut self, action: Action) {
         match action {
             Action::OpenPicker => {
-                let current = PRESETS
+                // The user's presets are read afresh each time, so a file just added shows; a bad one
+                // is named on the status line and the rest are listed.
+                self.presets = PRESETS.iter().map(|p| (p.scenario(), false)).collect();
+                match crate::config::user_presets() {
+                    Ok(users) => self
+                        .presets
+                        .extend(users.into_iter().map(|u| (u.scenario, true))),
+                    Err(e) => self.error(format!("your presets: {e}")),
+                }
+                let current = self
+                    .presets
                     .iter()
-                    .position(|p| p.scenario().apply(Params::default()) == self.params);
+                    .position(|(s, _)| s.apply(Params::default()) == self.params);
                 self.mode = Mode::Picker(current.unwrap_or(0));
             }
             Action::PickerUp | Action::PickerDown => {
                 if let Mode::Picker(i) = &mut self.mode {
-                    let n = PRESETS.len();
+                    let n = self.presets.len().max(1);
                     *i = if action == Action::PickerUp {
                         (*i + n - 1) % n
                     } else {
@@ -183,11 +193,10 @@ impl App {
     }
 
     fn apply_preset(&mut self, index: usize) {
-        let Some(preset) = PRESETS.get(index) else {
+        let Some((scenario, _)) = self.presets.get(index).cloned() else {
             return;
         };
-        let scenario = preset.scenario();
-        let what = format!("preset {}: {}", preset.name, scenario.description);
+        let what = format!("preset {}: {}", scenario.name, scenario.description);
         self.change_to(scenario.apply(Params::default()), what);
     }
 

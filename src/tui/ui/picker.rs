@@ -1,4 +1,4 @@
-//! The preset picker overlay (`p`): every preset with its description, the highlighted one's full
+//! The preset picker overlay (`p`): every preset with its description (the user's marked `(user)`), the highlighted one's full
 //! description and source below; and what the status line asks while a file name is typed (`s`, `o`) or
 //! an overwrite is to be confirmed.
 
@@ -7,7 +7,6 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
 use super::overlay;
-use crate::scenario::PRESETS;
 use crate::tui::app::{App, Mode};
 use crate::tui::scenarios::FileKind;
 
@@ -29,28 +28,39 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let theme = &app.theme;
     let width = area.width.saturating_sub(2).min(110);
     let inner = usize::from(width.saturating_sub(2));
-    let name_width = PRESETS.iter().map(|p| p.name.len()).max().unwrap_or(0);
-    let scenarios: Vec<_> = PRESETS.iter().map(|p| p.scenario()).collect();
-    let mut lines: Vec<Line> = PRESETS
+    let names: Vec<String> = app
+        .presets
         .iter()
-        .zip(&scenarios)
+        .map(|(s, user)| {
+            if *user {
+                format!("{} (user)", s.name)
+            } else {
+                s.name.clone()
+            }
+        })
+        .collect();
+    let name_width = names.iter().map(|n| n.chars().count()).max().unwrap_or(0);
+    let mut lines: Vec<Line> = app
+        .presets
+        .iter()
+        .zip(&names)
         .enumerate()
-        .map(|(i, (preset, scenario))| {
+        .map(|(i, ((scenario, _), name))| {
             let row = fit(
-                &format!(" {:<name_width$}  {}", preset.name, scenario.description),
+                &format!(" {name:<name_width$}  {}", scenario.description),
                 inner,
             );
             if i == selected {
                 Line::styled(format!("{row:<inner$}"), theme.selected())
             } else {
                 Line::from(vec![
-                    Span::styled(format!(" {:<name_width$}", preset.name), theme.key()),
+                    Span::styled(format!(" {name:<name_width$}"), theme.key()),
                     Span::raw(row.chars().skip(name_width + 1).collect::<String>()),
                 ])
             }
         })
         .collect();
-    if let Some(chosen) = scenarios.get(selected) {
+    if let Some((chosen, _)) = app.presets.get(selected) {
         lines.push(Line::raw(""));
         lines.push(Line::raw(chosen.description.clone()));
         if !chosen.source.is_empty() {

@@ -18,6 +18,9 @@ pub struct Theme {
     pub marker: Marker,
     /// True when the terminal gets ASCII only: key names are written as words (`Space`, `hjkl`).
     pub ascii: bool,
+    /// True for a light terminal background (`--theme light`): the colours that wash out on white
+    /// (yellow, cyan, grey) are swapped for darker ones.
+    pub light: bool,
 }
 
 impl Default for Theme {
@@ -26,7 +29,22 @@ impl Default for Theme {
             color: true,
             marker: Marker::Braille,
             ascii: false,
+            light: false,
         }
+    }
+}
+
+/// The dark theme's colour as the light theme draws it: yellow, cyan and the greys, which wash out on a
+/// white background, become darker ones; the rest read well on both.
+fn light(color: Color) -> Color {
+    match color {
+        Color::Yellow => Color::Magenta,
+        Color::Magenta => Color::Black,
+        Color::Cyan => Color::Blue,
+        Color::Blue => Color::Cyan,
+        Color::Gray => Color::DarkGray,
+        Color::DarkGray => Color::Gray,
+        other => other,
     }
 }
 
@@ -64,9 +82,15 @@ impl Theme {
         Cow::Owned(out)
     }
 
-    /// Colour unless colour is off.
+    /// Colour unless colour is off; on a light background, the light theme's counterpart.
     fn pick(&self, color: Color) -> Color {
-        if self.color { color } else { Color::Reset }
+        if !self.color {
+            Color::Reset
+        } else if self.light {
+            light(color)
+        } else {
+            color
+        }
     }
 
     /// The colour of a phase's curves and labels.
@@ -128,8 +152,12 @@ impl Theme {
     pub fn selected(&self) -> Style {
         if self.color {
             Style::new()
-                .fg(Color::Black)
-                .bg(Color::Cyan)
+                .fg(if self.light {
+                    Color::White
+                } else {
+                    Color::Black
+                })
+                .bg(self.pick(Color::Cyan))
                 .add_modifier(Modifier::BOLD)
         } else {
             Style::new().add_modifier(Modifier::REVERSED | Modifier::BOLD)
@@ -139,7 +167,7 @@ impl Theme {
     /// Secondary text: units, axis labels, hints.
     pub fn dim(&self) -> Style {
         if self.color {
-            Style::new().fg(Color::Gray)
+            Style::new().fg(self.pick(Color::Gray))
         } else {
             Style::new()
         }
