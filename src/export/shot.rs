@@ -65,6 +65,14 @@ fn metres(value: Option<f64>, none: &str) -> String {
     value.map_or(none.to_string(), |v| format!("{v:.3} m"))
 }
 
+/// `text` without its minus sign where it shows zero (a spin of -1e-15 rad/s reads 0.0, not -0.0).
+fn unsigned_zero(text: String) -> String {
+    match text.strip_prefix('-') {
+        Some(rest) if rest.chars().all(|c| c == '0' || c == '.') => rest.to_string(),
+        _ => text,
+    }
+}
+
 /// The shot as aligned text.
 pub fn table(shot: &Shot) -> String {
     let mut out = String::new();
@@ -75,10 +83,10 @@ pub fn table(shot: &Shot) -> String {
     let _ = writeln!(out, "  {:<24}{:.2} m/s", "speed v1", c.speed);
     let _ = writeln!(
         out,
-        "  {:<24}{:.1} rad/s ({:.0} rpm)",
+        "  {:<24}{} rad/s ({} rpm)",
         "spin ω1",
-        c.spin,
-        c.spin * RPM
+        unsigned_zero(format!("{:.1}", c.spin)),
+        unsigned_zero(format!("{:.0}", c.spin * RPM))
     );
     let _ = writeln!(
         out,
