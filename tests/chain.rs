@@ -13,50 +13,20 @@ use snapback::model::{Params, PhaseKind, solve};
 mod rng;
 use rng::Rng;
 
+#[path = "support/chain.rs"]
+mod chain_draw;
+use chain_draw::{close, random_chain};
+
 #[path = "support/prop.rs"]
 mod prop;
 use prop::{config, log_range};
-
-/// Random bounces, as the single cart's numerical test draws them (no string friction).
-fn random_params(rng: &mut Rng, chain: f64) -> Params {
-    Params {
-        angle_deg: rng.uniform(3.0, 90.0),
-        speed: rng.uniform(2.0, 40.0),
-        spin: rng.uniform(-300.0, 300.0),
-        mu: rng.uniform(0.05, 0.8),
-        duration: rng.uniform(2e-3, 8e-3),
-        ey: rng.uniform(0.3, 1.0),
-        mass: rng.uniform(0.04, 0.2),
-        radius: rng.uniform(0.02, 0.05),
-        alpha: rng.uniform(0.4, 0.67),
-        cart_mass: if rng.unit() < 0.5 {
-            rng.log_uniform(1e-5, 2e-3)
-        } else {
-            rng.log_uniform(2e-3, 10.0)
-        },
-        stiffness: if rng.unit() < 0.1 {
-            0.0
-        } else {
-            rng.log_uniform(1e3, 1e5)
-        },
-        cart_friction: 0.0,
-        chain,
-        ball_stiffness: 0.0,
-        ball_damping: 0.0,
-        ..Params::default()
-    }
-}
-
-fn close(a: f64, b: f64, scale: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * a.abs().max(b.abs()).max(scale)
-}
 
 #[test]
 fn one_mass_through_the_chain_is_the_single_cart() {
     let mut rng = Rng(0x0c4a_1ace_5eed_0001);
     let cases = 300;
     for case in 0..cases {
-        let p = random_params(&mut rng, 1.0);
+        let p = random_chain(&mut rng, 1.0);
         let cart = solve(&p).expect("valid parameters solve");
         let chain = solve_chain(&p).expect("the chain path solves N = 1");
         let speed = p.speed + p.radius * p.spin.abs();
@@ -150,7 +120,7 @@ fn every_chain_length_balances_energy() {
     let mut rng = Rng(0xe4e4_0000_1234_abcd);
     for n in 2..=16 {
         for _ in 0..12 {
-            let p = random_params(&mut rng, n as f64);
+            let p = random_chain(&mut rng, n as f64);
             let b = solve(&p).expect("valid chains solve");
             let e = b.energy();
             assert!(
@@ -259,7 +229,7 @@ fn the_chain_agrees_with_numerical_integration() {
     let mut worst: f64 = 0.0;
     for case in 0..cases {
         let n = 2 + rng.below(7);
-        let mut p = random_params(&mut rng, n as f64);
+        let mut p = random_chain(&mut rng, n as f64);
         // Keep the fastest mode within reach of a fixed-step integration.
         p.cart_mass = p.cart_mass.max(2e-4);
         let exact = solve(&p).expect("valid chains solve");

@@ -14,6 +14,10 @@ use snapback::model::{Cart, Params, PhaseKind, solve};
 mod rng;
 use rng::Rng;
 
+#[path = "support/chain.rs"]
+mod chain_draw;
+use chain_draw::{close, random_chain};
+
 #[path = "support/prop.rs"]
 mod prop;
 use prop::{config, log_range};
@@ -26,38 +30,9 @@ fn peak_friction(p: &Params) -> f64 {
 
 /// A random bounce on `chain` masses with string friction F_c from a thousandth to three times mu N0.
 fn random_params(rng: &mut Rng, chain: f64) -> Params {
-    let mut p = Params {
-        angle_deg: rng.uniform(3.0, 90.0),
-        speed: rng.uniform(2.0, 40.0),
-        spin: rng.uniform(-300.0, 300.0),
-        mu: rng.uniform(0.05, 0.8),
-        duration: rng.uniform(2e-3, 8e-3),
-        ey: rng.uniform(0.3, 1.0),
-        mass: rng.uniform(0.04, 0.2),
-        radius: rng.uniform(0.02, 0.05),
-        alpha: rng.uniform(0.4, 0.67),
-        cart_mass: if rng.unit() < 0.5 {
-            rng.log_uniform(1e-5, 2e-3)
-        } else {
-            rng.log_uniform(2e-3, 10.0)
-        },
-        stiffness: if rng.unit() < 0.1 {
-            0.0
-        } else {
-            rng.log_uniform(1e3, 1e5)
-        },
-        cart_friction: 0.0,
-        chain,
-        ball_stiffness: 0.0,
-        ball_damping: 0.0,
-        ..Params::default()
-    };
+    let mut p = random_chain(rng, chain);
     p.cart_friction = rng.log_uniform(1e-3, 3.0) * peak_friction(&p);
     p
-}
-
-fn close(a: f64, b: f64, scale: f64, tol: f64) -> bool {
-    (a - b).abs() <= tol * a.abs().max(b.abs()).max(scale)
 }
 
 #[test]
