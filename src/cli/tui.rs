@@ -1,12 +1,15 @@
-//! `snapback tui` (and `snapback` alone): the full-screen explorer, started from the given parameters.
+//! `snapback tui` (and `snapback` alone): the full-screen explorer, started from the given parameters. A
+//! shot preset, a scenario with a shot in it or any shot flag starts it exploring that shot, from the
+//! same parameters `snapback shot` would play.
 
 use clap::{Args, ValueEnum};
 use ratatui::symbols::Marker;
 
-use super::{Failure, ParamArgs};
+use super::{Failure, ShotParamArgs, shot};
 pub use crate::config::Theme as ThemeArg;
 use crate::config::{self, Charset};
 use crate::model::Params;
+use crate::model::params::{Group, spec};
 use crate::tui::{self, OpenError, Options, playback};
 
 /// How the charts draw their curves.
@@ -44,7 +47,7 @@ impl From<MarkerArg> for Marker {
 #[derive(Clone, Debug, Default, Args)]
 pub struct TuiArgs {
     #[command(flatten)]
-    pub params: ParamArgs,
+    pub params: ShotParamArgs,
     /// Chart marker: braille (default), or dot or block for fonts without braille.
     #[arg(long, value_enum)]
     pub marker: Option<MarkerArg>,
@@ -62,11 +65,22 @@ pub struct TuiArgs {
     pub unicode: bool,
 }
 
+/// Where the explorer starts, and whether it explores a shot: refused as `snapback shot` refuses them,
+/// the incidence flags and a racquet that never meets the ball.
+fn start(args: &ShotParamArgs) -> Result<(Params, bool), Failure> {
+    let params = args.apply(Params::default()).map_err(Failure::usage)?;
+    let shot_flag = args.given.iter().any(|(id, _)| spec(*id).group == Group::Shot);
+    if !shot_flag && !tui::shot::is_shot(&params) {
+        return Ok((params, false));
+    }
+    shot::refuse_bounce_incidence(&args.given, None)?;
+    let params = args.apply(shot::base()).map_err(Failure::usage)?;
+    tui::shot::strings_params(&params).map_err(Failure::usage)?;
+    Ok((params, true))
+}
+
 pub fn run(args: &TuiArgs) -> Result<(), Failure> {
-    let params = args
-        .params
-        .apply(Params::default())
-        .map_err(Failure::usage)?;
+    let (params, shot) = start(&args.params)?;
     // The user's config gives the defaults; a flag on the command line wins.
     let config = config::load().map_err(Failure::usage)?;
     let marker = args
@@ -91,6 +105,7 @@ pub fn run(args: &TuiArgs) -> Result<(), Failure> {
         light: args.theme.or(config.theme).unwrap_or_default() == ThemeArg::Light,
         ascii,
         fps: args.fps.or(config.fps).unwrap_or(playback::DEFAULT_FPS),
+        shot,
     };
     tui::open(options).map_err(|e| match e {
         OpenError::NotATerminal | OpenError::Solve(_) => Failure::usage(e),

@@ -129,16 +129,22 @@ pub fn strings(p: &Params) -> Surface {
     }
 }
 
+/// How the ball meets the strings, in the paper's terms (the frame change alone, no solve).
+pub fn incidence(p: &Params) -> Result<Incidence, ShotError> {
+    let strings = strings(p);
+    let ball = incoming(p);
+    strings
+        .incidence(ball.velocity, ball.omega_z)
+        .ok_or_else(|| {
+            ShotError::NeverMeets((ball.velocity - strings.velocity).dot(&strings.normal))
+        })
+}
+
 /// The bounce on the strings: the frame change, the core (all of `p`'s ball and cart flags, with the
 /// incidence it sees), and back to the court frame.
 pub fn hit(p: &Params) -> Result<Contact, ShotError> {
     let strings = strings(p);
-    let ball = incoming(p);
-    let incidence = strings
-        .incidence(ball.velocity, ball.omega_z)
-        .ok_or_else(|| {
-            ShotError::NeverMeets((ball.velocity - strings.velocity).dot(&strings.normal))
-        })?;
+    let incidence = incidence(p)?;
     let bounce = solve(&Params {
         angle_deg: incidence.theta1_deg,
         speed: incidence.speed,

@@ -7,7 +7,7 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use crate::model::params::{BOUNCE_PARAMS as PARAMS, ParamSpec};
+use crate::model::params::{self, BOUNCE_PARAMS as PARAMS, ParamSpec};
 use crate::model::{Params, Sample, SolveError};
 
 use super::baseline::Baseline;
@@ -15,6 +15,7 @@ use super::heatmap::Heatmap;
 use super::history::History;
 use super::playback::{self, Speed};
 use super::scenarios::FilePrompt;
+use super::shot::{self, Shots};
 use super::solved::Solved;
 use super::solver::{Answer, Arrival, Solver};
 use super::sweep::Sweeps;
@@ -29,10 +30,12 @@ pub enum View {
     Sweep,
     /// Rebound spin over cart mass and spring stiffness, computed off the UI thread.
     Heatmap,
+    /// A stroke on court from the side: the flight, the court bounce and the kick (shot mode).
+    Shot,
 }
 
 impl View {
-    const ALL: [View; 3] = [View::Contact, View::Sweep, View::Heatmap];
+    const ALL: [View; 4] = [View::Contact, View::Sweep, View::Heatmap, View::Shot];
 
     /// The next view in the Tab order.
     pub fn next(self) -> View {
@@ -46,6 +49,7 @@ impl View {
             View::Contact => "contact",
             View::Sweep => "ω2 vs θ1",
             View::Heatmap => "ω2 over M, k",
+            View::Shot => "shot",
         }
     }
 }
@@ -210,6 +214,8 @@ pub struct App {
     pub frame: Duration,
     /// omega2 over cart mass and stiffness, for the heatmap view; computed when that view is shown.
     pub heatmap: Heatmap,
+    /// Shot mode and the shots played for the shot view.
+    pub shots: Shots,
     /// The workers and their answers so far.
     solver: Solver,
     /// When the parameters or the view last changed: pending panels are marked stale only once an
@@ -245,6 +251,7 @@ impl App {
             speed: Speed::default(),
             frame: playback::FRAME,
             heatmap: Heatmap::default(),
+            shots: Shots::default(),
             start: params,
             history: History::default(),
             settled_history: History::default(),
@@ -282,6 +289,10 @@ impl App {
         if self.view == View::Heatmap {
             self.heatmap.request(&self.params);
         }
+        if self.view == View::Shot {
+            let base = self.baseline.as_ref().map(|b| b.solved.params);
+            self.shots.request(&self.params, base.as_ref());
+        }
     }
 
     /// Takes what the workers have sent, and marks panels stale whose answer is overdue; true if anything
@@ -289,11 +300,13 @@ impl App {
     pub fn poll(&mut self) -> bool {
         let arrived = self.solver.collect();
         let heatmap = self.heatmap.poll();
+        let shot = self.shots.poll(&self.params);
         let taken = self.take(arrived);
-        let marked = self.solver.busy() && self.changed_at.elapsed() >= STALE_AFTER;
+        let marked = (self.solver.busy() || self.shots.pending())
+            && self.changed_at.elapsed() >= STALE_AFTER;
         let flipped = marked != self.stale_marked;
         self.stale_marked = marked;
-        taken || heatmap || flipped
+        taken || heatmap || shot || flipped
     }
 
     /// Waits until every answer asked for has come, or `patience` has passed; true if all came. For tests
@@ -313,6 +326,8 @@ impl App {
             if self.solver.busy() {
                 let arrived = self.solver.wait(wait);
                 self.take(arrived);
+            } else if self.shots.pending() {
+                self.shots.wait(wait, &self.params);
             } else {
                 self.heatmap.wait(wait);
             }
@@ -326,7 +341,7 @@ impl App {
 
     /// True while something asked for has not come yet: the event loop then wakes now and then to take it.
     pub fn busy(&self) -> bool {
-        self.solver.busy() || self.heatmap.pending()
+        self.solver.busy() || self.heatmap.pending() || self.shots.pending()
     }
 
     fn take(&mut self, arrived: Vec<Arrival>) -> bool {
@@ -433,7 +448,25 @@ impl App {
 
     /// The spec of the highlighted parameter.
     pub fn selected_spec(&self) -> &'static ParamSpec {
-        &PARAMS[self.selected]
+        &self.listed()[self.selected]
+    }
+
+    /// The parameters the panel lists: the bounce's, and the shot's too in shot mode.
+    pub fn listed(&self) -> &'static [ParamSpec] {
+        if self.shots.on { params::PARAMS } else { PARAMS }
+    }
+
+    /// Explores a shot from now on: the shot group joins the panel, the incidence follows from the
+    /// racquet and the incoming ball, and the contact view shows the bounce on the strings.
+    pub fn explore_shot(&mut self) {
+        if self.shots.on {
+            return;
+        }
+        self.shots.on = true;
+        if shot::derived(self.selected_spec().id) {
+            self.selected = PARAMS.len();
+        }
+        self.set_params(self.params, "parameters");
     }
 
     /// Applies one action; any change of parameters re-solves and recomputes everything shown.
@@ -441,11 +474,21 @@ impl App {
         self.message = None;
         // Only a quit right after the question quits.
         self.quit_asked &= action == Action::Quit;
+        let listed = self.listed().len();
+        if self.shots.on
+            && matches!(
+                action,
+                Action::Step { .. } | Action::StartEdit | Action::Reset
+            )
+            && shot::derived(self.selected_spec().id)
+        {
+            return self.refuse(shot::refusal(self.selected_spec()));
+        }
         match action {
             Action::SelectPrevious => {
-                self.selected = (self.selected + PARAMS.len() - 1) % PARAMS.len();
+                self.selected = (self.selected + listed - 1) % listed;
             }
-            Action::SelectNext => self.selected = (self.selected + 1) % PARAMS.len(),
+            Action::SelectNext => self.selected = (self.selected + 1) % listed,
             Action::Step { up, coarse } => self.step(up, coarse),
             Action::StartEdit => self.mode = Mode::Editing(String::new()),
             Action::EditInsert(c) => {
@@ -469,6 +512,15 @@ impl App {
             Action::ResetAll => self.try_apply(self.start),
             Action::NextView => {
                 self.view = self.view.next();
+                if self.view == View::Shot && !self.shots.on {
+                    self.explore_shot();
+                    self.message = Some(Message {
+                        text: "shot mode: θ1, v1 and ω1 now follow from the racquet and the incoming \
+                               ball, and the contact view shows the bounce on the strings"
+                            .into(),
+                        tone: Tone::Info,
+                    });
+                }
                 self.changed_at = Instant::now();
                 self.want();
             }
@@ -607,6 +659,10 @@ impl App {
     /// Makes `params` current (a change `u` undoes) and asks for their bounce; if the core refuses it,
     /// the old ones come back and the reason is shown.
     fn try_apply(&mut self, params: Params) {
+        let params = match self.strings_params(params) {
+            Ok(params) => params,
+            Err(reason) => return self.refuse(reason),
+        };
         if params == self.params {
             return;
         }
@@ -617,10 +673,26 @@ impl App {
     /// Makes `params` current and asks for everything derived from them. The history is the caller's
     /// business; `unchanged` names what a refusal leaves as it was (`value` or `parameters`).
     pub(super) fn set_params(&mut self, params: Params, unchanged: &'static str) {
-        self.params = params;
+        // A change refused by the frame change is refused before it comes here; this keeps the rest.
+        self.params = self.strings_params(params).unwrap_or(params);
         self.changed_at = Instant::now();
         self.unchanged = unchanged;
         self.want();
+    }
+
+    /// `params`, with the incidence the strings see in shot mode; why not, if the racquet never meets
+    /// the ball.
+    pub(super) fn strings_params(&self, params: Params) -> Result<Params, String> {
+        if self.shots.on {
+            shot::strings_params(&params).map_err(|e| e.to_string())
+        } else {
+            Ok(params)
+        }
+    }
+
+    /// True while the shot on screen is not that of the current parameters.
+    pub fn shot_stale(&self) -> bool {
+        self.shots.stale(&self.params)
     }
 
     fn refuse(&mut self, reason: String) {

@@ -20,6 +20,7 @@ pub mod output;
 pub mod peak;
 pub mod playback;
 pub mod scenarios;
+pub mod shot;
 pub mod solved;
 pub mod solver;
 pub mod sweep;
@@ -221,6 +222,8 @@ pub struct Options {
     pub ascii: bool,
     /// Frames a second while the bounce plays.
     pub fps: u32,
+    /// Explore a shot from the start (a shot preset, scenario or flag).
+    pub shot: bool,
 }
 
 /// Why the explorer could not run.
@@ -256,6 +259,9 @@ pub fn open(options: Options) -> Result<(), OpenError> {
         light: options.light,
     };
     let mut app = App::new(options.params, theme)?;
+    if options.shot {
+        app.explore_shot();
+    }
     app.frame = Duration::from_secs_f64(1.0 / f64::from(options.fps.max(1)));
     let mut session = terminal::Session::start(options.ascii)?;
     let mut events = TerminalEvents::start()?;

@@ -183,6 +183,10 @@ impl App {
     /// Makes `params` current as one change that can be undone; `what` says what it was. If the solver
     /// refuses them, the parameters go back and the reason replaces `what`.
     fn change_to(&mut self, params: Params, what: String) {
+        let params = match self.strings_params(params) {
+            Ok(params) => params,
+            Err(reason) => return self.error(format!("{reason} (parameters unchanged)")),
+        };
         if params == self.params {
             self.info(format!("{what} (the parameters were already these)"));
             return;
@@ -197,7 +201,11 @@ impl App {
             return;
         };
         let what = format!("preset {}: {}", scenario.name, scenario.description);
-        self.change_to(scenario.apply(Params::default()), what);
+        let params = scenario.apply(Params::default());
+        if super::shot::is_shot(&params) {
+            self.explore_shot();
+        }
+        self.change_to(params, what);
     }
 
     fn submit_save(&mut self, typed: &str) {

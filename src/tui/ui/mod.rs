@@ -25,6 +25,7 @@
 
 mod baseline;
 mod charts;
+mod court;
 mod heatmap;
 mod help;
 mod outcome;
@@ -82,7 +83,7 @@ pub fn regions(area: Rect, app: &App) -> Option<Regions> {
         Layout::horizontal([Constraint::Length(left_width), Constraint::Min(0)]).areas(main);
     // The outcome gets the rows it needs first; on a short screen the parameter list scrolls.
     let outcome_height = outcome::height(app, left_width);
-    let params_height = params::height().min(
+    let params_height = params::height(app).min(
         left.height
             .saturating_sub(outcome_height)
             .max(params::MIN_HEIGHT),
@@ -133,6 +134,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
     let view_stale = match app.view {
         View::Sweep => app.stale() || app.sweeps_stale(),
         View::Contact | View::Heatmap => app.stale(),
+        View::Shot => app.shot_stale(),
     };
     match app.solved.as_deref() {
         Some(solved) => {
@@ -147,6 +149,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
                 }
                 (View::Sweep, None) => stale::pending(frame, regions.view, app, app.view.name()),
                 (View::Heatmap, _) => heatmap::render(frame, regions.view, app, solved),
+                (View::Shot, _) => court::render(frame, regions.view, app),
             }
             if stale {
                 stale::dim(frame, regions.outcome, app);
@@ -154,7 +157,11 @@ pub fn draw(frame: &mut Frame, app: &App) {
                     stale::mark(frame, schematic, app);
                 }
             }
-            let drawn = app.view != View::Sweep || app.sweeps.is_some();
+            let drawn = match app.view {
+                View::Sweep => app.sweeps.is_some(),
+                View::Shot => app.shots.shown.is_some(),
+                View::Contact | View::Heatmap => true,
+            };
             if view_stale && drawn && app.stale_marked {
                 stale::mark(frame, regions.view, app);
             }

@@ -1,7 +1,9 @@
 //! The parameter panel: every parameter of the table in `model::params::PARAMS`, its value in the unit
 //! people think in, the selected one highlighted, a dot beside any value that differs from the default,
-//! and a heading where a new group begins (the surface: cart, spring, string friction). On a short screen
-//! the list scrolls to keep the selected parameter in view, with a mark on the border where more is hidden.
+//! and a heading where a new group begins (the surface: cart, spring, string friction; in shot mode the
+//! shot, whose frame change sets the incidence: those rows are dimmed and labelled `set by the shot`). On
+//! a short screen the list scrolls to keep the selected parameter in view, with a mark on the border where
+//! more is hidden.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -9,9 +11,9 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
 use crate::model::ParamSpec;
-use crate::model::params::BOUNCE_PARAMS as PARAMS;
 use crate::model::units::Shown;
 use crate::tui::app::App;
+use crate::tui::shot;
 
 /// The fewest rows the panel is given, borders included, however short the screen.
 pub const MIN_HEIGHT: u16 = 7;
@@ -21,15 +23,16 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let block = Block::bordered().title(Span::styled(" parameters ", theme.title()));
     let inner = block.inner(area);
     let width = usize::from(inner.width);
-    let mut lines: Vec<Line> = Vec::with_capacity(PARAMS.len() + group_headings());
+    let specs = app.listed();
+    let mut lines: Vec<Line> = Vec::with_capacity(specs.len() + group_headings(specs));
     let mut selected_line = 0;
     // The symbols' column: 4 wide, wider where ASCII spells a symbol out (`theta1`).
-    let column = PARAMS
+    let column = specs
         .iter()
         .map(|spec| theme.words(spec.symbol).chars().count() + 1)
         .fold(4, usize::max);
-    for (i, spec) in PARAMS.iter().enumerate() {
-        if i > 0 && PARAMS[i - 1].group != spec.group {
+    for (i, spec) in specs.iter().enumerate() {
+        if i > 0 && specs[i - 1].group != spec.group {
             let name = format!(" {} ", spec.group.name());
             let rule = "─".repeat(width.saturating_sub(name.chars().count() + 2));
             lines.push(Line::from(vec![
@@ -49,8 +52,14 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             // pointer, symbol, label, value and the changed mark on the right.
             let head = format!("{pointer}{:<column$}", theme.words(spec.symbol));
             let room = width.saturating_sub(head.chars().count() + shown.chars().count() + 2);
+            let derived = app.shots.on && shot::derived(spec.id);
+            let label = if derived {
+                "set by the shot"
+            } else {
+                spec.label
+            };
             let label: String = if room >= 8 {
-                spec.label.chars().take(room).collect()
+                label.chars().take(room).collect()
             } else {
                 String::new()
             };
@@ -59,6 +68,8 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             let line = Line::from(text);
             if i == app.selected {
                 line.style(theme.selected())
+            } else if derived {
+                line.style(theme.dim())
             } else {
                 line
             }
@@ -99,15 +110,16 @@ pub fn shown(spec: &ParamSpec, value: f64) -> Shown {
     }
 }
 
-/// The headings between groups of parameters.
-pub fn group_headings() -> usize {
-    PARAMS
+/// The headings between groups of `specs`.
+pub fn group_headings(specs: &[ParamSpec]) -> usize {
+    specs
         .windows(2)
         .filter(|pair| pair[0].group != pair[1].group)
         .count()
 }
 
 /// Rows the panel takes, borders included.
-pub fn height() -> u16 {
-    (PARAMS.len() + group_headings()) as u16 + 2
+pub fn height(app: &App) -> u16 {
+    let specs = app.listed();
+    (specs.len() + group_headings(specs)) as u16 + 2
 }

@@ -50,7 +50,7 @@ fn light(color: Color) -> Color {
 
 /// What the ASCII screen writes for the symbols of the Unicode one, longest first: key pairs as the
 /// letters that do the same (`↑↓` as `jk`), key symbols and Greek letters as words.
-const WORDS: [(&str, &str); 15] = [
+const WORDS: [(&str, &str); 18] = [
     ("↑↓", "jk"),
     ("←→", "hl"),
     ("␣", "Space"),
@@ -62,6 +62,9 @@ const WORDS: [(&str, &str); 15] = [
     ("ω", "omega"),
     ("θ", "theta"),
     ("μ", "mu"),
+    ("δ", "delta"),
+    ("ψ", "psi"),
+    ("φ", "phi"),
     ("Δ", "d"),
     ("±", "+-"),
     ("°", " deg"),

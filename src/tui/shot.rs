@@ -1,0 +1,229 @@
+//! The explorer's shot: whether it explores one (shot mode), and the shots played for the shot view, on a
+//! worker of their own ([`super::worker`]): the newest request first, queued older ones skipped, and the
+//! answers kept by parameters, so that undo and a step back cost nothing.
+//!
+//! In shot mode the incidence of the bounce (theta1, v1, omega1) is what the strings see: the frame change
+//! of [`crate::shot`] sets it from the incoming ball and the racquet ([`strings_params`]), so the contact
+//! view shows the bounce on the strings, and the panel shows those three as derived, not to be edited.
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use super::solver::Recent;
+use super::worker::Worker;
+use crate::model::params::{Group, PARAMS, ParamId, ParamSpec, spec};
+use crate::model::Params;
+use crate::shot::{self, Shot, ShotError};
+
+/// The parameters the frame change sets in a shot.
+pub const DERIVED: [ParamId; 3] = [ParamId::Angle, ParamId::Speed, ParamId::Spin];
+
+/// True for a parameter the frame change sets in a shot.
+pub fn derived(id: ParamId) -> bool {
+    DERIVED.contains(&id)
+}
+
+/// True when `params` describe a shot: some shot parameter differs from its default (a bounce preset
+/// sets none, and the explorer's own start is the defaults).
+pub fn is_shot(params: &Params) -> bool {
+    PARAMS
+        .iter()
+        .any(|s| s.group == Group::Shot && params.get(s.id) != s.default)
+}
+
+/// `params` with the incidence the strings see; an error when the racquet never meets the ball.
+pub fn strings_params(params: &Params) -> Result<Params, ShotError> {
+    let incidence = shot::incidence(params)?;
+    Ok(Params {
+        angle_deg: incidence.theta1_deg,
+        speed: incidence.speed,
+        spin: incidence.spin,
+        ..*params
+    })
+}
+
+/// Why `spec`, set by the frame change, cannot be changed in a shot; it names the shot's own
+/// parameters as the panel does (as `snapback shot` refuses --angle, --speed and --spin).
+pub fn refusal(param: &ParamSpec) -> String {
+    let name = |id: ParamId| {
+        let s = spec(id);
+        format!("{} {}", s.label, s.symbol)
+    };
+    format!(
+        "{} {} is what the strings see, set by the frame change in a shot: change the incoming ball \
+         ({}, {}, {}) or the racquet ({}, {}, {})",
+        param.label,
+        param.symbol,
+        name(ParamId::BallSpeed),
+        name(ParamId::BallDescent),
+        name(ParamId::BallTopspin),
+        name(ParamId::RacquetSpeed),
+        name(ParamId::SwingPath),
+        name(ParamId::FaceAngle),
+    )
+}
+
+/// One shot played, or why it cannot be.
+#[derive(Clone, Debug)]
+pub struct Played {
+    pub params: Params,
+    pub shot: Result<Shot, String>,
+}
+
+/// A shot does not depend on the incidence fields, which it derives: they are left out of the key.
+fn key(params: &Params) -> Params {
+    Params {
+        angle_deg: 0.0,
+        speed: 0.0,
+        spin: 0.0,
+        ..*params
+    }
+}
+
+/// The worker: a job is the shots wanted (the current one first, then the baseline's), each answered
+/// as it is played.
+type ShotWorker = Worker<Vec<Params>, Arc<Played>>;
+
+fn spawn() -> ShotWorker {
+    Worker::spawn("shot", |wanted: Vec<Params>, job| {
+        for params in wanted {
+            if job.cancelled() {
+                return;
+            }
+            let shot = shot::play(&params, true).map_err(|e| e.to_string());
+            if !job.send(Arc::new(Played { params, shot })) {
+                return;
+            }
+        }
+    })
+}
+
+/// Shot mode and the shots played.
+#[derive(Debug, Default)]
+pub struct Shots {
+    /// True while the explorer explores a shot: from a shot preset, scenario or flag, or once the shot
+    /// view has been shown.
+    pub on: bool,
+    /// The newest shot played for the current parameters, or for earlier ones while those are played.
+    pub shown: Option<Arc<Played>>,
+    /// The keys of the shots asked for and not answered yet.
+    wanted: Vec<Params>,
+    cache: Recent<Arc<Played>>,
+    /// Started on the first request.
+    worker: Option<ShotWorker>,
+}
+
+impl Shots {
+    /// Asks for the shots of `current` and, if pinned, of the `baseline`; takes at once what is known.
+    pub fn request(&mut self, current: &Params, baseline: Option<&Params>) {
+        if let Some(known) = self.cache.get(&key(current)) {
+            self.shown = Some(known);
+        }
+        let missing: Vec<Params> = std::iter::once(current)
+            .chain(baseline)
+            .map(key)
+            .filter(|k| self.cache.get(k).is_none())
+            .collect();
+        if missing.is_empty() {
+            if !self.wanted.is_empty() {
+                self.wanted.clear();
+                if let Some(worker) = &self.worker {
+                    worker.cancel();
+                }
+            }
+        } else if missing != self.wanted {
+            self.wanted = missing.clone();
+            self.worker.get_or_insert_with(spawn).submit(missing);
+        }
+    }
+
+    /// The shot of `params`, if it has been played.
+    pub fn known(&self, params: &Params) -> Option<Arc<Played>> {
+        self.cache.get(&key(params))
+    }
+
+    /// True while a shot asked for has not come yet.
+    pub fn pending(&self) -> bool {
+        !self.wanted.is_empty()
+    }
+
+    /// Takes the shots that have arrived for `current`'s request; true if any did.
+    pub fn poll(&mut self, current: &Params) -> bool {
+        let arrived: Vec<_> = match &self.worker {
+            Some(worker) => worker.try_iter().collect(),
+            None => return false,
+        };
+        self.take(arrived, current)
+    }
+
+    /// Waits up to `timeout` for a shot, then as [`Shots::poll`] (for tests, which settle each step).
+    pub fn wait(&mut self, timeout: Duration, current: &Params) -> bool {
+        let Some(first) = self.worker.as_ref().and_then(|w| w.wait(timeout)) else {
+            return false;
+        };
+        let taken = self.take(vec![first], current);
+        self.poll(current) || taken
+    }
+
+    fn take(&mut self, arrived: Vec<(u64, Arc<Played>)>, current: &Params) -> bool {
+        let latest = self.worker.as_ref().map_or(0, |w| w.latest());
+        let mut changed = false;
+        for (generation, played) in arrived {
+            let k = key(&played.params);
+            if generation != latest || !self.wanted.contains(&k) {
+                continue;
+            }
+            self.wanted.retain(|w| *w != k);
+            self.cache.put(k, Arc::clone(&played));
+            if k == key(current) {
+                self.shown = Some(played);
+            }
+            changed = true;
+        }
+        changed
+    }
+
+    /// True while the shot on screen is not that of `current`.
+    pub fn stale(&self, current: &Params) -> bool {
+        self.shown
+            .as_ref()
+            .is_none_or(|p| key(&p.params) != key(current))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scenario;
+
+    #[test]
+    fn the_strings_see_what_snapback_shot_says() {
+        let p = scenario::preset("topspin-forehand")
+            .unwrap()
+            .apply(Params::default());
+        let derived = strings_params(&p).unwrap();
+        let hit = shot::hit(&p).unwrap();
+        assert_eq!(derived.angle_deg, hit.incidence.theta1_deg);
+        assert_eq!(derived.speed, hit.incidence.speed);
+        assert_eq!(derived.spin, hit.incidence.spin);
+        assert_eq!(Params { angle_deg: p.angle_deg, speed: p.speed, spin: p.spin, ..derived }, p);
+    }
+
+    #[test]
+    fn a_racquet_that_never_meets_the_ball_is_an_error() {
+        let p = Params {
+            racquet_speed: 0.0,
+            ball_speed: 0.0,
+            ..Params::default()
+        };
+        assert!(matches!(strings_params(&p), Err(ShotError::NeverMeets(_))));
+    }
+
+    #[test]
+    fn the_refusal_names_the_shot_parameters() {
+        let text = refusal(spec(ParamId::Speed));
+        for word in ["incident speed", "incoming speed", "racquet speed", "face angle"] {
+            assert!(text.contains(word), "{word} in {text}");
+        }
+    }
+}

@@ -1,0 +1,391 @@
+//! The shot view: the court from the side on a Canvas (x from behind the hitter's baseline to past the
+//! opponent's, y up), the ball's path from the strings over the net to the court bounce and on to the
+//! opponent's baseline, the readouts above it and, when a baseline is pinned, its path dimmer beneath.
+//!
+//! ```text
+//! ─ shot from the side  IN ━ baseline ───────────────────────────────────────── solving… (stale)
+//!  launch  35.6 m/s (128.1 km/h) at 9.0° up, 3762 rpm topspin         flight  0.77 s      (readouts:
+//!  net     clears it by 65.6 cm              lands  8.32 m past the net, 3.45 m in         four rows
+//!  kick    0.71 m at the baseline            court bounce 18.0 m/s at 15.3°, 5027 rpm      narrow)
+//! 4 m                     ⢀⡠⠤⠤⠤⠤⢄⣀
+//!               ⣀⡠⠤⠒⠊⠉                ⠉⠑⠢⢄⡀          ⣀⡠⠤⠤⠤⢄⡀
+//!  ⣀⠤⠒⠉                          │            ⠑⠢⣀⡠⠊       ⠈⠢⡀
+//! ─┴──────────┴──────────────────┴─────────────┴─────────────┴──
+//!  0                            net                         23.8 m
+//! ```
+//!
+//! A shot the model cannot play (a racquet that never meets the ball, a flight that does not end) is
+//! shown as its reason in place of the court.
+
+use std::f64::consts::PI;
+
+use ratatui::Frame;
+use ratatui::layout::Rect;
+use ratatui::style::Color;
+use ratatui::text::{Line, Span};
+use ratatui::widgets::canvas::{Canvas, Context, Line as Segment, Points};
+use ratatui::widgets::{Block, Borders, Paragraph, Wrap};
+
+use super::baseline as pinned;
+use super::stale;
+use crate::model::PhaseKind;
+use crate::shot::Shot;
+use crate::shot::court::{BASELINE_X, NET_HEIGHT, NET_X, SERVICE_LINE_FROM_NET};
+use crate::tui::app::App;
+use crate::tui::baseline::signed;
+use crate::tui::ui::theme::Theme;
+
+/// The court's left end, m: a little behind the hitter's baseline.
+const LEFT: f64 = -1.0;
+/// The court's right end at the least, m: a little past the opponent's baseline.
+const RIGHT: f64 = 25.0;
+/// The lowest top of the picture, m.
+const MIN_TOP: f64 = 2.0;
+/// Views at least this wide get the long readouts on three rows; narrower ones the short on four.
+const WIDE: u16 = 90;
+
+/// Where the ball lands against the lines, as the verdict in the title says it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Verdict {
+    In,
+    /// Beyond the opponent's baseline.
+    Long,
+    /// Into the net, or down before it.
+    Net,
+}
+
+impl Verdict {
+    pub fn of(shot: &Shot) -> Verdict {
+        if shot.is_in() {
+            Verdict::In
+        } else if shot.net_clearance.is_some_and(|c| c > 0.0) {
+            Verdict::Long
+        } else {
+            Verdict::Net
+        }
+    }
+
+    pub fn word(self) -> &'static str {
+        match self {
+            Verdict::In => "IN",
+            Verdict::Long => "OUT (long)",
+            Verdict::Net => "NET",
+        }
+    }
+}
+
+pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+    let theme = &app.theme;
+    let Some(played) = app.shots.shown.as_deref() else {
+        stale::pending(frame, area, app, "shot");
+        return;
+    };
+    let wide = area.width >= WIDE;
+    let name = if wide {
+        " shot from the side "
+    } else {
+        " shot "
+    };
+    let mut title = vec![Span::styled(name, theme.title())];
+    let base = app
+        .baseline
+        .as_ref()
+        .and_then(|b| app.shots.known(&b.solved.params))
+        .and_then(|p| p.shot.clone().ok());
+    let shot = match &played.shot {
+        Ok(shot) => shot,
+        Err(reason) => {
+            let block = Block::new()
+                .borders(Borders::TOP)
+                .title(Line::from(title));
+            let text = vec![
+                Line::styled(theme.words("no shot to draw:").into_owned(), theme.error()),
+                Line::raw(theme.words(reason).into_owned()),
+            ];
+            frame.render_widget(
+                Paragraph::new(text).block(block).wrap(Wrap { trim: true }),
+                area,
+            );
+            return;
+        }
+    };
+    let verdict = Verdict::of(shot);
+    let style = if verdict == Verdict::In {
+        theme.emphasis()
+    } else {
+        theme.error()
+    };
+    title.push(Span::styled(format!(" {} ", verdict.word()), style));
+    if base.is_some() {
+        title.push(pinned::legend(theme));
+    }
+    let block = Block::new()
+        .borders(Borders::TOP)
+        .title(Line::from(title));
+    let inner = block.inner(area);
+    frame.render_widget(block, area);
+    let lines = readouts(shot, base.as_ref(), theme, wide);
+    let rows = (lines.len() as u16).min(inner.height);
+    frame.render_widget(
+        Paragraph::new(lines),
+        Rect {
+            height: rows,
+            ..inner
+        },
+    );
+    // The court below the readouts, with a row of labels under it.
+    let court = Rect {
+        y: inner.y + rows,
+        height: inner.height.saturating_sub(rows + 1),
+        ..inner
+    };
+    if court.height >= 3 && court.width >= 20 {
+        draw_court(frame, court, app, shot, base.as_ref());
+    }
+}
+
+/// km/h of a speed in m/s.
+fn kmh(speed: f64) -> f64 {
+    speed * 3.6
+}
+
+/// rpm of a spin in rad/s.
+fn rpm(omega: f64) -> f64 {
+    omega * 30.0 / PI
+}
+
+/// The readouts: launch, net clearance, landing, kick and flight time (and the court bounce, wide), with
+/// the differences from the pinned baseline's shot where there is one.
+fn readouts(shot: &Shot, base: Option<&Shot>, theme: &Theme, wide: bool) -> Vec<Line<'static>> {
+    let launch = shot.strings.leaving;
+    let label = |text: &str| {
+        Span::styled(
+            format!("{:<w$}", text, w = if wide { 8 } else { 7 }),
+            theme.dim(),
+        )
+    };
+    let words = |text: String| Span::raw(theme.words(&text).into_owned());
+    let delta = |now: Option<f64>, then: Option<f64>, scale: f64, decimals: usize, unit: &str| {
+        match (now, then) {
+            (Some(a), Some(b)) => Span::styled(
+                format!(" ({} {unit})", signed((a - b) * scale, decimals)),
+                theme.dim(),
+            ),
+            _ => Span::raw(""),
+        }
+    };
+    let net = match shot.net_clearance {
+        Some(c) if c > 0.0 => format!("clears it by {:.1} cm", c * 100.0),
+        Some(c) => format!("into it, {:.1} cm low", -c * 100.0),
+        None => "down before the net".to_string(),
+    };
+    let lands = match shot.landing_x {
+        Some(x) if x <= BASELINE_X => format!(
+            "{:.2} m past the net, {:.2} m in",
+            x - NET_X,
+            BASELINE_X - x
+        ),
+        Some(x) => format!("{:.2} m past the net, {:.2} m long", x - NET_X, x - BASELINE_X),
+        None => "not beyond the net".to_string(),
+    };
+    let kick = match shot.kick_height {
+        Some(k) => format!("{k:.2} m at the baseline"),
+        None => "none: it does not reach the baseline".to_string(),
+    };
+    let spin = rpm(launch.topspin());
+    let at = |f: fn(&Shot) -> Option<f64>| (f(shot), base.and_then(f));
+    let (net_now, net_then) = at(|s| s.net_clearance);
+    let (land_now, land_then) = at(|s| s.landing_x);
+    let (kick_now, kick_then) = at(|s| s.kick_height);
+    let flight = format!("{:.2} s", shot.flight_time);
+    if wide {
+        let bounce = shot.court.as_ref().map_or(String::new(), |c| {
+            format!(
+                "court bounce {:.1} m/s at {:.1}°, {:.0} rpm",
+                c.leaving.speed(),
+                c.leaving.angle_deg(),
+                rpm(c.leaving.topspin())
+            )
+        });
+        vec![
+            Line::from(vec![
+                label("launch"),
+                words(format!(
+                    "{:.1} m/s ({:.1} km/h) at {:.1}° up, {spin:.0} rpm topspin",
+                    launch.speed(),
+                    kmh(launch.speed()),
+                    launch.angle_deg()
+                )),
+                Span::styled("   flight ", theme.dim()),
+                Span::raw(flight),
+            ]),
+            Line::from(vec![
+                label("net"),
+                Span::styled(net, theme.emphasis()),
+                delta(net_now, net_then, 100.0, 1, "cm"),
+                Span::styled("   lands ", theme.dim()),
+                Span::raw(lands),
+                delta(land_now, land_then, 1.0, 2, "m"),
+            ]),
+            Line::from(vec![
+                label("kick"),
+                Span::raw(kick),
+                delta(kick_now, kick_then, 1.0, 2, "m"),
+                Span::styled("   ", theme.dim()),
+                words(bounce),
+            ]),
+        ]
+    } else {
+        vec![
+            Line::from(vec![
+                label("launch"),
+                words(format!(
+                    "{:.0} km/h {:.1}° {spin:.0} rpm",
+                    kmh(launch.speed()),
+                    launch.angle_deg()
+                )),
+            ]),
+            Line::from(vec![
+                label("net"),
+                Span::styled(net, theme.emphasis()),
+                delta(net_now, net_then, 100.0, 1, "cm"),
+            ]),
+            Line::from(vec![
+                label("lands"),
+                Span::raw(lands),
+                delta(land_now, land_then, 1.0, 2, "m"),
+            ]),
+            Line::from(vec![
+                label("kick"),
+                Span::raw(match shot.kick_height {
+                    Some(k) => format!("{k:.2} m"),
+                    None => "none".to_string(),
+                }),
+                delta(kick_now, kick_then, 1.0, 2, "m"),
+                Span::styled("  flight ", theme.dim()),
+                Span::raw(flight),
+            ]),
+        ]
+    }
+}
+
+/// The court's extent: x to past the furthest point drawn, y from the court to above the highest.
+fn bounds(shot: &Shot, base: Option<&Shot>) -> ([f64; 2], [f64; 2]) {
+    let points = shot
+        .trajectory
+        .iter()
+        .chain(base.into_iter().flat_map(|b| b.trajectory.iter()));
+    let (right, top) = points.fold((RIGHT, MIN_TOP), |(r, t), p| {
+        (r.max(p[1] + 0.5), t.max(p[2] * 1.15))
+    });
+    // A round top, to the half metre.
+    ([LEFT, right], [0.0, (top * 2.0).ceil() / 2.0])
+}
+
+/// The path of `shot` as (x, y) points, split where the ball meets the court.
+fn flights(shot: &Shot) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
+    let points: Vec<(f64, f64)> = shot.trajectory.iter().map(|p| (p[1], p[2])).collect();
+    // The second flight starts where the first lands (the court contact is an instant).
+    let bounce = shot
+        .landing_x
+        .filter(|_| shot.court.is_some())
+        .and_then(|x| points.iter().position(|p| p.0 >= x));
+    match bounce {
+        Some(i) => (points[..=i].to_vec(), points[i..].to_vec()),
+        None => (points, Vec::new()),
+    }
+}
+
+fn polyline(ctx: &mut Context, points: &[(f64, f64)], color: Color) {
+    for pair in points.windows(2) {
+        let (a, b) = (pair[0], pair[1]);
+        ctx.draw(&Segment::new(a.0, a.1, b.0, b.1, color));
+    }
+}
+
+fn draw_court(frame: &mut Frame, area: Rect, app: &App, shot: &Shot, base: Option<&Shot>) {
+    let theme = &app.theme;
+    let ([x0, x1], [y0, y1]) = bounds(shot, base);
+    // One cell up, in metres: the height of the line marks; a dot about every third column.
+    let cell = (y1 - y0) / f64::from(area.height.max(1));
+    let dot_step = (x1 - x0) / f64::from(area.width.max(1)) * 3.0;
+    let lines = theme.guide();
+    let net = theme.body();
+    let (first, kick) = flights(shot);
+    let paint = |ctx: &mut Context| {
+        ctx.draw(&Segment::new(x0, 0.0, x1, 0.0, lines));
+        for x in [0.0, BASELINE_X] {
+            ctx.draw(&Segment::new(x, 0.0, x, 1.5 * cell, lines));
+        }
+        for x in [NET_X - SERVICE_LINE_FROM_NET, NET_X + SERVICE_LINE_FROM_NET] {
+            ctx.draw(&Segment::new(x, 0.0, x, 0.6 * cell, lines));
+        }
+        ctx.draw(&Segment::new(NET_X, 0.0, NET_X, NET_HEIGHT, net));
+        ctx.layer();
+        if let Some(base) = base {
+            let (a, b) = flights(base);
+            let path: Vec<(f64, f64)> = a.into_iter().chain(b).collect();
+            if theme.color {
+                polyline(ctx, &path, theme.baseline());
+            } else {
+                // Dotted, as the charts draw a baseline without colour.
+                let mut next = f64::NEG_INFINITY;
+                let dots: Vec<(f64, f64)> = path
+                    .iter()
+                    .filter(|p| {
+                        let keep = p.0 >= next;
+                        if keep {
+                            next = p.0 + dot_step;
+                        }
+                        keep
+                    })
+                    .copied()
+                    .collect();
+                ctx.draw(&Points::new(&dots, theme.baseline()));
+            }
+            ctx.layer();
+        }
+        polyline(ctx, &first, theme.current());
+        polyline(ctx, &kick, theme.phase(PhaseKind::Grip));
+        ctx.print(
+            x0,
+            y1,
+            Line::styled(format!("{} m", y1), theme.dim()),
+        );
+    };
+    frame.render_widget(
+        Canvas::default()
+            .x_bounds([x0, x1])
+            .y_bounds([y0, y1])
+            .marker(theme.marker)
+            .paint(paint),
+        area,
+    );
+    labels(frame, area, [x0, x1], theme);
+}
+
+/// The row under the court (inside the view): the hitter's baseline, the net and the opponent's.
+fn labels(frame: &mut Frame, court: Rect, [x0, x1]: [f64; 2], theme: &Theme) {
+    let row = court.bottom();
+    let width = court.width;
+    let column = |x: f64| {
+        let f = ((x - x0) / (x1 - x0)).clamp(0.0, 1.0);
+        court.x + (f * f64::from(width - 1)).round() as u16
+    };
+    let buf = frame.buffer_mut();
+    let mut free = court.x;
+    for (x, text) in [
+        (0.0, "0".to_string()),
+        (NET_X, "net".to_string()),
+        (BASELINE_X, format!("{BASELINE_X:.2} m")),
+    ] {
+        let len = text.chars().count() as u16;
+        let start = column(x)
+            .saturating_sub(len / 2)
+            .clamp(court.x, court.right().saturating_sub(len));
+        if start >= free {
+            buf.set_string(start, row, &text, theme.dim());
+            free = start + len + 1;
+        }
+    }
+}
