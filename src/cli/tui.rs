@@ -10,6 +10,7 @@ pub use crate::config::Theme as ThemeArg;
 use crate::config::{self, Charset};
 use crate::model::Params;
 use crate::model::params::{Group, spec};
+use crate::scenario::{self, Scenario};
 use crate::tui::{self, OpenError, Options, playback};
 
 /// How the charts draw their curves.
@@ -69,8 +70,17 @@ pub struct TuiArgs {
 /// the incidence flags and a racquet that never meets the ball.
 fn start(args: &ShotParamArgs) -> Result<(Params, bool), Failure> {
     let params = args.apply(Params::default()).map_err(Failure::usage)?;
-    let shot_flag = args.given.iter().any(|(id, _)| spec(*id).group == Group::Shot);
-    if !shot_flag && !tui::shot::is_shot(&params) {
+    // Both load: `apply` has read them without error.
+    let shot = args.given.iter().any(|(id, _)| spec(*id).group == Group::Shot)
+        || args
+            .preset
+            .as_deref()
+            .is_some_and(|name| scenario::preset(name).is_ok_and(|s| s.is_shot()))
+        || args
+            .scenario
+            .as_deref()
+            .is_some_and(|path| Scenario::load(path).is_ok_and(|s| s.is_shot()));
+    if !shot {
         return Ok((params, false));
     }
     shot::refuse_bounce_incidence(&args.given, None)?;

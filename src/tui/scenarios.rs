@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::export;
 use crate::model::Params;
+use crate::model::params::{Group, spec_named};
 use crate::output::{self, Replace};
 use crate::scenario::{PRESETS, Scenario, ScenarioError};
 
@@ -201,11 +202,10 @@ impl App {
             return;
         };
         let what = format!("preset {}: {}", scenario.name, scenario.description);
-        let params = scenario.apply(Params::default());
-        if super::shot::is_shot(&params) {
+        if scenario.is_shot() {
             self.explore_shot();
         }
-        self.change_to(params, what);
+        self.change_to(scenario.apply(Params::default()), what);
     }
 
     fn submit_save(&mut self, typed: &str) {
@@ -240,7 +240,14 @@ impl App {
             ),
             _ => "Saved from the snapback explorer".to_string(),
         };
-        match Scenario::from_params(&name, &description, &self.params).save(path) {
+        let mut scenario = Scenario::from_params(&name, &description, &self.params);
+        // Outside shot mode the shot's parameters are the defaults: a file without them opens as a bounce.
+        if !self.shots.on {
+            scenario
+                .values
+                .retain(|key, _| spec_named(key).is_none_or(|s| s.group != Group::Shot));
+        }
+        match scenario.save(path) {
             Ok(()) => {
                 self.file_params = Some(self.params);
                 self.info(format!("saved {}", path.display()));
@@ -267,13 +274,18 @@ impl App {
         match load(&self.resolve(&name), &name) {
             Ok(scenario) => {
                 self.last_file = Some(name.clone());
-                self.file_params = Some(scenario.apply(Params::default()));
                 let what = if scenario.description.is_empty() {
                     format!("opened {name}")
                 } else {
                     format!("opened {name}: {}", scenario.description)
                 };
-                self.change_to(scenario.apply(Params::default()), what);
+                if scenario.is_shot() {
+                    self.explore_shot();
+                }
+                // In shot mode the file's incidence gives way to the frame change's, as on screen.
+                let params = scenario.apply(Params::default());
+                self.file_params = Some(self.strings_params(params).unwrap_or(params));
+                self.change_to(params, what);
             }
             Err(e) => self.error(format!("{e} (parameters unchanged)")),
         }

@@ -11,7 +11,7 @@ use std::time::Duration;
 
 use super::solver::Recent;
 use super::worker::Worker;
-use crate::model::params::{Group, PARAMS, ParamId, ParamSpec, spec};
+use crate::model::params::{ParamId, ParamSpec, spec};
 use crate::model::Params;
 use crate::shot::{self, Shot, ShotError};
 
@@ -21,14 +21,6 @@ pub const DERIVED: [ParamId; 3] = [ParamId::Angle, ParamId::Speed, ParamId::Spin
 /// True for a parameter the frame change sets in a shot.
 pub fn derived(id: ParamId) -> bool {
     DERIVED.contains(&id)
-}
-
-/// True when `params` describe a shot: some shot parameter differs from its default (a bounce preset
-/// sets none, and the explorer's own start is the defaults).
-pub fn is_shot(params: &Params) -> bool {
-    PARAMS
-        .iter()
-        .any(|s| s.group == Group::Shot && params.get(s.id) != s.default)
 }
 
 /// `params` with the incidence the strings see; an error when the racquet never meets the ball.

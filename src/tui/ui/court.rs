@@ -240,7 +240,8 @@ fn readouts(shot: &Shot, base: Option<&Shot>, theme: &Theme, wide: bool) -> Vec<
             Line::from(vec![
                 label("launch"),
                 words(format!(
-                    "{:.0} km/h {:.1}° {spin:.0} rpm",
+                    "{:.1} m/s ({:.0} km/h) {:.1}° {spin:.0} rpm",
+                    launch.speed(),
                     kmh(launch.speed()),
                     launch.angle_deg()
                 )),
