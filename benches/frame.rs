@@ -48,6 +48,7 @@ fn view_name(view: View) -> &'static str {
         View::Contact => "contact",
         View::Sweep => "sweep",
         View::Heatmap => "heatmap",
+        View::Shot => "shot",
     }
 }
 

@@ -350,10 +350,12 @@ fn tab_shows_the_sweep_with_the_current_angle() {
         );
         assert!(screen.contains("slides"), "{screen}");
     }
-    // Contact, sweep, heatmap, and round again.
+    // Contact, sweep, heatmap, shot, and round again.
     let (app, _) = explore(80, 24, vec![key(KeyCode::Tab); 2]);
     assert_eq!(app.view, View::Heatmap);
     let (app, _) = explore(80, 24, vec![key(KeyCode::Tab); 3]);
+    assert_eq!(app.view, View::Shot);
+    let (app, _) = explore(80, 24, vec![key(KeyCode::Tab); 4]);
     assert_eq!(app.view, View::Contact);
 }
 

@@ -71,7 +71,10 @@ pub struct TuiArgs {
 fn start(args: &ShotParamArgs) -> Result<(Params, bool), Failure> {
     let params = args.apply(Params::default()).map_err(Failure::usage)?;
     // Both load: `apply` has read them without error.
-    let shot = args.given.iter().any(|(id, _)| spec(*id).group == Group::Shot)
+    let shot = args
+        .given
+        .iter()
+        .any(|(id, _)| spec(*id).group == Group::Shot)
         || args
             .preset
             .as_deref()

@@ -453,7 +453,11 @@ impl App {
 
     /// The parameters the panel lists: the bounce's, and the shot's too in shot mode.
     pub fn listed(&self) -> &'static [ParamSpec] {
-        if self.shots.on { params::PARAMS } else { PARAMS }
+        if self.shots.on {
+            params::PARAMS
+        } else {
+            PARAMS
+        }
     }
 
     /// Explores a shot from now on: the shot group joins the panel, the incidence follows from the
@@ -515,9 +519,10 @@ impl App {
                 if self.view == View::Shot && !self.shots.on {
                     self.explore_shot();
                     self.message = Some(Message {
-                        text: "shot mode: θ1, v1 and ω1 now follow from the racquet and the incoming \
+                        text:
+                            "shot mode: θ1, v1 and ω1 now follow from the racquet and the incoming \
                                ball, and the contact view shows the bounce on the strings"
-                            .into(),
+                                .into(),
                         tone: Tone::Info,
                     });
                 }

@@ -11,8 +11,8 @@ use std::time::Duration;
 
 use super::solver::Recent;
 use super::worker::Worker;
-use crate::model::params::{ParamId, ParamSpec, spec};
 use crate::model::Params;
+use crate::model::params::{ParamId, ParamSpec, spec};
 use crate::shot::{self, Shot, ShotError};
 
 /// The parameters the frame change sets in a shot.
@@ -198,7 +198,15 @@ mod tests {
         assert_eq!(derived.angle_deg, hit.incidence.theta1_deg);
         assert_eq!(derived.speed, hit.incidence.speed);
         assert_eq!(derived.spin, hit.incidence.spin);
-        assert_eq!(Params { angle_deg: p.angle_deg, speed: p.speed, spin: p.spin, ..derived }, p);
+        assert_eq!(
+            Params {
+                angle_deg: p.angle_deg,
+                speed: p.speed,
+                spin: p.spin,
+                ..derived
+            },
+            p
+        );
     }
 
     #[test]
@@ -214,7 +222,12 @@ mod tests {
     #[test]
     fn the_refusal_names_the_shot_parameters() {
         let text = refusal(spec(ParamId::Speed));
-        for word in ["incident speed", "incoming speed", "racquet speed", "face angle"] {
+        for word in [
+            "incident speed",
+            "incoming speed",
+            "racquet speed",
+            "face angle",
+        ] {
             assert!(text.contains(word), "{word} in {text}");
         }
     }

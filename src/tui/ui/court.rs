@@ -95,9 +95,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let shot = match &played.shot {
         Ok(shot) => shot,
         Err(reason) => {
-            let block = Block::new()
-                .borders(Borders::TOP)
-                .title(Line::from(title));
+            let block = Block::new().borders(Borders::TOP).title(Line::from(title));
             let text = vec![
                 Line::styled(theme.words("no shot to draw:").into_owned(), theme.error()),
                 Line::raw(theme.words(reason).into_owned()),
@@ -119,9 +117,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     if base.is_some() {
         title.push(pinned::legend(theme));
     }
-    let block = Block::new()
-        .borders(Borders::TOP)
-        .title(Line::from(title));
+    let block = Block::new().borders(Borders::TOP).title(Line::from(title));
     let inner = block.inner(area);
     frame.render_widget(block, area);
     let lines = readouts(shot, base.as_ref(), theme, wide);
@@ -165,15 +161,16 @@ fn readouts(shot: &Shot, base: Option<&Shot>, theme: &Theme, wide: bool) -> Vec<
         )
     };
     let words = |text: String| Span::raw(theme.words(&text).into_owned());
-    let delta = |now: Option<f64>, then: Option<f64>, scale: f64, decimals: usize, unit: &str| {
-        match (now, then) {
+    let delta =
+        |now: Option<f64>, then: Option<f64>, scale: f64, decimals: usize, unit: &str| match (
+            now, then,
+        ) {
             (Some(a), Some(b)) => Span::styled(
                 format!(" ({} {unit})", signed((a - b) * scale, decimals)),
                 theme.dim(),
             ),
             _ => Span::raw(""),
-        }
-    };
+        };
     let net = match shot.net_clearance {
         Some(c) if c > 0.0 => format!("clears it by {:.1} cm", c * 100.0),
         Some(c) => format!("into it, {:.1} cm low", -c * 100.0),
@@ -185,7 +182,11 @@ fn readouts(shot: &Shot, base: Option<&Shot>, theme: &Theme, wide: bool) -> Vec<
             x - NET_X,
             BASELINE_X - x
         ),
-        Some(x) => format!("{:.2} m past the net, {:.2} m long", x - NET_X, x - BASELINE_X),
+        Some(x) => format!(
+            "{:.2} m past the net, {:.2} m long",
+            x - NET_X,
+            x - BASELINE_X
+        ),
         None => "not beyond the net".to_string(),
     };
     let kick = match shot.kick_height {
@@ -283,9 +284,12 @@ fn bounds(shot: &Shot, base: Option<&Shot>) -> ([f64; 2], [f64; 2]) {
     ([LEFT, right], [0.0, (top * 2.0).ceil() / 2.0])
 }
 
-/// The path of `shot` as (x, y) points, split where the ball meets the court.
-fn flights(shot: &Shot) -> (Vec<(f64, f64)>, Vec<(f64, f64)>) {
-    let points: Vec<(f64, f64)> = shot.trajectory.iter().map(|p| (p[1], p[2])).collect();
+/// A path on court: (x, y) points, m.
+type Path = Vec<(f64, f64)>;
+
+/// The path of `shot`, split where the ball meets the court: to the bounce, and after it.
+fn flights(shot: &Shot) -> (Path, Path) {
+    let points: Path = shot.trajectory.iter().map(|p| (p[1], p[2])).collect();
     // The second flight starts where the first lands (the court contact is an instant).
     let bounce = shot
         .landing_x
@@ -325,7 +329,7 @@ fn draw_court(frame: &mut Frame, area: Rect, app: &App, shot: &Shot, base: Optio
         ctx.layer();
         if let Some(base) = base {
             let (a, b) = flights(base);
-            let path: Vec<(f64, f64)> = a.into_iter().chain(b).collect();
+            let path: Path = a.into_iter().chain(b).collect();
             if theme.color {
                 polyline(ctx, &path, theme.baseline());
             } else {
@@ -348,11 +352,7 @@ fn draw_court(frame: &mut Frame, area: Rect, app: &App, shot: &Shot, base: Optio
         }
         polyline(ctx, &first, theme.current());
         polyline(ctx, &kick, theme.phase(PhaseKind::Grip));
-        ctx.print(
-            x0,
-            y1,
-            Line::styled(format!("{} m", y1), theme.dim()),
-        );
+        ctx.print(x0, y1, Line::styled(format!("{} m", y1), theme.dim()));
     };
     frame.render_widget(
         Canvas::default()
