@@ -187,7 +187,7 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Tab)],
         Action::NextView,
-        "next view: contact, ω2 against θ1 (Fig. 2), ω2 map, shot on court",
+        "next view: contact, ω2 vs θ1 (Fig. 2), ω2 map, shot",
         hint("Tab", "view"),
     ),
     bind(

@@ -120,7 +120,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let block = Block::new().borders(Borders::TOP).title(Line::from(title));
     let inner = block.inner(area);
     frame.render_widget(block, area);
-    let lines = readouts(shot, base.as_ref(), theme, wide);
+    let lines = readouts(shot, base.as_ref(), theme, inner.width);
     let rows = (lines.len() as u16).min(inner.height);
     frame.render_widget(
         Paragraph::new(lines),
@@ -150,125 +150,109 @@ fn rpm(omega: f64) -> f64 {
     omega * 30.0 / PI
 }
 
-/// The readouts: launch, net clearance, landing, kick and flight time (and the court bounce, wide), with
-/// the differences from the pinned baseline's shot where there is one.
-fn readouts(shot: &Shot, base: Option<&Shot>, theme: &Theme, wide: bool) -> Vec<Line<'static>> {
+/// A piece of a readout line; optional ones (the differences from the baseline, the court bounce) go
+/// where the line would not fit.
+type Piece = (Span<'static>, bool);
+
+/// `pieces` as a line of at most `room` columns: optional pieces are left out, the last first, until
+/// it fits.
+fn fit(mut pieces: Vec<Piece>, room: usize) -> Line<'static> {
+    while pieces.iter().map(|(s, _)| s.width()).sum::<usize>() > room {
+        match pieces.iter().rposition(|(_, optional)| *optional) {
+            Some(i) => {
+                pieces.remove(i);
+            }
+            None => break,
+        }
+    }
+    Line::from(pieces.into_iter().map(|(s, _)| s).collect::<Vec<_>>())
+}
+
+/// The readouts in `room` columns: launch, net clearance, landing, kick and flight time (and the court
+/// bounce, wide), with the differences from the pinned baseline's shot where there is one.
+fn readouts(shot: &Shot, base: Option<&Shot>, theme: &Theme, room: u16) -> Vec<Line<'static>> {
+    let wide = room >= WIDE;
     let launch = shot.strings.leaving;
     let label = |text: &str| {
-        Span::styled(
-            format!("{:<w$}", text, w = if wide { 8 } else { 7 }),
-            theme.dim(),
-        )
+        let width = if wide { 8 } else { 7 };
+        (Span::styled(format!("{text:<width$}"), theme.dim()), false)
     };
-    let words = |text: String| Span::raw(theme.words(&text).into_owned());
-    let delta =
-        |now: Option<f64>, then: Option<f64>, scale: f64, decimals: usize, unit: &str| match (
-            now, then,
-        ) {
-            (Some(a), Some(b)) => Span::styled(
-                format!(" ({} {unit})", signed((a - b) * scale, decimals)),
-                theme.dim(),
-            ),
-            _ => Span::raw(""),
+    let dim = |text: &str| (Span::styled(text.to_string(), theme.dim()), false);
+    let raw = |text: String| (Span::raw(theme.words(&text).into_owned()), false);
+    let delta = |f: fn(&Shot) -> Option<f64>, scale: f64, decimals: usize, unit: &str| {
+        let text = match (f(shot), base.and_then(f)) {
+            (Some(a), Some(b)) => format!(" ({} {unit})", signed((a - b) * scale, decimals)),
+            _ => String::new(),
         };
+        (Span::styled(text, theme.dim()), true)
+    };
     let net = match shot.net_clearance {
         Some(c) if c > 0.0 => format!("clears it by {:.1} cm", c * 100.0),
         Some(c) => format!("into it, {:.1} cm low", -c * 100.0),
         None => "down before the net".to_string(),
     };
-    let lands = match shot.landing_x {
-        Some(x) if x <= BASELINE_X => format!(
-            "{:.2} m past the net, {:.2} m in",
-            x - NET_X,
-            BASELINE_X - x
-        ),
-        Some(x) => format!(
-            "{:.2} m past the net, {:.2} m long",
-            x - NET_X,
-            x - BASELINE_X
-        ),
+    let net = (Span::styled(net, theme.emphasis()), false);
+    let past = if wide { "past the net" } else { "past net" };
+    let lands = raw(match shot.landing_x {
+        Some(x) if x <= BASELINE_X => {
+            format!("{:.2} m {past}, {:.2} m in", x - NET_X, BASELINE_X - x)
+        }
+        Some(x) => format!("{:.2} m {past}, {:.2} m long", x - NET_X, x - BASELINE_X),
         None => "not beyond the net".to_string(),
-    };
-    let kick = match shot.kick_height {
-        Some(k) => format!("{k:.2} m at the baseline"),
-        None => "none: it does not reach the baseline".to_string(),
-    };
+    });
+    let kick = raw(match (shot.kick_height, wide) {
+        (Some(k), true) => format!("{k:.2} m at the baseline"),
+        (Some(k), false) => format!("{k:.2} m"),
+        (None, true) => "none: it does not reach the baseline".to_string(),
+        (None, false) => "none".to_string(),
+    });
+    let d_net = delta(|s| s.net_clearance, 100.0, 1, "cm");
+    let d_lands = delta(|s| s.landing_x, 1.0, 2, "m");
+    let d_kick = delta(|s| s.kick_height, 1.0, 2, "m");
+    let flight = raw(format!("{:.2} s", shot.flight_time));
     let spin = rpm(launch.topspin());
-    let at = |f: fn(&Shot) -> Option<f64>| (f(shot), base.and_then(f));
-    let (net_now, net_then) = at(|s| s.net_clearance);
-    let (land_now, land_then) = at(|s| s.landing_x);
-    let (kick_now, kick_then) = at(|s| s.kick_height);
-    let flight = format!("{:.2} s", shot.flight_time);
-    if wide {
+    let room = usize::from(room);
+    let lines = if wide {
         let bounce = shot.court.as_ref().map_or(String::new(), |c| {
             format!(
-                "court bounce {:.1} m/s at {:.1}°, {:.0} rpm",
+                "   court bounce {:.1} m/s at {:.1}°, {:.0} rpm",
                 c.leaving.speed(),
                 c.leaving.angle_deg(),
                 rpm(c.leaving.topspin())
             )
         });
         vec![
-            Line::from(vec![
+            vec![
                 label("launch"),
-                words(format!(
+                raw(format!(
                     "{:.1} m/s ({:.1} km/h) at {:.1}° up, {spin:.0} rpm topspin",
                     launch.speed(),
                     kmh(launch.speed()),
                     launch.angle_deg()
                 )),
-                Span::styled("   flight ", theme.dim()),
-                Span::raw(flight),
-            ]),
-            Line::from(vec![
-                label("net"),
-                Span::styled(net, theme.emphasis()),
-                delta(net_now, net_then, 100.0, 1, "cm"),
-                Span::styled("   lands ", theme.dim()),
-                Span::raw(lands),
-                delta(land_now, land_then, 1.0, 2, "m"),
-            ]),
-            Line::from(vec![
-                label("kick"),
-                Span::raw(kick),
-                delta(kick_now, kick_then, 1.0, 2, "m"),
-                Span::styled("   ", theme.dim()),
-                words(bounce),
-            ]),
+                dim("   flight "),
+                flight,
+            ],
+            vec![label("net"), net, d_net, dim("   lands "), lands, d_lands],
+            vec![label("kick"), kick, d_kick, (raw(bounce).0, true)],
         ]
     } else {
         vec![
-            Line::from(vec![
+            vec![
                 label("launch"),
-                words(format!(
+                raw(format!(
                     "{:.1} m/s ({:.0} km/h) {:.1}° {spin:.0} rpm",
                     launch.speed(),
                     kmh(launch.speed()),
                     launch.angle_deg()
                 )),
-            ]),
-            Line::from(vec![
-                label("net"),
-                Span::styled(net, theme.emphasis()),
-                delta(net_now, net_then, 100.0, 1, "cm"),
-            ]),
-            Line::from(vec![
-                label("lands"),
-                Span::raw(lands),
-                delta(land_now, land_then, 1.0, 2, "m"),
-            ]),
-            Line::from(vec![
-                label("kick"),
-                Span::raw(match shot.kick_height {
-                    Some(k) => format!("{k:.2} m"),
-                    None => "none".to_string(),
-                }),
-                delta(kick_now, kick_then, 1.0, 2, "m"),
-                Span::styled("  flight ", theme.dim()),
-                Span::raw(flight),
-            ]),
+            ],
+            vec![label("net"), net, d_net],
+            vec![label("lands"), lands, d_lands],
+            vec![label("kick"), kick, d_kick, dim("  flight "), flight],
         ]
-    }
+    };
+    lines.into_iter().map(|pieces| fit(pieces, room)).collect()
 }
 
 /// The court's extent: x to past the furthest point drawn, y from the court to above the highest.
