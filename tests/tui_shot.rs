@@ -416,3 +416,30 @@ fn the_command_line_starts_a_shot_as_snapback_shot_plays_it() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("needs a terminal"), "{stderr}");
 }
+
+#[test]
+fn picking_a_shot_preset_turns_shot_mode_on_and_the_picker_finds_it_again() {
+    let index = scenario::PRESETS
+        .iter()
+        .position(|p| p.name == "kick-serve")
+        .unwrap();
+    let mut events = vec![char('p')];
+    events.extend(vec![key(KeyCode::Down); index]);
+    events.push(key(KeyCode::Enter));
+    let (mut app, screen) = explore(Params::default(), Theme::default(), (160, 48), events);
+    assert!(app.shots.on, "{screen}");
+    assert_eq!(app.view, View::Contact);
+    let params = preset("kick-serve");
+    assert_eq!(
+        app.params.speed,
+        shot::hit(&params).unwrap().incidence.speed
+    );
+    assert!(screen.contains("── shot "), "{screen}");
+    // The contact view shows the bounce on the strings.
+    assert_eq!(
+        app.solved.as_ref().unwrap().bounce.outcome.omega2,
+        shot::hit(&params).unwrap().bounce.outcome.omega2
+    );
+    drive(&mut app, 160, 48, vec![char('p')]);
+    assert_eq!(app.mode, snapback::tui::Mode::Picker(index));
+}

@@ -49,10 +49,11 @@ impl App {
                         .extend(users.into_iter().map(|u| (u.scenario, true))),
                     Err(e) => self.error(format!("your presets: {e}")),
                 }
-                let current = self
-                    .presets
-                    .iter()
-                    .position(|(s, _)| s.apply(Params::default()) == self.params);
+                // In shot mode a preset's incidence gives way to the frame change's, as on screen.
+                let current = self.presets.iter().position(|(s, _)| {
+                    let params = s.apply(Params::default());
+                    self.strings_params(params).unwrap_or(params) == self.params
+                });
                 self.mode = Mode::Picker(current.unwrap_or(0));
             }
             Action::PickerUp | Action::PickerDown => {
@@ -301,6 +302,8 @@ impl App {
             self.info(format!("{word}: nothing to {word}"));
             return;
         };
+        // A change from before shot mode comes back with the incidence the strings see.
+        let target = self.strings_params(target).unwrap_or(target);
         let from = self.params;
         let left = if back {
             self.history.undo_len()

@@ -3,15 +3,17 @@
 //! opponent's baseline, the readouts above it and, when a baseline is pinned, its path dimmer beneath.
 //!
 //! ```text
-//! ─ shot from the side  IN ━ baseline ───────────────────────────────────────── solving… (stale)
-//!  launch  35.6 m/s (128.1 km/h) at 9.0° up, 3762 rpm topspin         flight  0.77 s      (readouts:
-//!  net     clears it by 65.6 cm              lands  8.32 m past the net, 3.45 m in         four rows
-//!  kick    0.71 m at the baseline            court bounce 18.0 m/s at 15.3°, 5027 rpm      narrow)
-//! 4 m                     ⢀⡠⠤⠤⠤⠤⢄⣀
-//!               ⣀⡠⠤⠒⠊⠉                ⠉⠑⠢⢄⡀          ⣀⡠⠤⠤⠤⢄⡀
-//!  ⣀⠤⠒⠉                          │            ⠑⠢⣀⡠⠊       ⠈⠢⡀
-//! ─┴──────────┴──────────────────┴─────────────┴─────────────┴──
-//!  0                            net                         23.8 m
+//! ─ shot from the side  IN ━ baseline ──────────────────────────────────── solving… (while stale)
+//! launch  35.6 m/s (128.1 km/h) at 9.0° up, 3762 rpm topspin   flight 0.77 s           (readouts: three
+//! net     clears it by 65.6 cm (+7.0 cm)   lands 8.32 m past the net, 3.57 m in         rows, or four
+//! kick    0.71 m at the baseline   court bounce 18.0 m/s at 15.3°, 5027 rpm             shorter, narrow)
+//! 2 m
+//!                  ⢀⣀⡠⠤⠤⠤⠤⢄⣀
+//!         ⣀⡠⠤⠒⠊⠉⠁          ⠉⠑⠢⢄⡀                     the path to the bounce and on,
+//!    ⣀⠤⠒⠉                   ⡇      ⠑⠢⡀   ⣀⠤⠒⠉       the baseline's dimmer beneath
+//!     ⢰                     ⡇        ⠈⠢⡠⠊     ⢰
+//! ⣀⣀⣀⣀⣸⣀⣀⣀⣀⣀⣆⣀⣀⣀⣀⣀⣀⣀⣀⣀⣀⣀⣀⣇⣀⣀⣀⣀⣀⣀⣀⣀⣀⣆⣀⣀⣀⣀⣀⣀⣀⣀⣸⣀   the ground, baselines, service lines, net
+//!     0                    net              23.77 m
 //! ```
 //!
 //! A shot the model cannot play (a racquet that never meets the ball, a flight that does not end) is
@@ -46,7 +48,7 @@ const WIDE: u16 = 90;
 
 /// Where the ball lands against the lines, as the verdict in the title says it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Verdict {
+enum Verdict {
     In,
     /// Beyond the opponent's baseline.
     Long,
@@ -55,7 +57,7 @@ pub enum Verdict {
 }
 
 impl Verdict {
-    pub fn of(shot: &Shot) -> Verdict {
+    fn of(shot: &Shot) -> Verdict {
         if shot.is_in() {
             Verdict::In
         } else if shot.net_clearance.is_some_and(|c| c > 0.0) {
@@ -65,7 +67,7 @@ impl Verdict {
         }
     }
 
-    pub fn word(self) -> &'static str {
+    fn word(self) -> &'static str {
         match self {
             Verdict::In => "IN",
             Verdict::Long => "OUT (long)",
@@ -87,11 +89,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         " shot "
     };
     let mut title = vec![Span::styled(name, theme.title())];
-    let base = app
+    let kept = app
         .baseline
         .as_ref()
-        .and_then(|b| app.shots.known(&b.solved.params))
-        .and_then(|p| p.shot.clone().ok());
+        .and_then(|b| app.shots.known(&b.solved.params));
+    let base = kept.as_deref().and_then(|p| p.shot.as_ref().ok());
     let shot = match &played.shot {
         Ok(shot) => shot,
         Err(reason) => {
@@ -120,7 +122,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let block = Block::new().borders(Borders::TOP).title(Line::from(title));
     let inner = block.inner(area);
     frame.render_widget(block, area);
-    let lines = readouts(shot, base.as_ref(), theme, inner.width);
+    let lines = readouts(shot, base, theme, inner.width);
     let rows = (lines.len() as u16).min(inner.height);
     frame.render_widget(
         Paragraph::new(lines),
@@ -136,7 +138,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         ..inner
     };
     if court.height >= 3 && court.width >= 20 {
-        draw_court(frame, court, app, shot, base.as_ref());
+        draw_court(frame, court, app, shot, base);
     }
 }
 
