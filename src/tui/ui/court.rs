@@ -152,6 +152,12 @@ fn rpm(omega: f64) -> f64 {
     omega * 30.0 / PI
 }
 
+/// A spin in rpm as people say it: `3762 rpm topspin`, `2947 rpm backspin`.
+fn spin_words(rpm: f64) -> String {
+    let kind = if rpm < 0.0 { "backspin" } else { "topspin" };
+    format!("{:.0} rpm {kind}", rpm.abs())
+}
+
 /// A piece of a readout line; optional ones (the differences from the baseline, the court bounce) go
 /// where the line would not fit.
 type Piece = (Span<'static>, bool);
@@ -194,13 +200,17 @@ fn readouts(shot: &Shot, base: Option<&Shot>, theme: &Theme, room: u16) -> Vec<L
         None => "down before the net".to_string(),
     };
     let net = (Span::styled(net, theme.emphasis()), false);
+    let short = match shot.net_clearance {
+        Some(_) => "in the net",
+        None => "short of the net",
+    };
     let past = if wide { "past the net" } else { "past net" };
     let lands = raw(match shot.landing_x {
         Some(x) if x <= BASELINE_X => {
             format!("{:.2} m {past}, {:.2} m in", x - NET_X, BASELINE_X - x)
         }
         Some(x) => format!("{:.2} m {past}, {:.2} m long", x - NET_X, x - BASELINE_X),
-        None => "not beyond the net".to_string(),
+        None => short.to_string(),
     });
     let kick = raw(match (shot.kick_height, wide) {
         (Some(k), true) => format!("{k:.2} m at the baseline"),
@@ -217,20 +227,26 @@ fn readouts(shot: &Shot, base: Option<&Shot>, theme: &Theme, room: u16) -> Vec<L
     let lines = if wide {
         let bounce = shot.court.as_ref().map_or(String::new(), |c| {
             format!(
-                "   court bounce {:.1} m/s at {:.1}°, {:.0} rpm",
+                "   court bounce {:.1} m/s at {:.1}°, {}",
                 c.leaving.speed(),
                 c.leaving.angle_deg(),
-                rpm(c.leaving.topspin())
+                spin_words(rpm(c.leaving.topspin()))
             )
         });
         vec![
             vec![
                 label("launch"),
                 raw(format!(
-                    "{:.1} m/s ({:.1} km/h) at {:.1}° up, {spin:.0} rpm topspin",
+                    "{:.1} m/s ({:.1} km/h) at {:.1}° {}, {}",
                     launch.speed(),
                     kmh(launch.speed()),
-                    launch.angle_deg()
+                    launch.angle_deg().abs(),
+                    if launch.angle_deg() < 0.0 {
+                        "down"
+                    } else {
+                        "up"
+                    },
+                    spin_words(spin),
                 )),
                 dim("   flight "),
                 flight,
@@ -374,5 +390,60 @@ fn labels(frame: &mut Frame, court: Rect, [x0, x1]: [f64; 2], theme: &Theme) {
             buf.set_string(start, row, &text, theme.dim());
             free = start + len + 1;
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Params;
+    use crate::scenario;
+
+    fn forehand() -> Shot {
+        let p = scenario::preset("topspin-forehand")
+            .unwrap()
+            .apply(Params::default());
+        crate::shot::play(&p, true).unwrap()
+    }
+
+    #[test]
+    fn a_line_too_long_loses_its_optional_pieces_last_first() {
+        let piece = |text: &str, optional| (Span::raw(text.to_string()), optional);
+        let pieces = vec![
+            piece("net 1.0 cm", false),
+            piece(" (+2 cm)", true),
+            piece(" lands 8 m", false),
+            piece(" (+1 m)", true),
+        ];
+        let width = |line: Line| line.width();
+        assert_eq!(width(fit(pieces.clone(), 80)), 35);
+        assert_eq!(width(fit(pieces.clone(), 30)), 28);
+        assert_eq!(width(fit(pieces.clone(), 21)), 20);
+        // What is not optional stays, even cut.
+        assert_eq!(width(fit(pieces, 5)), 20);
+    }
+
+    #[test]
+    fn the_path_splits_where_the_ball_lands() {
+        let shot = forehand();
+        let (first, kick) = flights(&shot);
+        let landing = shot.landing_x.unwrap();
+        assert_eq!(first.last(), kick.first());
+        assert_eq!(first.last().unwrap().0, landing);
+        assert!(first.iter().all(|p| p.0 <= landing));
+        assert!(kick.iter().all(|p| p.0 >= landing));
+        assert_eq!(first.len() + kick.len(), shot.trajectory.len() + 1);
+    }
+
+    #[test]
+    fn the_verdict_reads_the_shot() {
+        let mut shot = forehand();
+        assert_eq!(Verdict::of(&shot), Verdict::In);
+        shot.landing_x = Some(BASELINE_X + 0.1);
+        assert_eq!(Verdict::of(&shot), Verdict::Long);
+        shot.net_clearance = Some(-0.01);
+        assert_eq!(Verdict::of(&shot), Verdict::Net);
+        shot.net_clearance = None;
+        assert_eq!(Verdict::of(&shot), Verdict::Net);
     }
 }
