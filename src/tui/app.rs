@@ -519,10 +519,7 @@ impl App {
                 if self.view == View::Shot && !self.shots.on {
                     self.explore_shot();
                     self.message = Some(Message {
-                        text:
-                            "shot mode: θ1, v1 and ω1 now follow from the racquet and the incoming \
-                               ball, and the contact view shows the bounce on the strings"
-                                .into(),
+                        text: shot::MODE_ON.into(),
                         tone: Tone::Info,
                     });
                 }
@@ -678,7 +675,8 @@ impl App {
     /// Makes `params` current and asks for everything derived from them. The history is the caller's
     /// business; `unchanged` names what a refusal leaves as it was (`value` or `parameters`).
     pub(super) fn set_params(&mut self, params: Params, unchanged: &'static str) {
-        // A change refused by the frame change is refused before it comes here; this keeps the rest.
+        // Edits, presets and files the frame change cannot take are refused before they come here; what
+        // comes anyway (an undo to before shot mode) is kept as it is.
         self.params = self.strings_params(params).unwrap_or(params);
         self.changed_at = Instant::now();
         self.unchanged = unchanged;

@@ -15,6 +15,10 @@ use crate::model::Params;
 use crate::model::params::{ParamId, ParamSpec, spec};
 use crate::shot::{self, Shot, ShotError};
 
+/// What the status line says when the shot view turns shot mode on.
+pub const MODE_ON: &str = "shot mode: θ1, v1 and ω1 now follow from the racquet and the incoming ball, \
+                           and the contact view shows the bounce on the strings";
+
 /// The parameters the frame change sets in a shot.
 pub const DERIVED: [ParamId; 3] = [ParamId::Angle, ParamId::Speed, ParamId::Spin];
 
