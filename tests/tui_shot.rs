@@ -254,6 +254,14 @@ fn the_incidence_is_refused_in_shot_mode_naming_the_shot_parameters() {
             shot::hit(&params).unwrap().incidence.speed
         );
     }
+    // The help says so too.
+    let mut events = start.clone();
+    events.push(char('?'));
+    let (_, help) = explore(params, Theme::default(), (160, 48), events);
+    assert!(
+        help.contains("in a shot the frame change sets it"),
+        "{help}"
+    );
     // Outside shot mode the incident speed steps as ever.
     let (app, _) = explore(
         params,

@@ -8,6 +8,7 @@ use ratatui::text::{Line, Span};
 use super::overlay;
 use crate::tui::app::App;
 use crate::tui::keys::{self, Binding};
+use crate::tui::shot;
 use crate::tui::ui::theme::Theme;
 
 fn rows<'a>(bindings: &[Binding], theme: &Theme, key_width: usize) -> Vec<Line<'a>> {
@@ -53,7 +54,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     lines.extend(rows(keys::EXPLORER, theme, key_width));
     let mut prompt = vec![Line::styled("While typing a value", theme.title())];
     prompt.extend(rows(keys::PROMPT, theme, key_width));
-    let notes = vec![
+    let mut notes = vec![
         Line::styled(
             format!(
                 "{} {} (--{})",
@@ -70,6 +71,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             spec.show(spec.default)
         )),
     ];
+    if app.shots.on && shot::derived(spec.id) {
+        notes.push(Line::raw(
+            " in a shot the frame change sets it: change the shot's parameters",
+        ));
+    }
 
     let width = area.width.saturating_sub(2).min(100);
     // Keys come first, then the prompt's and the parameter's notes; on a short screen the arrows scroll.
