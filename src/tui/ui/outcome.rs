@@ -248,5 +248,6 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
             ]));
         }
     }
+    lines.extend(super::residuals::lines(app, wide));
     lines
 }
