@@ -184,10 +184,13 @@ fn cli_fit() -> serde_json::Value {
 #[test]
 fn the_residuals_are_those_of_snapback_fit_at_the_same_parameters() {
     let json = cli_fit();
-    let mut params = Params::default();
-    params.cart_mass = json["free"]["cart_mass"]["value"].as_f64().unwrap();
-    params.stiffness = json["free"]["stiffness"]["value"].as_f64().unwrap();
-    params.mu = json["free"]["mu"]["value"].as_f64().unwrap();
+    let fitted = |key: &str| json["free"][key]["value"].as_f64().unwrap();
+    let params = Params {
+        cart_mass: fitted("cart_mass"),
+        stiffness: fitted("stiffness"),
+        mu: fitted("mu"),
+        ..Params::default()
+    };
     for (w, h) in [(80, 24), (160, 48)] {
         let mut app = lab(params, Theme::default());
         let screen = drive(&mut app, w, h, vec![]);
