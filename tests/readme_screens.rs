@@ -146,7 +146,11 @@ fn draw(capture: &Capture) -> String {
 #[test]
 fn every_screen_capture_is_the_explorers_screen() {
     let captures = captures();
-    assert_eq!(captures.len(), 4, "the contact, sweep and heatmap views, and the lab");
+    assert_eq!(
+        captures.len(),
+        4,
+        "the contact, sweep and heatmap views, and the lab"
+    );
     let mut stale = Vec::new();
     for capture in &captures {
         let drawn = draw(capture);

@@ -1,7 +1,7 @@
 //! The explorer's lab on ratatui's TestBackend: measurements (`--data`) drawn on the sweep view, the
 //! residuals in the outcome panel (the same model values as `snapback fit`), parameters marked free and
-//! fitted in the background with the keys still answered, the fit undone, the uncertainty band; and a
-//! bad data file refused before the terminal is touched.
+//! fitted in the background with the keys still answered, the fit undone, the uncertainty band; a bad
+//! data file refused before the terminal is touched; and the real binary fitting in a pseudo-terminal.
 
 use std::time::{Duration, Instant};
 
@@ -20,6 +20,10 @@ use snapback::tui::{Action, App, Scripted, run, ui};
 #[path = "support/screen.rs"]
 mod screen;
 use screen::{line_with, text};
+
+#[path = "support/pty.rs"]
+#[allow(dead_code)] // not every helper is used here
+mod pty;
 
 /// The synthetic data set shipped in assets/.
 const SYNTHETIC: &str = "assets/data/synthetic-strings.csv";
@@ -486,5 +490,68 @@ fn a_bad_data_file_exits_2_naming_file_line_and_column() {
         .assert()
         .code(2)
         .stderr(predicate::str::contains("needs a terminal"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn the_binary_fits_in_the_background_and_undoes_the_fit() {
+    let data = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/assets/data/synthetic-strings.csv"
+    );
+    let mut pty = pty::Pty::spawn(&["--data", data], &[], 120, 40);
+    pty.wait_for("the residuals at the defaults", |s| {
+        s.contains("rms 5.39σ chi2/dof 29")
+    });
+    let keys: String = free_three()
+        .iter()
+        .map(|e| match e {
+            Event::Key(KeyEvent {
+                code: KeyCode::Char(c),
+                ..
+            }) => *c,
+            _ => unreachable!("free_three types letters"),
+        })
+        .collect();
+    pty.send(keys.as_bytes());
+    pty.wait_for("M, k and mu free", |s| s.contains("free: cart mass"));
+    let started = Instant::now();
+    pty.send(b"F");
+    pty.wait_for("the fit", |s| s.contains("fit in "));
+    // The fit's own figure, and the wall time from the key to the screen (printed with --nocapture).
+    let screen = pty.screen();
+    let message = line_with(&screen, "fit in ");
+    eprintln!(
+        "{message}\nfrom F to the screen: {:.0} ms",
+        started.elapsed().as_secs_f64() * 1e3
+    );
+    pty.wait_for("the residuals at the fit", |s| {
+        s.contains("rms 1.07σ chi2/dof 1.44")
+    });
+    pty.send(b"u");
+    pty.wait_for("the fit undone", |s| {
+        s.contains("undo: 3 parameters") && s.contains("10.00 g")
+    });
+    pty.send(b"q");
+    let status = pty.exit(pty::PATIENCE).expect("it quits");
+    assert!(status.success(), "{status:?}");
+}
+
+#[test]
+fn a_bad_data_file_never_touches_the_terminal() {
+    let dir = std::env::temp_dir().join(format!("snapback-tui-lab-pty-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bad = dir.join("bad.csv");
+    std::fs::write(&bad, "angle,omega2,mu\n40,100\n").unwrap();
+    let mut pty = pty::Pty::spawn(&["--data", bad.to_str().unwrap()], &[], 120, 40);
+    let status = pty.exit(pty::PATIENCE).expect("it exits");
+    assert_eq!(status.exit_code(), 2);
+    let written = String::from_utf8(pty.bytes_since(0)).unwrap();
+    assert!(
+        written.contains("bad.csv:2:3: missing value for mu"),
+        "{written:?}"
+    );
+    // Neither the alternate screen nor raw mode's mouse reporting was asked for.
+    assert!(!written.contains("\x1b[?1049h") && !written.contains("\x1b[?1000h"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
