@@ -59,17 +59,17 @@ fn spread(r: &Residuals, rms: f64, free: usize) -> String {
     }
 }
 
-/// The worst measurement: `ω2 +4.9 rad/s (1.6σ)`.
-fn worst(c: &Compared) -> String {
+/// The worst measurement: `ω2 +4.9 rad/s (1.6σ)`; narrow, the unit goes where the sigmas say enough.
+fn worst(c: &Compared, wide: bool) -> String {
     let sigmas = c.sigma.map_or(String::new(), |_| {
         format!(" ({}σ)", units::brief(c.weighted().abs(), 2))
     });
-    let text = format!(
-        "{} {} {}",
-        symbol(c.quantity),
-        signed(c.residual()),
+    let unit = if wide || c.sigma.is_none() {
         c.quantity.unit()
-    );
+    } else {
+        ""
+    };
+    let text = format!("{} {} {unit}", symbol(c.quantity), signed(c.residual()));
     format!("{}{sigmas}", text.trim_end())
 }
 
@@ -113,7 +113,7 @@ pub fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
                 &format!("line {}", c.line),
                 &format!("furthest: line {}", c.line),
             ),
-            words(worst(c)),
+            words(worst(c, wide)),
         ]));
     }
     if !r.unsolved.is_empty() {
