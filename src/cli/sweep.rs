@@ -6,7 +6,6 @@ use clap::{Args, ValueEnum};
 
 use super::simulate::MonteCarloArgs;
 use super::{Failure, ShotParamArgs, emit, shot};
-use crate::analysis::AnalysisError;
 use crate::analysis::fit::data::Quantity;
 use crate::analysis::sweep::{Layout, WriteError};
 use crate::analysis::uncertainty::{Spread, monte_carlo};
@@ -71,14 +70,18 @@ pub fn run(args: &SweepArgs) -> Result<(), Failure> {
         Format::Json => Layout::Json,
         Format::Jsonl => Layout::JsonLines,
     };
-    if !spreads.is_empty() {
-        let text = with_bands(&base, &span, steps, layout, &spreads, &args.monte_carlo)
-            .map_err(Failure::usage)?;
-        return emit(&text);
-    }
-    let mut out = BufWriter::with_capacity(1 << 20, std::io::stdout().lock());
-    let written = sweep::write(&mut out, &base, &span, steps, layout)
-        .and_then(|()| out.flush().map_err(WriteError::Io));
+    let written = if spreads.is_empty() {
+        let mut out = BufWriter::with_capacity(1 << 20, std::io::stdout().lock());
+        sweep::write(&mut out, &base, &span, steps, layout)
+            .and_then(|()| out.flush().map_err(WriteError::Io))
+    } else {
+        let mut out = std::io::stdout().lock();
+        let bands = Bands {
+            spreads: &spreads,
+            mc: &args.monte_carlo,
+        };
+        write_with_bands(&mut out, &base, &span, steps, layout, &bands)
+    };
     match written {
         Err(WriteError::Analysis(e)) => Err(Failure::usage(e)),
         // A closed pipe (`| head`) is not an error.
@@ -90,43 +93,61 @@ pub fn run(args: &SweepArgs) -> Result<(), Failure> {
     }
 }
 
+/// The input spreads of a sweep with bands, and how to draw them.
+struct Bands<'a> {
+    spreads: &'a [Spread],
+    mc: &'a MonteCarloArgs,
+}
+
 /// The sweep with each outcome's Monte Carlo mean and standard deviation beside it: after the usual
 /// columns (keys), `<outcome>_mean` and `<outcome>_sd` for omega2, omega2_rpm, vx2, vy2, theta2_deg, ex
 /// and speed2 (empty / null where no draw defines it). Every row draws with the same seed, so the bands
-/// are smooth along the sweep. Held in memory, not streamed.
-fn with_bands(
+/// are smooth along the sweep. Streamed: each row is written and flushed as soon as its draws are
+/// solved (a row costs `--mc-samples` bounces), so a long sweep shows its progress and `| head` stops it.
+/// The rows themselves are solved first: a sweep whose own bounces fail writes nothing.
+fn write_with_bands(
+    out: &mut impl Write,
     base: &Params,
     span: &Span,
     steps: usize,
     layout: Layout,
-    spreads: &[Spread],
-    mc: &MonteCarloArgs,
-) -> Result<String, AnalysisError> {
+    bands: &Bands,
+) -> Result<(), WriteError> {
     let rows = sweep::sweep(base, span, steps)?;
     let column = span.column();
-    let mut text = String::new();
-    let mut objects = Vec::new();
-    if layout == Layout::Csv {
-        text.push_str(&column);
-        for name in sweep::COLUMNS {
-            text.push(',');
-            text.push_str(name);
-        }
-        for q in Quantity::ALL {
-            text.push_str(&format!(",{0}_mean,{0}_sd", q.name()));
-        }
-        text.push('\n');
-    }
-    for row in &rows {
+    let mut digits = ryu::Buffer::new();
+    for (i, row) in rows.iter().enumerate() {
         let mut at = *base;
         at.set(span.spec.id, row.value);
-        let bands = monte_carlo(&at, spreads, mc.mc_samples as usize, mc.mc_seed)?;
+        let drawn = monte_carlo(
+            &at,
+            bands.spreads,
+            bands.mc.mc_samples as usize,
+            bands.mc.mc_seed,
+        )?;
+        let mut text = String::new();
+        if i == 0 {
+            match layout {
+                Layout::Csv => {
+                    text.push_str(&column);
+                    for name in sweep::COLUMNS {
+                        text.push(',');
+                        text.push_str(name);
+                    }
+                    for q in Quantity::ALL {
+                        text.push_str(&format!(",{0}_mean,{0}_sd", q.name()));
+                    }
+                    text.push('\n');
+                }
+                Layout::Json => text.push('['),
+                Layout::JsonLines => {}
+            }
+        }
         match layout {
             Layout::Csv => {
                 let line = sweep::format_rows(std::slice::from_ref(row), &column, layout, false);
                 text.push_str(line.trim_end_matches('\n'));
-                let mut digits = ryu::Buffer::new();
-                for b in &bands.bands {
+                for b in &drawn.bands {
                     for x in [b.mean, b.sd] {
                         text.push(',');
                         if b.count > 0 {
@@ -138,7 +159,7 @@ fn with_bands(
             }
             Layout::Json | Layout::JsonLines => {
                 let mut object = sweep::object(&column, row);
-                for b in &bands.bands {
+                for b in &drawn.bands {
                     let (mean, sd) = if b.count > 0 {
                         (b.mean.into(), b.sd.into())
                     } else {
@@ -151,15 +172,23 @@ fn with_bands(
                     text.push_str(&object.to_string());
                     text.push('\n');
                 } else {
-                    objects.push(object);
+                    // As serde_json's pretty array: each element on its own lines, indented by two.
+                    text.push_str(if i == 0 { "\n" } else { ",\n" });
+                    let pretty = serde_json::to_string_pretty(&object)
+                        .expect("JSON values always serialize");
+                    let indented: Vec<String> = pretty.lines().map(|l| format!("  {l}")).collect();
+                    text.push_str(&indented.join("\n"));
                 }
             }
         }
+        out.write_all(text.as_bytes())?;
+        out.flush()?;
     }
     if layout == Layout::Json {
-        text = serde_json::to_string_pretty(&objects).expect("JSON values always serialize") + "\n";
+        out.write_all(b"\n]\n")?;
+        out.flush()?;
     }
-    Ok(text)
+    Ok(())
 }
 
 /// `sweep --shot`: one shot per value, in order, as CSV (an empty field for a null), JSON or JSON Lines,

@@ -265,10 +265,18 @@ impl ParamSpec {
     }
 
     /// Checks a base-unit value against the range; the message shows it in the bare unit.
+    #[inline]
     pub fn check_value(&self, value: f64) -> Result<(), ParamError> {
         if self.allows(value) {
-            return Ok(());
+            Ok(())
+        } else {
+            self.refuse_value(value)
         }
+    }
+
+    /// The refusal of a value out of range, in the bare unit (kept out of line: every solve validates).
+    #[cold]
+    fn refuse_value(&self, value: f64) -> Result<(), ParamError> {
         let unit = self.bare_symbol();
         self.check(
             value,
