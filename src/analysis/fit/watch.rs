@@ -90,3 +90,71 @@ impl<'a> Tally<'a> {
         });
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use std::sync::Mutex;
+    use std::sync::atomic::{AtomicUsize, Ordering};
+
+    use super::*;
+    use crate::analysis::AnalysisError;
+    use crate::analysis::fit::{Options, data, fit, fit_watched, free};
+    use crate::model::Params;
+
+    fn synthetic() -> data::Dataset {
+        let text = include_str!("../../../assets/data/synthetic-strings.csv");
+        data::parse(text, "synthetic").unwrap()
+    }
+
+    #[test]
+    fn a_watched_fit_is_the_same_fit_and_says_where_it_is() {
+        let data = synthetic();
+        let free = free::parse_list("cart-mass,stiffness,mu", &data.conditions).unwrap();
+        let base = Params::default();
+        let seen = Mutex::new(Vec::new());
+        let watch = Watch {
+            cancelled: &|| false,
+            progress: &|p| seen.lock().unwrap().push(p),
+        };
+        let watched = fit_watched(&base, &free, &data, &Options::default(), &watch).unwrap();
+        assert_eq!(
+            watched,
+            fit(&base, &free, &data, &Options::default()).unwrap()
+        );
+        let seen = seen.into_inner().unwrap();
+        // Scan, short runs, final run, in order; the count of solves never goes back.
+        let stages: Vec<Stage> = seen.iter().map(|p| p.stage).collect();
+        assert_eq!(stages.first(), Some(&Stage::Scan));
+        assert!(stages.contains(&Stage::Refine));
+        assert!(stages.is_sorted_by_key(|s| *s as u8));
+        assert!(seen.windows(2).all(|w| w[0].solves <= w[1].solves));
+        let last = seen.last().unwrap();
+        assert_eq!((last.stage, last.done, last.of), (Stage::Converge, 1, 1));
+        assert!(last.solves > data.rows.len() * 37);
+    }
+
+    #[test]
+    fn a_cancelled_fit_stops_soon_and_says_so() {
+        let data = synthetic();
+        let free = free::parse_list("cart-mass,stiffness,mu", &data.conditions).unwrap();
+        let reports = AtomicUsize::new(0);
+        let solves = AtomicUsize::new(0);
+        // Stopped after its fifth report: a few more solves at most, none of the later stages.
+        let watch = Watch {
+            cancelled: &|| reports.load(Ordering::Relaxed) >= 5,
+            progress: &|p| {
+                reports.fetch_add(1, Ordering::Relaxed);
+                solves.store(p.solves, Ordering::Relaxed);
+            },
+        };
+        let result = fit_watched(
+            &Params::default(),
+            &free,
+            &data,
+            &Options::default(),
+            &watch,
+        );
+        assert_eq!(result, Err(AnalysisError::Cancelled));
+        assert!(solves.load(Ordering::Relaxed) < 50 * data.rows.len());
+    }
+}
