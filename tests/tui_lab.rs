@@ -299,6 +299,21 @@ fn refusals_are_messages() {
 }
 
 #[test]
+fn a_parameter_the_data_cannot_determine_is_named_and_not_applied() {
+    // The ball is rigid by default: its damping changes nothing.
+    let mut app = lab(Params::default(), Theme::default());
+    let mut events = select(ParamId::BallDamping);
+    events.extend([char('f'), char('F')]);
+    drive(&mut app, 80, 24, events);
+    assert_eq!(app.params, Params::default());
+    assert!(
+        message(&app).starts_with("the data cannot determine ζ_b: fit not applied"),
+        "{}",
+        message(&app)
+    );
+}
+
+#[test]
 fn capital_f_fits_in_the_background_and_u_undoes_the_fit() {
     let mut app = lab(Params::default(), Theme::default());
     drive(&mut app, 160, 48, free_three());
