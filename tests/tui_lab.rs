@@ -152,7 +152,9 @@ fn ascii_writes_the_points_and_legend_in_ascii() {
     );
     assert!(!screen.contains('●') && !screen.contains('○'));
     let residuals = line_with(&screen, "data (14 rows)");
-    assert!(residuals.contains("rms 5.39sd chi2/dof 29"), "{residuals}");
+    assert!(residuals.contains("rms 5.39sd"), "{residuals}");
+    let worst = line_with(&screen, "furthest: line 12");
+    assert!(worst.contains("omega2 +29.1 (9.7sd)"), "{worst}");
 }
 
 #[test]
@@ -211,15 +213,18 @@ fn the_residuals_are_those_of_snapback_fit_at_the_same_parameters() {
         // marked free here: 14), and the row furthest from the model.
         let rms = json["rms"].as_f64().unwrap();
         let chi2 = json["chi2"].as_f64().unwrap();
-        let line = line_with(&screen, "rms");
-        assert!(
-            line.contains(&format!(
-                "rms {}σ chi2/dof {}",
-                units::brief(rms, 3),
-                units::brief(chi2 / 14.0, 3)
-            )),
-            "{screen}"
-        );
+        let (rms, per_dof) = (units::brief(rms, 3), units::brief(chi2 / 14.0, 3));
+        if w >= 150 {
+            assert!(line_with(&screen, "data (14 rows)").contains(&format!("rms {rms}σ")));
+            let line = line_with(&screen, "chi2/dof");
+            assert!(line.contains(&format!("{per_dof} (14 dof)")), "{line}");
+        } else {
+            let line = line_with(&screen, "data 14");
+            assert!(
+                line.contains(&format!("rms {rms}σ chi2/dof {per_dof}")),
+                "{line}"
+            );
+        }
         let worst = rows
             .iter()
             .max_by(|a, b| {
@@ -231,9 +236,8 @@ fn the_residuals_are_those_of_snapback_fit_at_the_same_parameters() {
         let shown = format!("line {}", worst["line"].as_u64().unwrap());
         let line = line_with(&screen, &shown);
         let sign = if residual > 0.0 { "+" } else { "" };
-        let unit = if w >= 150 { " rad/s" } else { "" };
         let expected = format!(
-            "ω2 {sign}{}{unit} ({}σ)",
+            "ω2 {sign}{} rad/s ({}σ)",
             units::brief(residual, 3),
             units::brief(residual.abs() / 3.0, 2)
         );
@@ -516,7 +520,7 @@ fn the_binary_fits_in_the_background_and_undoes_the_fit() {
     );
     let mut pty = pty::Pty::spawn(&["--data", data], &[], 120, 40);
     pty.wait_for("the residuals at the defaults", |s| {
-        s.contains("rms 5.39σ chi2/dof 29")
+        s.contains("data 14  rms 5.39σ chi2/dof 29")
     });
     let keys: String = free_three()
         .iter()
@@ -541,7 +545,7 @@ fn the_binary_fits_in_the_background_and_undoes_the_fit() {
         started.elapsed().as_secs_f64() * 1e3
     );
     pty.wait_for("the residuals at the fit", |s| {
-        s.contains("rms 1.07σ chi2/dof 1.44")
+        s.contains("data 14  rms 1.07σ chi2/dof 1.44")
     });
     pty.send(b"u");
     pty.wait_for("the fit undone", |s| {

@@ -43,34 +43,37 @@ fn common_unit(r: &Residuals) -> Option<&'static str> {
         .then_some(first)
 }
 
-/// The rms, in sigmas with the data's sigmas and in the data's unit without; with chi2 per degree of
-/// freedom (the measurements less the `free` parameters) when the sigmas make it meaningful.
-fn spread(r: &Residuals, rms: f64, free: usize) -> String {
-    if !r.absolute_sigma {
-        let unit = common_unit(r).unwrap_or_default();
-        return format!("rms {} {unit}", units::brief(rms, 3))
-            .trim_end()
-            .to_string();
+/// The rms, in sigmas with the data's sigmas and in the data's unit without.
+fn rms(r: &Residuals, rms: f64) -> String {
+    if r.absolute_sigma {
+        return format!("rms {}σ", units::brief(rms, 3));
     }
-    let rms = format!("rms {}σ", units::brief(rms, 3));
-    match r.compared.len().checked_sub(free).filter(|dof| *dof > 0) {
-        Some(dof) => format!("{rms} chi2/dof {}", units::brief(r.chi2() / dof as f64, 3)),
-        None => rms,
-    }
+    let unit = common_unit(r).unwrap_or_default();
+    format!("rms {} {unit}", units::brief(rms, 3))
+        .trim_end()
+        .to_string()
 }
 
-/// The worst measurement: `ω2 +4.9 rad/s (1.6σ)`; narrow, the unit goes where the sigmas say enough.
-fn worst(c: &Compared, wide: bool) -> String {
-    let sigmas = c.sigma.map_or(String::new(), |_| {
-        format!(" ({}σ)", units::brief(c.weighted().abs(), 2))
-    });
-    let unit = if wide || c.sigma.is_none() {
-        c.quantity.unit()
-    } else {
-        ""
-    };
-    let text = format!("{} {} {unit}", symbol(c.quantity), signed(c.residual()));
-    format!("{}{sigmas}", text.trim_end())
+/// chi2 per degree of freedom (the measurements less the `free` parameters) and the degrees of freedom,
+/// when the data's sigmas make it meaningful.
+fn chi2(r: &Residuals, free: usize) -> Option<(String, usize)> {
+    let dof = r.compared.len().checked_sub(free).filter(|dof| *dof > 0)?;
+    r.absolute_sigma
+        .then(|| (units::brief(r.chi2() / dof as f64, 3), dof))
+}
+
+/// The worst measurement, `ω2 +4.9 rad/s (1.6σ)`, and without its unit where the sigmas say enough.
+fn worst(c: &Compared) -> Vec<String> {
+    let residual = format!("{} {}", symbol(c.quantity), signed(c.residual()));
+    let unit = c.quantity.unit();
+    let with_unit = format!("{residual} {unit}").trim_end().to_string();
+    match c.sigma {
+        Some(_) => {
+            let sigmas = format!(" ({}σ)", units::brief(c.weighted().abs(), 2));
+            vec![with_unit + &sigmas, residual + &sigmas]
+        }
+        None => vec![with_unit],
+    }
 }
 
 /// The panel's lines on the data (none without data); labels as the panel's others, `wide` or not.
@@ -86,6 +89,8 @@ pub fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
             theme.dim(),
         )
     };
+    // The columns after the label on the narrowest panel of each kind (outcome.rs: 40 and 33 inside).
+    let room = if wide { 22 } else { 24 };
     let rows = data.rows.len();
     let Some(r) = app.lab.residuals.as_deref() else {
         return vec![Line::from(vec![
@@ -99,28 +104,53 @@ pub fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
     } else {
         theme.dim()
     };
-    let words = |text: String| Span::styled(theme.words(&text).into_owned(), style);
-    let mut lines = vec![Line::from(vec![
-        label(&format!("data {rows}"), &format!("data ({rows} rows)")),
-        match r.rms() {
-            Some(rms) => words(spread(r, rms, app.lab.free.len())),
-            None => words("no row solved".into()),
-        },
-    ])];
+    let shown = |text: &str| theme.words(text).into_owned();
+    // The first of `forms` that fits the room, else the last.
+    let fitting = |forms: Vec<String>| {
+        let last = forms.last().cloned().unwrap_or_default();
+        let text = forms
+            .into_iter()
+            .map(|f| shown(&f))
+            .find(|f| f.chars().count() <= room)
+            .unwrap_or_else(|| shown(&last));
+        Span::styled(text, style)
+    };
+    let data_label = label(&format!("data {rows}"), &format!("data ({rows} rows)"));
+    let mut lines = Vec::new();
+    match (r.rms(), chi2(r, app.lab.free.len())) {
+        (None, _) => lines.push(Line::from(vec![
+            data_label,
+            fitting(vec!["no row solved".into()]),
+        ])),
+        (Some(x), None) => lines.push(Line::from(vec![data_label, fitting(vec![rms(r, x)])])),
+        (Some(x), Some((per_dof, dof))) => {
+            let one = format!("{} chi2/dof {per_dof}", rms(r, x));
+            // Wide, chi2 has a line of its own, with the degrees of freedom; narrow, if it must.
+            if !wide && shown(&one).chars().count() <= room {
+                lines.push(Line::from(vec![data_label, fitting(vec![one])]));
+            } else {
+                lines.push(Line::from(vec![data_label, fitting(vec![rms(r, x)])]));
+                lines.push(Line::from(vec![
+                    label("chi2/dof", "chi2/dof"),
+                    fitting(vec![format!("{per_dof} ({dof} dof)"), per_dof]),
+                ]));
+            }
+        }
+    }
     if let Some(c) = r.worst() {
         lines.push(Line::from(vec![
             label(
                 &format!("line {}", c.line),
                 &format!("furthest: line {}", c.line),
             ),
-            words(worst(c, wide)),
+            fitting(worst(c)),
         ]));
     }
     if !r.unsolved.is_empty() {
         let listed: Vec<String> = r.unsolved.iter().map(usize::to_string).collect();
         lines.push(Line::from(vec![
             label("unsolved", "rows not solved"),
-            words(format!("lines {}", listed.join(", "))),
+            fitting(vec![format!("lines {}", listed.join(", "))]),
         ]));
     }
     lines
