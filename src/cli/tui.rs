@@ -2,9 +2,12 @@
 //! shot preset, a scenario with a shot in it or any shot flag starts it exploring that shot, from the
 //! same parameters `snapback shot` would play.
 
+use std::path::PathBuf;
+
 use clap::{Args, ValueEnum};
 use ratatui::symbols::Marker;
 
+use super::fit::read_data;
 use super::{Failure, ShotParamArgs, shot};
 pub use crate::config::Theme as ThemeArg;
 use crate::config::{self, Charset};
@@ -64,6 +67,10 @@ pub struct TuiArgs {
     /// Write Unicode (braille, box drawing, Greek letters) whatever the locale says.
     #[arg(long)]
     pub unicode: bool,
+    /// Measurements to show beside the model, and to fit with f and F: CSV as for `snapback fit`
+    /// (- reads standard input; the keys are then read from the terminal).
+    #[arg(long, value_name = "FILE")]
+    pub data: Option<PathBuf>,
 }
 
 /// Where the explorer starts, and whether it explores a shot: refused as `snapback shot` refuses them,
@@ -111,6 +118,7 @@ pub fn run(args: &TuiArgs) -> Result<(), Failure> {
             Some(Charset::Auto) | None => !tui::locale::utf8_here(),
         }
     };
+    let data = args.data.as_deref().map(read_data).transpose()?;
     let options = Options {
         params,
         marker: marker.into(),
@@ -119,6 +127,7 @@ pub fn run(args: &TuiArgs) -> Result<(), Failure> {
         ascii,
         fps: args.fps.or(config.fps).unwrap_or(playback::DEFAULT_FPS),
         shot,
+        data,
     };
     tui::open(options).map_err(|e| match e {
         OpenError::NotATerminal | OpenError::Solve(_) => Failure::usage(e),

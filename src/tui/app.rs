@@ -7,12 +7,14 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use crate::analysis::uncertainty::parse_uncertain;
 use crate::model::params::{self, BOUNCE_PARAMS as PARAMS, ParamSpec};
 use crate::model::{Params, Sample, SolveError};
 
 use super::baseline::Baseline;
 use super::heatmap::Heatmap;
 use super::history::History;
+use super::lab::Lab;
 use super::playback::{self, Speed};
 use super::scenarios::FilePrompt;
 use super::shot::{self, Shots};
@@ -132,6 +134,10 @@ pub enum Action {
     ClearBaseline,
     /// Write the time series as CSV and the outcome as JSON.
     Export,
+    /// Mark the selected parameter free for a fit, or fixed again.
+    ToggleFree,
+    /// Fit the free parameters to the measurements in the background, or stop the fit under way.
+    Fit,
 }
 
 /// Who gets the keys.
@@ -223,6 +229,8 @@ pub struct App {
     changed_at: Instant,
     /// True while pending panels are drawn dimmed.
     pub stale_marked: bool,
+    /// Measurements, free parameters, fits and uncertainties (`--data`, `f`, `F`, `60±1`).
+    pub lab: Lab,
 }
 
 /// The most the help scrolls: more than its rows on the narrowest screen.
@@ -266,6 +274,7 @@ impl App {
             solver: Solver::default(),
             changed_at: Instant::now(),
             stale_marked: false,
+            lab: Lab::default(),
         };
         app.want();
         Ok(app)
@@ -293,6 +302,7 @@ impl App {
             let base = self.baseline.as_ref().map(|b| b.solved.params);
             self.shots.request(&self.params, base.as_ref());
         }
+        self.want_lab();
     }
 
     /// Takes what the workers have sent, and marks panels stale whose answer is overdue; true if anything
@@ -301,12 +311,13 @@ impl App {
         let arrived = self.solver.collect();
         let heatmap = self.heatmap.poll();
         let shot = self.shots.poll(&self.params);
+        let lab = self.poll_lab();
         let taken = self.take(arrived);
         let marked = (self.solver.busy() || self.shots.pending())
             && self.changed_at.elapsed() >= STALE_AFTER;
         let flipped = marked != self.stale_marked;
         self.stale_marked = marked;
-        taken || heatmap || shot || flipped
+        taken || heatmap || shot || lab || flipped
     }
 
     /// Waits until every answer asked for has come, or `patience` has passed; true if all came. For tests
@@ -328,8 +339,10 @@ impl App {
                 self.take(arrived);
             } else if self.shots.pending() {
                 self.shots.wait(wait, &self.params);
-            } else {
+            } else if self.heatmap.pending() {
                 self.heatmap.wait(wait);
+            } else {
+                self.wait_lab(wait);
             }
         }
     }
@@ -341,7 +354,7 @@ impl App {
 
     /// True while something asked for has not come yet: the event loop then wakes now and then to take it.
     pub fn busy(&self) -> bool {
-        self.solver.busy() || self.heatmap.pending() || self.shots.pending()
+        self.solver.busy() || self.heatmap.pending() || self.shots.pending() || self.lab.pending()
     }
 
     fn take(&mut self, arrived: Vec<Arrival>) -> bool {
@@ -482,7 +495,7 @@ impl App {
         if self.shots.on
             && matches!(
                 action,
-                Action::Step { .. } | Action::StartEdit | Action::Reset
+                Action::Step { .. } | Action::StartEdit | Action::Reset | Action::ToggleFree
             )
             && shot::derived(self.selected_spec().id)
         {
@@ -579,7 +592,9 @@ impl App {
                     self.help_scroll.saturating_sub(1)
                 };
             }
+            Action::Quit if self.lab.fitting.is_some() => self.update_lab(action),
             Action::Quit => self.quit_or_ask(),
+            Action::ToggleFree | Action::Fit => self.update_lab(action),
             Action::OpenPicker
             | Action::PickerUp
             | Action::PickerDown
@@ -644,8 +659,15 @@ impl App {
             return;
         };
         let spec = self.selected_spec();
-        match spec.parse(&text) {
-            Ok(value) => {
+        match parse_uncertain(spec, &text) {
+            Ok((_, Some(_))) if spec.integer => self.refuse(format!(
+                "{} {} is a whole number: it takes no uncertainty",
+                spec.label, spec.symbol
+            )),
+            Ok((value, sigma)) => {
+                if let Some(sigma) = sigma {
+                    self.spread_typed(spec, sigma);
+                }
                 let mut params = self.params;
                 params.set(spec.id, value);
                 self.try_apply(params);

@@ -9,16 +9,19 @@
 //! runs it on the real terminal.
 
 pub mod app;
+pub mod band;
 pub mod baseline;
 pub mod decode;
 pub mod heatmap;
 pub mod history;
 pub mod input;
 pub mod keys;
+pub mod lab;
 pub mod locale;
 pub mod output;
 pub mod peak;
 pub mod playback;
+pub mod residuals;
 pub mod scenarios;
 pub mod shot;
 pub mod solved;
@@ -44,6 +47,7 @@ pub use input::TerminalEvents;
 pub use terminal::FrameSync;
 use ui::theme::Theme;
 
+use crate::analysis::fit::data::Dataset;
 use crate::model::{Params, SolveError};
 
 /// What the event loop reacts to: a terminal event, or wall time passing while the bounce plays.
@@ -208,7 +212,7 @@ where
 }
 
 /// How to start the explorer.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Options {
     /// The starting point: the defaults, or what a preset, a scenario file and flags made of them.
     /// `r` and `R` reset to it.
@@ -224,6 +228,8 @@ pub struct Options {
     pub fps: u32,
     /// Explore a shot from the start (a shot preset, scenario or flag).
     pub shot: bool,
+    /// Measurements to show beside the model and to fit (`--data`).
+    pub data: Option<Dataset>,
 }
 
 /// Why the explorer could not run.
@@ -261,6 +267,9 @@ pub fn open(options: Options) -> Result<(), OpenError> {
     let mut app = App::new(options.params, theme)?;
     if options.shot {
         app.explore_shot();
+    }
+    if let Some(data) = options.data {
+        app.load_data(data);
     }
     app.frame = Duration::from_secs_f64(1.0 / f64::from(options.fps.max(1)));
     let mut session = terminal::Session::start(options.ascii)?;

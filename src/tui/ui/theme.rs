@@ -50,7 +50,7 @@ fn light(color: Color) -> Color {
 
 /// What the ASCII screen writes for the symbols of the Unicode one, longest first: key pairs as the
 /// letters that do the same (`↑↓` as `jk`), key symbols and Greek letters as words.
-const WORDS: [(&str, &str); 18] = [
+const WORDS: [(&str, &str); 19] = [
     ("↑↓", "jk"),
     ("←→", "hl"),
     ("␣", "Space"),
@@ -65,6 +65,7 @@ const WORDS: [(&str, &str); 18] = [
     ("δ", "delta"),
     ("ψ", "psi"),
     ("φ", "phi"),
+    ("σ", "sd"),
     ("Δ", "d"),
     ("±", "+-"),
     ("°", " deg"),
@@ -196,6 +197,16 @@ impl Theme {
             .fg(self.pick(Color::Red))
             .add_modifier(Modifier::BOLD)
     }
+    /// Measured points drawn on the charts (`--data`).
+    pub fn measured(&self) -> Color {
+        self.pick(Color::Red)
+    }
+
+    /// The uncertainty band of the sweep view.
+    pub fn band(&self) -> Color {
+        self.pick(Color::Blue)
+    }
+
     /// The pinned baseline's curves, under the current ones. Without colour they are drawn dotted
     /// instead (see `ui::charts`).
     pub fn baseline(&self) -> Color {
