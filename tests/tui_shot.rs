@@ -232,6 +232,7 @@ fn the_incidence_is_refused_in_shot_mode_naming_the_shot_parameters() {
         key(KeyCode::Enter),
         char('r'),
         char('L'),
+        char('f'),
     ] {
         let mut events = start.clone();
         events.push(attempt);
