@@ -682,4 +682,93 @@ mod tests {
             }
         }
     }
+
+    /// A grip on a cart moving against string friction solves z' = A z + b (its modes against the
+    /// exponential of the augmented matrix, and both against the equation by central differences), from a
+    /// heavy cart on a soft spring (whose equilibrium P/k lies metres away) to a light stiff one and a
+    /// free one; a held cart stays put while the stretch rings down.
+    #[test]
+    fn a_pushed_grip_solves_the_forced_system_and_a_held_one_stays_put() {
+        let mut modal = 0;
+        let start = State {
+            t: 1e-3,
+            vx: 3.0,
+            omega: 40.0,
+            x: 2e-3,
+            v: 1.5,
+        };
+        for (cart_mass, stiffness, damping) in [
+            (1709.0, 1.0, 1.0),
+            (0.01, 15e3, 0.3),
+            (0.05, 4e4, 0.0),
+            (0.01, 0.0, 0.5),
+        ] {
+            let params = Params {
+                cart_mass,
+                stiffness,
+                cart_friction: 20.0,
+                ball_stiffness: 4e5,
+                ball_damping: damping,
+                ..Params::default()
+            };
+            let setup = Setup::new(&params);
+            let compliance = Compliance::new(&params, &setup);
+            let grip = CompliantGrip::new(compliance, start, 1e-4, &setup, Cart::Moving(1));
+            let push = Cart::Moving(1).friction(&setup);
+            let b = compliance.forcing(push);
+            let scale = grip.energy_norm(&setup, &grip.z0) + 1.0;
+            for tau in [1e-6, 1e-4, 1e-3, 3e-3] {
+                let t = start.t + tau;
+                let (z, dz) = grip.propagate(t);
+                if let (Drive::Pushed { push }, Some(_)) = (&grip.drive, &grip.coefficients) {
+                    modal += 1;
+                    let exact = compliance.exp_forced(tau, &grip.z0, *push);
+                    let error = grip.energy_norm(&setup, &(z - exact));
+                    assert!(
+                        error <= 1e-12 * scale,
+                        "M {cart_mass}: modes off by {error}"
+                    );
+                }
+                let rate = compliance.a * z + b;
+                let h = 1e-8;
+                let numerical = (grip.propagate(t + h).0 - grip.propagate(t - h).0) / (2.0 * h);
+                for i in 0..4 {
+                    let size = rate[i].abs() + dz[i].abs() + 1.0;
+                    assert!(
+                        (dz[i] - rate[i]).abs() <= 1e-9 * size,
+                        "M {cart_mass} z'[{i}]"
+                    );
+                    assert!(
+                        (numerical[i] - rate[i]).abs() <= 1e-5 * size,
+                        "M {cart_mass} z'[{i}]: {} vs {}",
+                        numerical[i],
+                        rate[i]
+                    );
+                }
+            }
+            let held = CompliantGrip::new(
+                compliance,
+                State { v: 0.0, ..start },
+                1e-4,
+                &setup,
+                Cart::Stuck,
+            );
+            let mut previous = f64::INFINITY;
+            for tau in [0.0, 1e-4, 1e-3, 3e-3] {
+                let p = held.at(&setup, start.t + tau);
+                assert_eq!((p.state.x, p.state.v), (start.x, 0.0));
+                // m_eff e'' = -F while the patch is held.
+                assert!(
+                    (setup.m_eff * p.dde + p.friction).abs() <= 1e-9 * p.friction.abs().max(1.0)
+                );
+                let energy = compliance.kb * p.e * p.e + setup.m_eff * p.de * p.de;
+                assert!(
+                    energy <= previous * (1.0 + 1e-12),
+                    "the held stretch gains energy"
+                );
+                previous = energy;
+            }
+        }
+        assert!(modal >= 8, "the modes were checked {modal} times");
+    }
 }
