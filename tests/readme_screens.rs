@@ -1,7 +1,8 @@
 //! README.md's captures of the explorer are the explorer's screens: each `text` block after a comment
-//! `<!-- screen WIDTHxHEIGHT [no-colour] keys: KEY ... -->` must be what the explorer draws on a screen of
-//! that size after those keys (`]x14` presses `]` fourteen times; `Tab`, `}` and other characters as
-//! named), once the heatmap, if shown, has filled in.
+//! `<!-- screen WIDTHxHEIGHT [no-colour] [data=FILE] keys: KEY ... -->` must be what the explorer draws on
+//! a screen of that size (with the measurements in FILE, as `--data FILE`) after those keys (`]x14`
+//! presses `]` fourteen times; `Tab`, `}` and other characters as named), once the heatmap, if shown,
+//! has filled in.
 
 use std::io;
 use std::time::{Duration, Instant};
@@ -9,6 +10,7 @@ use std::time::{Duration, Instant};
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
+use snapback::analysis::fit::data;
 use snapback::model::Params;
 use snapback::tui::ui::theme::Theme;
 use snapback::tui::{App, EventSource, Input, run};
@@ -23,6 +25,8 @@ struct Capture {
     line: usize,
     size: (u16, u16),
     colour: bool,
+    /// The measurements' file, relative to the repository.
+    data: Option<String>,
     keys: Vec<Input>,
     shown: String,
 }
@@ -68,13 +72,19 @@ fn captures() -> Vec<Capture> {
         let (head, key_spec) = spec.split_once("keys:").expect("`keys:` in the comment");
         let mut words = head.split_whitespace();
         let (w, h) = words.next().unwrap().split_once('x').unwrap();
-        let colour = words.next() != Some("no-colour");
+        let options: Vec<&str> = words.collect();
+        let colour = !options.contains(&"no-colour");
+        let data = options
+            .iter()
+            .find_map(|o| o.strip_prefix("data="))
+            .map(String::from);
         let start = n + 1 + lines[n + 1..].iter().position(|l| *l == "```text").unwrap();
         let end = start + 1 + lines[start + 1..].iter().position(|l| *l == "```").unwrap();
         found.push(Capture {
             line: n + 1,
             size: (w.parse().unwrap(), h.parse().unwrap()),
             colour,
+            data,
             keys: keys(key_spec),
             shown: lines[start + 1..end].join("\n"),
         });
@@ -117,6 +127,10 @@ fn draw(capture: &Capture) -> String {
     };
     let mut terminal = Terminal::new(TestBackend::new(capture.size.0, capture.size.1)).unwrap();
     let mut app = App::new(Params::default(), theme).unwrap();
+    if let Some(file) = &capture.data {
+        let text = std::fs::read_to_string(file).unwrap();
+        app.load_data(data::parse(&text, file).unwrap());
+    }
     let mut keys = Keys {
         keys: capture.keys.clone(),
         started: Instant::now(),
@@ -132,7 +146,11 @@ fn draw(capture: &Capture) -> String {
 #[test]
 fn every_screen_capture_is_the_explorers_screen() {
     let captures = captures();
-    assert_eq!(captures.len(), 3, "the contact, sweep and heatmap views");
+    assert_eq!(
+        captures.len(),
+        4,
+        "the contact, sweep and heatmap views, and the lab"
+    );
     let mut stale = Vec::new();
     for capture in &captures {
         let drawn = draw(capture);

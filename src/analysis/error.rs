@@ -2,8 +2,8 @@
 
 use crate::model::{ParamError, SolveError};
 
-/// An analysis failure. All of them come from the input, so the command line reports them with
-/// status 2; each message names the flag, the allowed values and the value given.
+/// An analysis failure. All but [`AnalysisError::Cancelled`] come from the input, so the command line
+/// reports them with status 2; each message names the flag, the allowed values and the value given.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum AnalysisError {
     /// A flag of the analysis itself (`--from`, `--steps`, `--objective`, ...) is unusable.
@@ -25,4 +25,7 @@ pub enum AnalysisError {
     /// The core could not solve one of a fixed set of cases (the paper's figures and claims).
     #[error("{case}: {source}")]
     Case { case: String, source: SolveError },
+    /// The caller stopped the analysis (the explorer's fit, cancelled by a key).
+    #[error("cancelled")]
+    Cancelled,
 }

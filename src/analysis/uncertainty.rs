@@ -11,8 +11,8 @@ use rayon::prelude::*;
 
 use super::AnalysisError;
 use super::fit::data::Quantity;
-use crate::model::params::{ParamId, spec};
-use crate::model::{Params, solve};
+use crate::model::params::{ParamId, ParamSpec, spec};
+use crate::model::{ParamError, Params, solve, units};
 
 /// The default number of draws.
 pub const DEFAULT_SAMPLES: usize = 1000;
@@ -22,6 +22,59 @@ pub const DEFAULT_SAMPLES: usize = 1000;
 pub struct Spread {
     pub id: ParamId,
     pub sigma: f64,
+}
+
+/// A value with an uncertainty that cannot be read.
+#[derive(Debug, thiserror::Error)]
+pub enum UncertainError {
+    #[error(transparent)]
+    Value(#[from] ParamError),
+    /// The uncertainty, as typed, is not a number >= 0 in the value's unit.
+    #[error(
+        "--{flag}: the uncertainty must be a number >= 0 (a unit suffix as for the value); got {given}"
+    )]
+    Spread { flag: &'static str, given: String },
+}
+
+/// `text` split at `±` or `+-` into the value and its uncertainty, if it has one.
+pub fn split_uncertainty(text: &str) -> (&str, Option<&str>) {
+    for mark in ["±", "+-"] {
+        if let Some((value, spread)) = text.split_once(mark) {
+            return (value, Some(spread));
+        }
+    }
+    (text, None)
+}
+
+/// The unit suffix of a value as typed (`rpm` of `-3820rpm`, empty for a bare number).
+fn suffix(value: &str) -> &str {
+    value
+        .trim()
+        .trim_start_matches(|c: char| c.is_ascii_digit() || "+-.eE ".contains(c))
+}
+
+/// A value of `spec` as typed, with its standard uncertainty if it carries one (`50±1`, `50+-1`,
+/// `-3820rpm±200`: a bare uncertainty is in the value's unit); both in the base unit.
+pub fn parse_uncertain(spec: &ParamSpec, text: &str) -> Result<(f64, Option<f64>), UncertainError> {
+    let (value, spread) = split_uncertainty(text);
+    let parsed = spec.parse(value)?;
+    let Some(spread) = spread else {
+        return Ok((parsed, None));
+    };
+    let spread = spread.trim();
+    let typed = if spread.parse::<f64>().is_ok() {
+        format!("{spread}{}", suffix(value))
+    } else {
+        spread.to_string()
+    };
+    let sigma = units::parse(&typed, spec.dimension)
+        .ok()
+        .filter(|v| v.is_finite() && *v >= 0.0)
+        .ok_or_else(|| UncertainError::Spread {
+            flag: spec.flag,
+            given: spread.to_string(),
+        })?;
+    Ok((parsed, Some(sigma)))
 }
 
 /// One outcome's mean and standard deviation over the draws (`None` where no draw defines it: e_x

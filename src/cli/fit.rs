@@ -1,17 +1,17 @@
 //! `snapback fit`: the free parameters that best explain measured rebounds, with their uncertainties.
 
 use std::fmt::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use clap::{Args, ValueEnum};
 use serde_json::{Map, Value, json};
 
 use super::{Failure, ParamArgs, emit};
-use crate::analysis::fit::{self, Fit, Options, data, free};
+use crate::analysis::fit::{self, Fit, Options, data, free, shown};
 use crate::input;
+use crate::model::Params;
 use crate::model::params::spec;
 use crate::model::units;
-use crate::model::{ParamId, Params};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -49,14 +49,7 @@ pub fn run(args: &FitArgs) -> Result<(), Failure> {
         .params
         .apply(Params::default())
         .map_err(Failure::usage)?;
-    let origin = if input::is_stdin(&args.data) {
-        input::STDIN_NAME.to_string()
-    } else {
-        args.data.display().to_string()
-    };
-    let text =
-        input::read_text(&args.data).map_err(|e| Failure::usage(format!("{origin}: {e}")))?;
-    let data = data::parse(&text, &origin).map_err(Failure::usage)?;
+    let data = read_data(&args.data)?;
     let free = free::parse_list(&args.free, &data.conditions).map_err(Failure::usage)?;
     let fit = fit::fit(&base, &free, &data, &Options::default()).map_err(Failure::usage)?;
     let text = match args.format {
@@ -64,6 +57,18 @@ pub fn run(args: &FitArgs) -> Result<(), Failure> {
         Format::Json => format!("{:#}\n", json(&fit)),
     };
     emit(&text)
+}
+
+/// The measurements in `path` (standard input for `-`): a file that cannot be read, or a bad cell, is an
+/// error naming file, line and column. The explorer's `--data` reads them so too.
+pub(super) fn read_data(path: &Path) -> Result<data::Dataset, Failure> {
+    let origin = if input::is_stdin(path) {
+        input::STDIN_NAME.to_string()
+    } else {
+        path.display().to_string()
+    };
+    let text = input::read_text(path).map_err(|e| Failure::usage(format!("{origin}: {e}")))?;
+    data::parse(&text, &origin).map_err(Failure::usage)
 }
 
 /// An optional number as JSON (`null` for none).
@@ -117,20 +122,6 @@ pub fn json(fit: &Fit) -> Value {
         "converged": fit.converged,
         "undetermined": fit.undetermined().iter().map(|&id| spec(id).key).collect::<Vec<_>>(),
     })
-}
-
-/// A value in a parameter's display unit, to the decimal place of the second significant digit of
-/// `precision` (its standard error; at most 9 decimals), or to 5 significant digits without one.
-fn shown(id: ParamId, value: f64, precision: Option<f64>) -> String {
-    let s = spec(id);
-    let display = |x: f64| units::in_unit(x, s.dimension, s.display_unit);
-    match precision.map(display).filter(|p| *p > 0.0) {
-        Some(p) => {
-            let decimals = (1 - p.log10().floor() as i32).clamp(0, 9) as usize;
-            format!("{:.decimals$}", display(value))
-        }
-        None => units::brief(display(value), 5),
-    }
 }
 
 /// The fit as text in the explorer's units.

@@ -8,7 +8,7 @@ use std::path::PathBuf;
 
 use clap::{Arg, ArgMatches, Args, Command, FromArgMatches};
 
-use crate::analysis::uncertainty::Spread;
+use crate::analysis::uncertainty::{Spread, UncertainError, parse_uncertain, split_uncertainty};
 use crate::model::params::{BOUNCE_PARAMS, PARAMS, ParamError, ParamId, ParamSpec, Params, spec};
 use crate::model::units;
 use crate::scenario::{self, Scenario, ScenarioError};
@@ -61,23 +61,6 @@ pub enum InputError {
     Uncertainty(String),
 }
 
-/// `text` split at `±` or `+-` into the value and its uncertainty, if it has one.
-fn split_uncertainty(text: &str) -> (&str, Option<&str>) {
-    for mark in ["±", "+-"] {
-        if let Some((value, spread)) = text.split_once(mark) {
-            return (value, Some(spread));
-        }
-    }
-    (text, None)
-}
-
-/// The unit suffix of a value as typed (`rpm` of `-3820rpm`, empty for a bare number).
-fn suffix(value: &str) -> &str {
-    value
-        .trim()
-        .trim_start_matches(|c: char| c.is_ascii_digit() || "+-.eE ".contains(c))
-}
-
 impl<F: FlagSet> FlagArgs<F> {
     /// `base`, then the preset, then the scenario file, then each flag given (flags override the
     /// scenario), every value parsed and checked; the first bad one is the error.
@@ -107,25 +90,12 @@ impl<F: FlagSet> FlagArgs<F> {
             base = Scenario::load(path)?.apply(base);
         }
         for (id, text) in &self.given {
-            let (value, spread) = split_uncertainty(text);
-            let s = spec(*id);
-            base.set(*id, s.parse(value)?);
-            if let Some(spread) = spread {
-                let spread = spread.trim();
-                let typed = if spread.parse::<f64>().is_ok() {
-                    format!("{spread}{}", suffix(value))
-                } else {
-                    spread.to_string()
-                };
-                let sigma = units::parse(&typed, s.dimension)
-                    .ok()
-                    .filter(|v| v.is_finite() && *v >= 0.0)
-                    .ok_or_else(|| {
-                        InputError::Uncertainty(format!(
-                            "--{}: the uncertainty must be a number >= 0 (a unit suffix as for the value); got {spread}",
-                            s.flag
-                        ))
-                    })?;
+            let (value, sigma) = parse_uncertain(spec(*id), text).map_err(|e| match e {
+                UncertainError::Value(e) => InputError::Param(e),
+                spread => InputError::Uncertainty(spread.to_string()),
+            })?;
+            base.set(*id, value);
+            if let Some(sigma) = sigma {
                 spreads.push(Spread { id: *id, sigma });
             }
         }

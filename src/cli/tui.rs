@@ -1,8 +1,11 @@
 //! `snapback tui` (and `snapback` alone): the full-screen explorer, started from the given parameters.
 
+use std::path::PathBuf;
+
 use clap::{Args, ValueEnum};
 use ratatui::symbols::Marker;
 
+use super::fit::read_data;
 use super::{Failure, ParamArgs};
 pub use crate::config::Theme as ThemeArg;
 use crate::config::{self, Charset};
@@ -60,6 +63,10 @@ pub struct TuiArgs {
     /// Write Unicode (braille, box drawing, Greek letters) whatever the locale says.
     #[arg(long)]
     pub unicode: bool,
+    /// Measurements to show beside the model, and to fit with f and F: CSV as for `snapback fit`
+    /// (- reads standard input; the keys are then read from the terminal).
+    #[arg(long, value_name = "FILE")]
+    pub data: Option<PathBuf>,
 }
 
 pub fn run(args: &TuiArgs) -> Result<(), Failure> {
@@ -84,6 +91,7 @@ pub fn run(args: &TuiArgs) -> Result<(), Failure> {
             Some(Charset::Auto) | None => !tui::locale::utf8_here(),
         }
     };
+    let data = args.data.as_deref().map(read_data).transpose()?;
     let options = Options {
         params,
         marker: marker.into(),
@@ -91,6 +99,7 @@ pub fn run(args: &TuiArgs) -> Result<(), Failure> {
         light: args.theme.or(config.theme).unwrap_or_default() == ThemeArg::Light,
         ascii,
         fps: args.fps.or(config.fps).unwrap_or(playback::DEFAULT_FPS),
+        data,
     };
     tui::open(options).map_err(|e| match e {
         OpenError::NotATerminal | OpenError::Solve(_) => Failure::usage(e),

@@ -7,12 +7,14 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
+use crate::analysis::uncertainty::parse_uncertain;
 use crate::model::params::{BOUNCE_PARAMS as PARAMS, ParamSpec};
 use crate::model::{Params, Sample, SolveError};
 
 use super::baseline::Baseline;
 use super::heatmap::Heatmap;
 use super::history::History;
+use super::lab::Lab;
 use super::playback::{self, Speed};
 use super::scenarios::FilePrompt;
 use super::solved::Solved;
@@ -128,6 +130,10 @@ pub enum Action {
     ClearBaseline,
     /// Write the time series as CSV and the outcome as JSON.
     Export,
+    /// Mark the selected parameter free for a fit, or fixed again.
+    ToggleFree,
+    /// Fit the free parameters to the measurements in the background, or stop the fit under way.
+    Fit,
 }
 
 /// Who gets the keys.
@@ -217,6 +223,8 @@ pub struct App {
     changed_at: Instant,
     /// True while pending panels are drawn dimmed.
     pub stale_marked: bool,
+    /// Measurements, free parameters, fits and uncertainties (`--data`, `f`, `F`, `60±1`).
+    pub lab: Lab,
 }
 
 /// The most the help scrolls: more than its rows on the narrowest screen.
@@ -259,6 +267,7 @@ impl App {
             solver: Solver::default(),
             changed_at: Instant::now(),
             stale_marked: false,
+            lab: Lab::default(),
         };
         app.want();
         Ok(app)
@@ -282,6 +291,7 @@ impl App {
         if self.view == View::Heatmap {
             self.heatmap.request(&self.params);
         }
+        self.want_lab();
     }
 
     /// Takes what the workers have sent, and marks panels stale whose answer is overdue; true if anything
@@ -289,11 +299,12 @@ impl App {
     pub fn poll(&mut self) -> bool {
         let arrived = self.solver.collect();
         let heatmap = self.heatmap.poll();
+        let lab = self.poll_lab();
         let taken = self.take(arrived);
         let marked = self.solver.busy() && self.changed_at.elapsed() >= STALE_AFTER;
         let flipped = marked != self.stale_marked;
         self.stale_marked = marked;
-        taken || heatmap || flipped
+        taken || heatmap || lab || flipped
     }
 
     /// Waits until every answer asked for has come, or `patience` has passed; true if all came. For tests
@@ -313,8 +324,10 @@ impl App {
             if self.solver.busy() {
                 let arrived = self.solver.wait(wait);
                 self.take(arrived);
-            } else {
+            } else if self.heatmap.pending() {
                 self.heatmap.wait(wait);
+            } else {
+                self.wait_lab(wait);
             }
         }
     }
@@ -326,7 +339,7 @@ impl App {
 
     /// True while something asked for has not come yet: the event loop then wakes now and then to take it.
     pub fn busy(&self) -> bool {
-        self.solver.busy() || self.heatmap.pending()
+        self.solver.busy() || self.heatmap.pending() || self.lab.pending()
     }
 
     fn take(&mut self, arrived: Vec<Arrival>) -> bool {
@@ -525,7 +538,9 @@ impl App {
                     self.help_scroll.saturating_sub(1)
                 };
             }
+            Action::Quit if self.lab.fitting.is_some() => self.update_lab(action),
             Action::Quit => self.quit_or_ask(),
+            Action::ToggleFree | Action::Fit => self.update_lab(action),
             Action::OpenPicker
             | Action::PickerUp
             | Action::PickerDown
@@ -590,8 +605,15 @@ impl App {
             return;
         };
         let spec = self.selected_spec();
-        match spec.parse(&text) {
-            Ok(value) => {
+        match parse_uncertain(spec, &text) {
+            Ok((_, Some(_))) if spec.integer => self.refuse(format!(
+                "{} {} is a whole number: it takes no uncertainty",
+                spec.label, spec.symbol
+            )),
+            Ok((value, sigma)) => {
+                if let Some(sigma) = sigma {
+                    self.spread_typed(spec, sigma);
+                }
                 let mut params = self.params;
                 params.set(spec.id, value);
                 self.try_apply(params);

@@ -294,6 +294,18 @@ pub const EXPLORER: &[Binding] = &[
         "export the series (CSV) and outcome (JSON) here",
         extra("x", "export"),
     ),
+    bind(
+        &[Plain(KeyCode::Char('f'))],
+        Action::ToggleFree,
+        "mark this parameter free for a fit, or fixed",
+        None,
+    ),
+    bind(
+        &[Plain(KeyCode::Char('F'))],
+        Action::Fit,
+        "fit the free ones to --data; F, Esc or q stop it",
+        None,
+    ),
 ];
 
 /// The keys of the value prompt.

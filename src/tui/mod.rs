@@ -9,16 +9,19 @@
 //! runs it on the real terminal.
 
 pub mod app;
+pub mod band;
 pub mod baseline;
 pub mod decode;
 pub mod heatmap;
 pub mod history;
 pub mod input;
 pub mod keys;
+pub mod lab;
 pub mod locale;
 pub mod output;
 pub mod peak;
 pub mod playback;
+pub mod residuals;
 pub mod scenarios;
 pub mod solved;
 pub mod solver;
@@ -43,6 +46,7 @@ pub use input::TerminalEvents;
 pub use terminal::FrameSync;
 use ui::theme::Theme;
 
+use crate::analysis::fit::data::Dataset;
 use crate::model::{Params, SolveError};
 
 /// What the event loop reacts to: a terminal event, or wall time passing while the bounce plays.
@@ -207,7 +211,7 @@ where
 }
 
 /// How to start the explorer.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct Options {
     /// The starting point: the defaults, or what a preset, a scenario file and flags made of them.
     /// `r` and `R` reset to it.
@@ -221,6 +225,8 @@ pub struct Options {
     pub ascii: bool,
     /// Frames a second while the bounce plays.
     pub fps: u32,
+    /// Measurements to show beside the model and to fit (`--data`).
+    pub data: Option<Dataset>,
 }
 
 /// Why the explorer could not run.
@@ -256,6 +262,9 @@ pub fn open(options: Options) -> Result<(), OpenError> {
         light: options.light,
     };
     let mut app = App::new(options.params, theme)?;
+    if let Some(data) = options.data {
+        app.load_data(data);
+    }
     app.frame = Duration::from_secs_f64(1.0 / f64::from(options.fps.max(1)));
     let mut session = terminal::Session::start(options.ascii)?;
     let mut events = TerminalEvents::start()?;

@@ -16,14 +16,14 @@ pub type Answer = Result<Arc<Solved>, String>;
 
 /// The latest answers, newest last, at most `CAPACITY` of them.
 #[derive(Debug)]
-struct Recent<T> {
+pub(super) struct Recent<T> {
     entries: Vec<(Params, T)>,
 }
 
 impl<T: Clone> Recent<T> {
     const CAPACITY: usize = 32;
 
-    fn get(&self, key: &Params) -> Option<T> {
+    pub(super) fn get(&self, key: &Params) -> Option<T> {
         self.entries
             .iter()
             .rev()
@@ -31,7 +31,7 @@ impl<T: Clone> Recent<T> {
             .map(|(_, v)| v.clone())
     }
 
-    fn put(&mut self, key: Params, value: T) {
+    pub(super) fn put(&mut self, key: Params, value: T) {
         self.entries.retain(|(k, _)| *k != key);
         if self.entries.len() == Self::CAPACITY {
             self.entries.remove(0);

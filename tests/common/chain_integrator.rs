@@ -25,6 +25,9 @@ pub struct Numerical {
     /// The first mass's displacement at the end.
     pub x1: f64,
     pub phases: usize,
+    /// Phases of the ball alone: a change of the first mass's motion under a ball that slides on does
+    /// not count.
+    pub ball_phases: usize,
     /// Whether string friction held the first mass still at some time.
     pub stuck: bool,
     /// Whether the ball gripped at any time.
@@ -283,6 +286,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     let mut mode = (ball, cart);
     let mut t = 0.0;
     let mut phases = 1;
+    let mut ball_phases = 1;
     let mut stuck = cart == Cart::Stuck;
     let mut gripped = ball == Ball::Grip;
     // An event function right after a transition sits on zero; ignore it for a few nanoseconds.
@@ -315,7 +319,9 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
             break;
         }
         let ball_fired = model.events(mode, t, &y).0;
+        let before = mode.0;
         mode = model.next(mode, ball_fired, t, &mut y);
+        ball_phases += usize::from(mode.0 != before);
         stuck |= mode.1 == Cart::Stuck;
         gripped |= mode.0 == Ball::Grip;
         phases += 1;
@@ -328,6 +334,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         chain_energy: model.energy(&y),
         x1: y[2],
         phases,
+        ball_phases,
         stuck,
         gripped,
     }

@@ -15,6 +15,7 @@
 pub mod data;
 pub mod free;
 pub mod problem;
+pub mod watch;
 
 use levenberg_marquardt::LevenbergMarquardt;
 use nalgebra::DMatrix;
@@ -25,9 +26,10 @@ use statrs::distribution::{ContinuousCDF, Normal, StudentsT};
 use self::data::{Dataset, Quantity};
 use self::free::{Free, Scale, coordinates, place};
 use self::problem::{Model, Problem};
+use self::watch::{Stage, Tally, Watch};
 use super::AnalysisError;
-use crate::model::params::ParamId;
-use crate::model::{Params, solve};
+use crate::model::params::{ParamId, spec};
+use crate::model::{Params, solve, units};
 
 /// Levenberg-Marquardt's evaluation budget, in evaluations per free parameter and one: for the short
 /// runs from the starting points, and for the final run to convergence.
@@ -113,6 +115,20 @@ impl Fit {
     }
 }
 
+/// A value in a parameter's display unit, to the decimal place of the second significant digit of
+/// `precision` (its standard error; at most 9 decimals), or to 5 significant digits without one.
+pub fn shown(id: ParamId, value: f64, precision: Option<f64>) -> String {
+    let s = spec(id);
+    let display = |x: f64| units::in_unit(x, s.dimension, s.display_unit);
+    match precision.map(display).filter(|p| *p > 0.0) {
+        Some(p) => {
+            let decimals = (1 - p.log10().floor() as i32).clamp(0, 9) as usize;
+            format!("{:.decimals$}", display(value))
+        }
+        None => units::brief(display(value), 5),
+    }
+}
+
 /// Fits `free` to `data`, the other parameters as in `base` (and each row's conditions).
 pub fn fit(
     base: &Params,
@@ -120,6 +136,20 @@ pub fn fit(
     data: &Dataset,
     options: &Options,
 ) -> Result<Fit, AnalysisError> {
+    fit_watched(base, free, data, options, &Watch::none())
+}
+
+/// [`fit`], telling `watch` where it has got to and stopping once it cancels
+/// ([`AnalysisError::Cancelled`]); the result is the same as [`fit`]'s.
+pub fn fit_watched(
+    base: &Params,
+    free: &[Free],
+    data: &Dataset,
+    options: &Options,
+    watch: &Watch,
+) -> Result<Fit, AnalysisError> {
+    let tally = Tally::new(watch);
+    let stopped = || tally.cancelled().then_some(Err(AnalysisError::Cancelled));
     let n = data.measurements();
     if free.is_empty() {
         return Err(AnalysisError::Input(
@@ -138,12 +168,16 @@ pub fn fit(
         free,
         data,
         phase_limit: Some(EXPLORE_PHASES),
+        tally: &tally,
     };
     let model = Model {
         phase_limit: None,
         ..explore
     };
     let starts = starting_points(&explore, options);
+    if let Some(stopped) = stopped() {
+        return stopped;
+    }
     if !starts[0].1.is_finite() {
         let row = &data.rows[0];
         let err = solve(&row.params(base)).err();
@@ -166,15 +200,29 @@ pub fn fit(
         (u, chi2, report.termination.was_successful())
     };
     // A short run from each of the best starting points, then the best of them to convergence.
+    let runs = options.refined.max(1).min(starts.len());
     let (best, _, _) = starts
         .iter()
-        .take(options.refined.max(1))
-        .filter(|(_, chi2)| chi2.is_finite())
-        .map(|(u, _)| refine(&explore, u, SHORT_PATIENCE))
+        .take(runs)
+        .enumerate()
+        .filter(|(_, (_, chi2))| chi2.is_finite())
+        .map(|(i, (u, _))| {
+            tally.at(Stage::Refine, i, runs);
+            refine(&explore, u, SHORT_PATIENCE)
+        })
         .min_by(|a, b| a.1.total_cmp(&b.1))
         .expect("the best starting point solves");
+    tally.at(Stage::Converge, 0, 1);
+    if let Some(stopped) = stopped() {
+        return stopped;
+    }
     let (u, _, converged) = refine(&model, &best, PATIENCE);
-    summarise(&model, &u, converged)
+    let fit = summarise(&model, &u, converged);
+    if let Some(stopped) = stopped() {
+        return stopped;
+    }
+    tally.at(Stage::Converge, 1, 1);
+    fit
 }
 
 /// The given values and a seeded random scan of the start boxes, with their chi2, best first.
@@ -186,6 +234,7 @@ fn starting_points(model: &Model, options: &Options) -> Vec<(Vec<f64>, f64)> {
         .map(|f| f.start_box(model.base.get(f.id())))
         .collect();
     let mut rng = StdRng::seed_from_u64(options.seed);
+    let total = 1 + options.scan_per_parameter * model.free.len();
     let mut points = vec![given];
     for _ in 0..options.scan_per_parameter * model.free.len() {
         points.push(
@@ -197,7 +246,9 @@ fn starting_points(model: &Model, options: &Options) -> Vec<(Vec<f64>, f64)> {
     }
     let mut scored: Vec<_> = points
         .into_iter()
-        .map(|u| {
+        .enumerate()
+        .map(|(i, u)| {
+            model.tally.at(Stage::Scan, i, total);
             let chi2 = model.chi2(&u);
             (u, chi2)
         })

@@ -10,6 +10,7 @@ use rayon::prelude::*;
 
 use super::data::{Dataset, Row};
 use super::free::{Free, place};
+use super::watch::Tally;
 use crate::model::{Params, solve_cancellable};
 
 /// The residual given to the optimiser where the model cannot be solved, so that it steps back.
@@ -25,6 +26,9 @@ pub struct Model<'a> {
     pub data: &'a Dataset,
     /// Bounces of more phases count as unsolvable.
     pub phase_limit: Option<usize>,
+    /// Counts the bounces solved, tells the watch after each evaluation, and stops every solve once
+    /// the watch cancels.
+    pub tally: &'a Tally<'a>,
 }
 
 impl Model<'_> {
@@ -39,8 +43,9 @@ impl Model<'_> {
         let phases = Cell::new(0usize);
         let over_limit = || {
             phases.set(phases.get() + 1);
-            self.phase_limit.is_some_and(|limit| phases.get() > limit)
+            self.phase_limit.is_some_and(|limit| phases.get() > limit) || self.tally.cancelled()
         };
+        self.tally.solved();
         let bounce = solve_cancellable(&params, &over_limit).ok()?;
         row.measured
             .iter()
@@ -67,6 +72,7 @@ impl Model<'_> {
             .par_iter()
             .map(|row| self.row_residuals(row, u))
             .collect();
+        self.tally.report();
         rows.map(|r| r.concat())
     }
 
@@ -86,6 +92,7 @@ impl Model<'_> {
             .par_iter()
             .map(|row| self.row_jacobian(row, u))
             .collect();
+        self.tally.report();
         rows.map(|r| r.concat())
     }
 

@@ -1,6 +1,7 @@
 //! The contact view (the paper's Fig. 3): a row for the time cursor, the phase timeline, then three stacked
 //! charts sharing the time axis in ms: friction force F with the grip limit +/- mu N, cart displacement X
-//! and ball spin omega. Curves take the colour of their phase; dashed verticals mark the transitions.
+//! and ball spin omega. Curves take the colour of their phase; dashed verticals mark the transitions. With
+//! `--data`, omega2 measured at the current parameters is a point at the end of the spin chart.
 //!
 //! The time cursor is a solid vertical line across the three charts. The values at it are written at the
 //! right of each chart's title (F and mu N; X and the cart velocity V; omega and the slip speed), and its
@@ -122,6 +123,11 @@ fn layout(area: Rect, app: &App, solved: &Solved) -> ContactLayout {
     let mut spin = vec![zero];
     spin.extend(faint(|s| s.omega));
     spin.push(path(|s| s.omega));
+    spin.extend(super::measured::contact_marks(
+        app,
+        &solved.params,
+        duration * 1e3,
+    ));
     for marks in [&mut force, &mut displacement, &mut spin] {
         marks.extend(transitions.iter().cloned());
         marks.push(Mark::Cursor(app.cursor * 1e3, theme.cursor()));

@@ -10,6 +10,9 @@ use crate::tui::app::App;
 use crate::tui::keys::{self, Binding};
 use crate::tui::ui::theme::Theme;
 
+/// How the prompt takes an uncertainty.
+const UNCERTAINTY: &str = " 60±1 also sets an uncertainty: Fig. 2 then draws ω2's band; ±0 clears";
+
 fn rows<'a>(bindings: &[Binding], theme: &Theme, key_width: usize) -> Vec<Line<'a>> {
     keys::help_rows(bindings)
         .into_iter()
@@ -53,6 +56,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     lines.extend(rows(keys::EXPLORER, theme, key_width));
     let mut prompt = vec![Line::styled("While typing a value", theme.title())];
     prompt.extend(rows(keys::PROMPT, theme, key_width));
+    prompt.push(Line::raw(theme.words(UNCERTAINTY).into_owned()));
     let notes = vec![
         Line::styled(
             format!(

@@ -1,5 +1,6 @@
 //! The outcome panel: the rebound (omega2 with rpm, v_x2, theta2, e_x), the share of the incoming energy
-//! lost to friction, the phase timeline in ms and, when there is room, a few more numbers.
+//! lost to friction, the phase timeline in ms and, when there is room, a few more numbers; with
+//! `--data`, the residuals of the measurements last (residuals.rs).
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -248,5 +249,6 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
             ]));
         }
     }
+    lines.extend(super::residuals::lines(app, wide));
     lines
 }

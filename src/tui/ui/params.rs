@@ -1,7 +1,9 @@
 //! The parameter panel: every parameter of the table in `model::params::PARAMS`, its value in the unit
 //! people think in, the selected one highlighted, a dot beside any value that differs from the default,
-//! and a heading where a new group begins (the surface: cart, spring, string friction). On a short screen
-//! the list scrolls to keep the selected parameter in view, with a mark on the border where more is hidden.
+//! and a heading where a new group begins (the surface: cart, spring, string friction). A parameter marked
+//! free for a fit says so before its label, and one typed with an uncertainty shows it (`60.0±1.0 deg`).
+//! On a short screen the list scrolls to keep the selected parameter in view, with a mark on the border
+//! where more is hidden.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -10,7 +12,7 @@ use ratatui::widgets::{Block, Paragraph};
 
 use crate::model::ParamSpec;
 use crate::model::params::BOUNCE_PARAMS as PARAMS;
-use crate::model::units::Shown;
+use crate::model::units::{self, Shown};
 use crate::tui::app::App;
 
 /// The fewest rows the panel is given, borders included, however short the screen.
@@ -43,14 +45,23 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         }
         lines.push({
             let value = app.params.get(spec.id);
-            let shown = shown(spec, value).to_string();
+            let shown = match app.lab.spread(spec.id) {
+                Some(sigma) => theme.words(&with_spread(spec, value, sigma)).into_owned(),
+                None => shown(spec, value).to_string(),
+            };
             let changed = if value == spec.default { ' ' } else { '•' };
             let pointer = if i == app.selected { '▸' } else { ' ' };
             // pointer, symbol, label, value and the changed mark on the right.
             let head = format!("{pointer}{:<column$}", theme.words(spec.symbol));
             let room = width.saturating_sub(head.chars().count() + shown.chars().count() + 2);
+            // A free parameter says so before its label.
+            let label = if app.lab.is_free(spec.id) {
+                format!("{FREE}{}", spec.label)
+            } else {
+                spec.label.to_string()
+            };
             let label: String = if room >= 8 {
-                spec.label.chars().take(room).collect()
+                label.chars().take(room).collect()
             } else {
                 String::new()
             };
@@ -59,6 +70,8 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             let line = Line::from(text);
             if i == app.selected {
                 line.style(theme.selected())
+            } else if app.lab.is_free(spec.id) {
+                line.style(theme.key())
             } else {
                 line
             }
@@ -82,6 +95,17 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     }
     let shown: Vec<Line> = lines.into_iter().skip(start).take(visible).collect();
     frame.render_widget(Paragraph::new(shown).block(block), area);
+}
+
+/// What a free parameter's label starts with.
+pub const FREE: &str = "free: ";
+
+/// `value` with its uncertainty `sigma`, both in the unit the panel shows: `60.0±1.0 deg`.
+fn with_spread(spec: &ParamSpec, value: f64, sigma: f64) -> String {
+    let s = shown(spec, value);
+    let sigma = units::in_unit(sigma, spec.dimension, s.symbol);
+    let text = format!("{:.d$}±{sigma:.d$} {}", s.value, s.symbol, d = s.decimals);
+    text.trim_end().to_string()
 }
 
 /// `value` as the panel shows it: in the parameter's display unit, but a mass of 1 kg or more in kg.

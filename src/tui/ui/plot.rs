@@ -156,6 +156,8 @@ pub enum Mark {
     Dot(f64, f64, Color),
     /// A solid vertical line over everything else: the time cursor.
     Cursor(f64, Color),
+    /// A character written over everything in the cell of a point: a measurement.
+    Glyph(f64, f64, char, Color),
 }
 
 impl Mark {
@@ -164,7 +166,7 @@ impl Mark {
         match self {
             Mark::Path(points) => points.iter().map(|p| p.1).collect(),
             Mark::Dashed(points, _) => points.iter().map(|p| p.1).collect(),
-            Mark::Dot(_, y, _) => vec![*y],
+            Mark::Dot(_, y, _) | Mark::Glyph(_, y, ..) => vec![*y],
             Mark::Vertical(..) | Mark::Horizontal(..) | Mark::Cursor(..) => Vec::new(),
         }
     }
@@ -255,13 +257,23 @@ impl Plot<'_> {
                     }
                 }
                 Mark::Dot(x, y, color) => ctx.draw(&Points::new(&[(*x, *y)], *color)),
-                Mark::Vertical(..) | Mark::Horizontal(..) | Mark::Cursor(..) => {}
+                Mark::Vertical(..) | Mark::Horizontal(..) | Mark::Cursor(..) | Mark::Glyph(..) => {}
             }
         }
         ctx.layer();
         for mark in &self.marks {
             if let Mark::Cursor(x, color) = mark {
                 ctx.draw(&canvas::Line::new(*x, y0, *x, y1, *color));
+            }
+        }
+        // The canvas puts text in the cell its position falls in, counting down from the top-left corner;
+        // half a cell on, it lands in the cell nearest the point, where the curves' dots are.
+        let (half_x, half_y) = (dx / 4.0, dy / 2.0);
+        for mark in &self.marks {
+            if let Mark::Glyph(x, y, glyph, color) = mark {
+                let at = ((x + half_x).min(x1), (y - half_y).max(y0));
+                let text = Line::styled(glyph.to_string(), Style::new().fg(*color));
+                ctx.print(at.0, at.1, text);
             }
         }
     }

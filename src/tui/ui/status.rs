@@ -1,6 +1,6 @@
-//! The status line: the value prompt while typing, else the last message (errors in red) or a note that the
-//! schematic is hidden, then as many key hints from the key table as fit the width: the essential ones
-//! first, the others where there is room, all in the table's order.
+//! The status line: the value prompt while typing, else the last message (errors in red), the progress
+//! of a fit under way, or a note that the schematic is hidden, then as many key hints from the key table
+//! as fit the width: the essential ones first, the others where there is room, all in the table's order.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -66,6 +66,12 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, schematic_shown: bool) {
             Tone::Info => Style::new(),
         };
         spans.push(Span::styled(theme.words(&message.text).into_owned(), style));
+        spans.push(Span::raw("   "));
+    } else if let Some(progress) = app.lab.progress_text() {
+        spans.push(Span::styled(
+            theme.words(&progress).into_owned(),
+            theme.key(),
+        ));
         spans.push(Span::raw("   "));
     } else {
         if area.width >= 100 {

@@ -2,15 +2,18 @@
 //! degrees for the current parameters, the angles where the ball slides throughout labelled above the
 //! chart, and the current theta1 marked. A dashed curve gives omega2 for the comparison incident spin
 //! (omega1 = 0, or -100 rad/s when the current spin is 0), and the title's right end the angles where the
-//! two curves cross: the paper's backspin crossover.
+//! two curves cross: the paper's backspin crossover. With `--data` the measured omega2 are drawn on the
+//! curve they were measured on, and with an input typed with an uncertainty, omega2's band; a legend
+//! under the chart says what they are (`measured`).
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
+use ratatui::widgets::Paragraph;
 
-use super::baseline;
 use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_extent};
+use super::{baseline, measured};
 use crate::model::PhaseKind;
 use crate::tui::app::App;
 use crate::tui::solved::Solved;
@@ -23,8 +26,19 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved, sweeps:
     let theme = &app.theme;
     let sliding = theme.phase(PhaseKind::Slide);
     let gripping = theme.phase(PhaseKind::Grip);
-    let [band_row, chart] =
-        Layout::vertical([Constraint::Length(1), Constraint::Min(0)]).areas(area);
+    let key = sweeps.key;
+    let measured = measured::on_sweep(app, &key);
+    let notes: Vec<Line> = measured
+        .iter()
+        .map(|m| measured::sweep_legend(m, theme, Sweep::comparison_spin(key.spin), area.width))
+        .chain(measured::band_legend(app, &key, area.width))
+        .collect();
+    let [band_row, chart, notes_rows] = Layout::vertical([
+        Constraint::Length(1),
+        Constraint::Min(0),
+        Constraint::Length(notes.len() as u16),
+    ])
+    .areas(area);
 
     let angle = app.params.angle_deg;
     let omega2 = solved.bounce.outcome.omega2;
@@ -61,7 +75,11 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved, sweeps:
             .collect();
         marks.extend(baseline::curve(&points, theme, area.width));
     }
+    marks.extend(measured::band_marks(app, &key));
     marks.extend([Mark::Path(curve), Mark::Dot(angle, omega2, theme.current())]);
+    if let Some(found) = &measured {
+        marks.extend(measured::sweep_marks(found, theme));
+    }
 
     let (low, high) = y_extent(&marks);
     let rows = chart.height.saturating_sub(FRAME_ROWS);
@@ -173,6 +191,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved, sweeps:
         axis_style: theme.dim(),
     };
     frame.render_widget(plot, chart);
+    frame.render_widget(Paragraph::new(notes), notes_rows);
 }
 
 fn grips(from: f64, to: f64, color: ratatui::style::Color) -> Segment {

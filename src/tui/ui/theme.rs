@@ -50,7 +50,7 @@ fn light(color: Color) -> Color {
 
 /// What the ASCII screen writes for the symbols of the Unicode one, longest first: key pairs as the
 /// letters that do the same (`↑↓` as `jk`), key symbols and Greek letters as words.
-const WORDS: [(&str, &str); 15] = [
+const WORDS: [(&str, &str); 16] = [
     ("↑↓", "jk"),
     ("←→", "hl"),
     ("␣", "Space"),
@@ -62,6 +62,7 @@ const WORDS: [(&str, &str); 15] = [
     ("ω", "omega"),
     ("θ", "theta"),
     ("μ", "mu"),
+    ("σ", "sd"),
     ("Δ", "d"),
     ("±", "+-"),
     ("°", " deg"),
@@ -193,6 +194,16 @@ impl Theme {
             .fg(self.pick(Color::Red))
             .add_modifier(Modifier::BOLD)
     }
+    /// Measured points drawn on the charts (`--data`).
+    pub fn measured(&self) -> Color {
+        self.pick(Color::Red)
+    }
+
+    /// The uncertainty band of the sweep view.
+    pub fn band(&self) -> Color {
+        self.pick(Color::Blue)
+    }
+
     /// The pinned baseline's curves, under the current ones. Without colour they are drawn dotted
     /// instead (see `ui::charts`).
     pub fn baseline(&self) -> Color {
