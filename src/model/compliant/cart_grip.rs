@@ -332,8 +332,9 @@ impl Free {
         (reach(ddf, dddf), kb * reach(e, de) + cb * reach(de, dde))
     }
 
-    /// A bound on the cart's |V''| over the phase and on the size of the terms V is summed from:
-    /// V = V0 - (e' - e0')/share, so V'' = -e'''/share, and e''' solves the oscillator too.
+    /// A bound on the cart's |V''| over the phase and on the size of the terms V is summed from besides
+    /// V0 (which the caller adds): V = V0 - (e' - e0')/share, so V'' = -e'''/share, and e''' solves the
+    /// oscillator too.
     fn cart_bounds(&self, z0: &Vector4<f64>) -> (f64, f64) {
         let (a, c, kappa) = (self.a, self.c, self.kappa);
         let reach = |y: f64, dy: f64| y.abs() + (dy + a * y).abs() * self.phi_max();
@@ -343,7 +344,7 @@ impl Free {
         let dddde = -c * ddde - kappa * dde;
         (
             reach(ddde, dddde) / self.share,
-            z0[1].abs() + (de.abs() + reach(de, dde)) / self.share,
+            (de.abs() + reach(de, dde)) / self.share,
         )
     }
 }
