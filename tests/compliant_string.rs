@@ -48,11 +48,19 @@ fn describe(b: &Bounce) -> String {
 #[test]
 fn an_independent_integration_agrees() {
     let mut rng = Rng(0x5eed_c0de_5791_0001);
-    let cases = 100;
+    // The last 20 on heavy carts on soft springs, whose equilibrium under the string friction lies far
+    // from the motion.
+    let cases = 120;
     let mut worst = [0.0f64; 5];
+    let mut worst_residual: f64 = 0.0;
     let (mut held, mut freed, mut stopped, mut held_grip, mut same_phases) = (0, 0, 0, 0, 0);
     for case in 0..cases {
-        let p = random_params(&mut rng);
+        let mut p = random_params(&mut rng);
+        if case >= 100 {
+            p.cart_mass = rng.log_uniform(10.0, 1e4);
+            p.stiffness = rng.log_uniform(1.0, 100.0);
+            p.cart_friction = rng.log_uniform(1e-4, 0.1) * peak_friction(&p);
+        }
         let b = solve(&p).unwrap_or_else(|e| panic!("case {case}: {e}: {p:?}"));
         let reference = compliant_integrator::integrate(&p, 40_000);
         let o = &b.outcome;
@@ -76,7 +84,8 @@ fn an_independent_integration_agrees() {
             "case {case}: {p:?} ({})\nsolver {o:?} {s:?}\nreference {reference:?}\n{differences:?}",
             describe(&b)
         );
-        assert!(e.residual.abs() < 1e-10, "case {case}: {e:?}");
+        assert!(e.residual.abs() < 1e-12, "case {case}: {e:?}");
+        worst_residual = worst_residual.max(e.residual.abs());
         assert_eq!(b.cart_ever_stuck(), reference.stuck, "case {case}: {p:?}");
         same_phases += usize::from(b.phases.len() == reference.phases);
         let phases = &b.phases;
@@ -99,12 +108,12 @@ fn an_independent_integration_agrees() {
     }
     println!(
         "worst relative disagreement over {cases} bounces: omega2 {:.2e}, vx2 {:.2e}, V {:.2e}, X {:.2e}, \
-         ball spring energy {:.2e}; held throughout {held}, pushed free {freed}, stopped and held again \
+         ball spring energy {:.2e}; energy residual {worst_residual:.1e}; held throughout {held}, pushed free {freed}, stopped and held again \
          {stopped}, gripping a held cart {held_grip}; same number of phases {same_phases}",
         worst[0], worst[1], worst[2], worst[3], worst[4]
     );
     assert!(freed >= 20 && stopped >= 5 && held >= 5 && held_grip >= 5);
-    assert!(same_phases >= 90, "{same_phases}");
+    assert!(same_phases >= 110, "{same_phases}");
 }
 
 #[test]
