@@ -5,9 +5,9 @@
 //! cart's double zero).
 //!
 //! With string friction (Sec. IV's enhancement) the cart either moves against the constant force
-//! P = -dir F_c, which adds a particular solution z_p to the same system (z = z_p + exp(A τ)(z0 - z_p(0))),
-//! or is held still: the stretch alone is then a damped oscillator against a still surface, an infinitely
-//! heavy cart.
+//! P = -dir F_c, z' = A z + b, solved by Duhamel's integral z = exp(A τ) z0 + ∫_0^τ exp(A s) b ds (on a
+//! free cart, by the particular solution in which ball and cart accelerate together), or is held still:
+//! the stretch alone is then a damped oscillator against a still surface, an infinitely heavy cart.
 
 use nalgebra::{Complex, Matrix4, Matrix5, RowVector4, Vector4, Vector5};
 

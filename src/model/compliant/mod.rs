@@ -17,10 +17,11 @@
 //!   [`ChainGrip`] on a chain). The grip breaks when |F| reaches mu N, into a slide the way F points.
 //!
 //! - String friction on the single cart (Sec. IV's first enhancement): the cart moves against -dir F_c
-//!   (the rigid [`Slide`]'s push while the patch slides; a constant particular solution of the grip's
-//!   system while it grips) and the phase also ends when V reaches zero; or it is held still (the
-//!   rigid ball's held slide; the stretch alone as a damped oscillator on a still surface in a grip) and
-//!   the phase also ends when the net force on it, F - k X, reaches ±F_c. The ball's force F is
+//!   (the rigid [`Slide`]'s push while the patch slides; while it grips, the constant push enters the
+//!   grip's linear system through Duhamel's integral, or on a free cart as the uniformly accelerated
+//!   particular solution) and the phase also ends when V reaches zero; or it is held still (the rigid
+//!   ball's held slide; in a grip the stretch alone, a damped oscillator on a still surface) and the
+//!   phase also ends when the net force on it, F - k X, reaches ±F_c. The ball's force F is
 //!   continuous across every transition, so a stopped cart is held while |F - k X| <= F_c and otherwise
 //!   moves the way it is pushed ([`transition::at_rest`]). On a chain the combination is refused.
 //!
