@@ -138,11 +138,11 @@ impl Modes {
         let mut dz = Vector4::zeros();
         for i in 0..4 {
             let s = self.s[i];
-            let grow = (s * tau).exp();
+            let (grow, grow_m1) = exp_and_m1(s * tau);
             let integral = if s == Complex::new(0.0, 0.0) {
                 Complex::new(tau, 0.0)
             } else {
-                exp_m1(s * tau) / s
+                grow_m1 / s
             };
             let w = c[i] * grow + beta[i] * integral;
             let dw = (c[i] * s + beta[i]) * grow;
@@ -395,13 +395,21 @@ enum Drive {
     Held,
 }
 
-/// (e^x - 1) for complex x, without cancellation for small |x|.
+/// (e^x, e^x - 1) for complex x, the second without cancellation for small |x|, from one `sin_cos`:
+/// Re(e^x - 1) = (e^a - 1) cos b - (1 - cos b), with 1 - cos b = sin² b / (1 + cos b) where cos b > 0.
 #[inline]
-fn exp_m1(x: Complex<f64>) -> Complex<f64> {
+fn exp_and_m1(x: Complex<f64>) -> (Complex<f64>, Complex<f64>) {
     let (sin, cos) = x.im.sin_cos();
-    let half = (0.5 * x.im).sin();
-    let grow = x.re.exp_m1();
-    Complex::new(grow * cos - 2.0 * half * half, (grow + 1.0) * sin)
+    let size = x.re.exp();
+    let versine = if cos > 0.0 {
+        sin * sin / (1.0 + cos)
+    } else {
+        1.0 - cos
+    };
+    (
+        Complex::new(size * cos, size * sin),
+        Complex::new(x.re.exp_m1() * cos - versine, size * sin),
+    )
 }
 
 /// The coefficients of a state (or a forcing) in the grip's modes.
@@ -595,10 +603,27 @@ impl CompliantGrip {
         norm * self.reach(setup, setup.duration - self.start.t)
     }
 
-    /// A bound on |g z''| over the phase: z'' = A² z + A b.
+    /// A bound on |g z''| over the phase: z'' = A² z + A b, bounded in the energy norm; pushed and in
+    /// its modes also by the modes' amplitudes, z'' = Σ s_i (c_i s_i + β_i) e^{s_i τ} v_i (|e^{s_i τ}| <= 1
+    /// for a passive system), the smaller taken.
     fn second(&self, setup: &Setup, g: RowVector4<f64>) -> f64 {
         let c = &self.compliance;
-        self.bound(setup, g * c.a * c.a) + (g * c.a * c.forcing(self.push()))[0].abs()
+        let energy = self.bound(setup, g * c.a * c.a) + (g * c.a * c.forcing(self.push()))[0].abs();
+        let modal = match (&self.drive, &c.modes, &self.coefficients) {
+            (Drive::Pushed { .. }, Some(modes), Some((coefficients, beta))) => {
+                let remaining = setup.duration - self.start.t;
+                (0..4)
+                    .map(|i| {
+                        let s = modes.s[i];
+                        let row: Complex<f64> = (0..4).map(|j| modes.v[(j, i)] * g[j]).sum();
+                        let growth = (s.re.max(0.0) * remaining).exp();
+                        row.norm() * s.norm() * (coefficients[i] * s + beta[i]).norm() * growth
+                    })
+                    .sum()
+            }
+            _ => f64::INFINITY,
+        };
+        energy.min(modal)
     }
 
     /// A bound on |F''| over the phase, and the size of F (for the rounding floor). A drift's force,
