@@ -49,6 +49,9 @@ pub fn summary(b: &Bounce) -> String {
     for p in &b.phases {
         let stuck;
         let slip = match (p.kind, p.slip_sign, p.cart) {
+            (PhaseKind::Grip, _, Cart::Stuck) if compliant => {
+                "patch grips the stuck cart, F = k_b e + c_b e'"
+            }
             (PhaseKind::Grip, _, Cart::Stuck) => {
                 stuck = format!("rolling on the stuck {cart}");
                 &stuck

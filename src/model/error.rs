@@ -29,9 +29,12 @@ pub enum SolveError {
     /// The caller's cancellation check said the solve is no longer wanted.
     #[error("the solve was cancelled")]
     Cancelled,
+    /// The ball's grip on a chain would need a second modal system (the first mass held, or pushed by
+    /// the string friction): not modelled.
     #[error(
-        "a compliant ball (--ball-stiffness > 0) is not modelled together with string friction on the \
-         cart: set --ball-stiffness 0 (a rigid ball) or --cart-friction 0"
+        "a compliant ball (--ball-stiffness > 0) on a chain with springs (--chain > 1) is not modelled \
+         together with string friction on its first mass: set --chain 1, --ball-stiffness 0 (a rigid \
+         ball) or --cart-friction 0"
     )]
     StringFrictionCompliantBall,
     #[error(

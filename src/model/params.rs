@@ -560,8 +560,8 @@ parameters! {
         default: 0.0,
         integer: false,
         help: "tangential stiffness k_b of the ball's contact region (a massless spring and dashpot between \
-               the ball and its contact patch); 0 = a rigid ball, the paper's model. On the cart or a chain, \
-               without string friction. A stiff undamped ball does not approach the rigid ball: its force keeps \
+               the ball and its contact patch); 0 = a rigid ball, the paper's model. On the cart (with string \
+               friction too) or a chain (without). A stiff undamped ball does not approach the rigid ball: its force keeps \
                swinging and the grip chatters (up to 10 000 phases, then the bounce is refused)",
     },
     /// Damping ratio zeta of the ball's contact spring, relative to its mode sqrt(k_b/m_eff):

@@ -136,3 +136,17 @@ fn violation(setup: &Setup, at: &At, ball: Ball, cart: Cart) -> f64 {
         }
     }
 }
+
+/// What a cart at rest does under the net force `push` on it (N, forward positive) besides its string
+/// friction: held while |push| <= F_c, else moving the way it is pushed. A compliant ball's force on the
+/// cart is continuous across every transition (it is carried by the ball's spring and dashpot), so this
+/// is the whole rule at its cart: only the cart's stopping leaves a choice.
+pub fn at_rest(setup: &Setup, push: f64) -> Cart {
+    if push.abs() <= setup.cart_friction {
+        Cart::Stuck
+    } else if push > 0.0 {
+        Cart::Moving(1)
+    } else {
+        Cart::Moving(-1)
+    }
+}

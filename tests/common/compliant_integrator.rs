@@ -9,6 +9,10 @@
 //!
 //! The slide ends when the patch's slip (v_x - r omega - V) - e' reaches zero (then grip); the grip
 //! ends when |F| reaches mu N (then slide the way F points).
+//!
+//! String friction F_c on the cart (`cart_friction`): moving in direction d, M V' = F - k X - d F_c,
+//! until V reaches zero; then the cart is held (X' = V' = 0) while |F - k X| <= F_c, and otherwise moves
+//! the way F - k X pushes it. The cart starts held when F_c > 0.
 
 use snapback::model::Params;
 use std::f64::consts::PI;
@@ -22,6 +26,8 @@ pub struct Reference {
     pub v: f64,
     pub e: f64,
     pub phases: usize,
+    /// Whether string friction held the cart at some time.
+    pub stuck: bool,
 }
 
 struct Model {
@@ -35,9 +41,13 @@ struct Model {
     w: f64,
     kb: f64,
     cb: f64,
+    fc: f64,
 }
 
 type Y = [f64; 5];
+
+/// What the cart does: moving in direction +1 or -1 (0 without string friction), or held (`None`).
+type Cart = Option<f64>;
 
 impl Model {
     fn normal(&self, t: f64) -> f64 {
@@ -58,26 +68,24 @@ impl Model {
             (f, de)
         }
     }
-    fn rate(&self, dir: f64, t: f64, y: &Y) -> Y {
+    fn rate(&self, (dir, cart): (f64, Cart), t: f64, y: &Y) -> Y {
         let (f, de) = self.force(dir, t, y);
-        [
-            -f / self.m,
-            self.r * f / self.inertia,
-            y[3],
-            (f - self.k * y[2]) / self.big_m,
-            de,
-        ]
+        let (dx, dv) = match cart {
+            Some(d) => (y[3], (f - self.k * y[2] - d * self.fc) / self.big_m),
+            None => (0.0, 0.0),
+        };
+        [-f / self.m, self.r * f / self.inertia, dx, dv, de]
     }
-    fn rk4(&self, dir: f64, t: f64, y: &Y, h: f64) -> Y {
+    fn rk4(&self, mode: (f64, Cart), t: f64, y: &Y, h: f64) -> Y {
         let add = |a: &Y, b: &Y, s: f64| -> Y { std::array::from_fn(|i| a[i] + s * b[i]) };
-        let k1 = self.rate(dir, t, y);
-        let k2 = self.rate(dir, t + h / 2.0, &add(y, &k1, h / 2.0));
-        let k3 = self.rate(dir, t + h / 2.0, &add(y, &k2, h / 2.0));
-        let k4 = self.rate(dir, t + h, &add(y, &k3, h));
+        let k1 = self.rate(mode, t, y);
+        let k2 = self.rate(mode, t + h / 2.0, &add(y, &k1, h / 2.0));
+        let k3 = self.rate(mode, t + h / 2.0, &add(y, &k2, h / 2.0));
+        let k4 = self.rate(mode, t + h, &add(y, &k3, h));
         std::array::from_fn(|i| y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]))
     }
-    /// The event function of mode `dir`: positive once the phase has ended; and the direction of the
-    /// next slide (0 = grip).
+    /// The ball's event function in mode `dir`: positive once the phase has ended; and the direction
+    /// of the next slide (0 = grip).
     fn event(&self, dir: f64, t: f64, y: &Y) -> (f64, f64) {
         let (f, de) = self.force(dir, t, y);
         if dir == 0.0 {
@@ -87,6 +95,22 @@ impl Model {
             let slip = y[0] - self.r * y[1] - y[3] - de;
             (-dir * slip, 0.0)
         }
+    }
+    /// The cart's event function: positive once a moving cart has reversed or a held one is pushed
+    /// harder than F_c (never without string friction).
+    fn cart_event(&self, (dir, cart): (f64, Cart), t: f64, y: &Y) -> f64 {
+        if self.fc == 0.0 {
+            return -1.0;
+        }
+        match cart {
+            Some(d) => -d * y[3],
+            None => (self.force(dir, t, y).0 - self.k * y[2]).abs() - self.fc,
+        }
+    }
+    /// A held cart, or one moving the way the net force pushes it.
+    fn cart_at_rest(&self, dir: f64, t: f64, y: &Y) -> Cart {
+        let push = self.force(dir, t, y).0 - self.k * y[2];
+        (push.abs() > self.fc).then(|| push.signum())
     }
 }
 
@@ -106,6 +130,7 @@ pub fn integrate(p: &Params, steps: usize) -> Reference {
         w: PI / p.duration,
         kb: p.ball_stiffness,
         cb: 2.0 * p.ball_damping * (p.ball_stiffness * m_eff).sqrt(),
+        fc: p.cart_friction,
     };
     let end = p.duration;
     let h = end / steps as f64;
@@ -119,6 +144,8 @@ pub fn integrate(p: &Params, steps: usize) -> Reference {
     } else {
         slip0.signum()
     };
+    let mut cart: Cart = if model.fc > 0.0 { None } else { Some(0.0) };
+    let mut stuck = cart.is_none();
     let force_scale = model.mu * model.n0;
     let speed_scale = scale + 1.0;
     let tolerance = |dir: f64| {
@@ -128,32 +155,49 @@ pub fn integrate(p: &Params, steps: usize) -> Reference {
             1e-11 * speed_scale
         }
     };
+    let cart_tolerance = |cart: Cart| match cart {
+        Some(_) => 1e-11 * speed_scale,
+        None => 1e-11 * (force_scale + model.fc),
+    };
+    let ended = |mode: (f64, Cart), t: f64, y: &Y| {
+        model.event(mode.0, t, y).0 > tolerance(mode.0)
+            || model.cart_event(mode, t, y) > cart_tolerance(mode.1)
+    };
     let mut t = 0.0;
     let mut phases = 1;
     while t < end {
         let step = h.min(end - t);
-        let next = model.rk4(dir, t, &y, step);
-        let (g, _) = model.event(dir, t + step, &next);
-        if g <= tolerance(dir) {
+        let next = model.rk4((dir, cart), t, &y, step);
+        if !ended((dir, cart), t + step, &next) {
             y = next;
             t += step;
             continue;
         }
-        // Bisect the step for the first time the event rises above its tolerance.
+        // Bisect the step for the first time an event rises above its tolerance.
         let (mut lo, mut hi) = (0.0, step);
         for _ in 0..60 {
             let mid = 0.5 * (lo + hi);
-            let ym = model.rk4(dir, t, &y, mid);
-            if model.event(dir, t + mid, &ym).0 > tolerance(dir) {
+            let ym = model.rk4((dir, cart), t, &y, mid);
+            if ended((dir, cart), t + mid, &ym) {
                 hi = mid;
             } else {
                 lo = mid;
             }
         }
-        y = model.rk4(dir, t, &y, hi);
-        let (_, next_dir) = model.event(dir, t + hi, &y);
+        y = model.rk4((dir, cart), t, &y, hi);
         t += hi;
-        dir = next_dir;
+        let (ball_event, next_dir) = model.event(dir, t, &y);
+        let cart_fired = model.cart_event((dir, cart), t, &y) > cart_tolerance(cart);
+        if cart_fired {
+            if cart.is_some() {
+                y[3] = 0.0;
+            }
+            cart = model.cart_at_rest(dir, t, &y);
+            stuck |= cart.is_none();
+        }
+        if ball_event > tolerance(dir) {
+            dir = next_dir;
+        }
         phases += 1;
         if phases > 100_000 {
             break;
@@ -166,5 +210,6 @@ pub fn integrate(p: &Params, steps: usize) -> Reference {
         v: y[3],
         e: y[4],
         phases,
+        stuck,
     }
 }

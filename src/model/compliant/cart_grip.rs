@@ -1,12 +1,18 @@
 //! The grip of a compliant ball on the single cart: the cart (X, V) and the stretch (e, e') form a
-//! linear system z' = A z without forcing, not proportionally damped; z(t) = exp(A (t - t0)) z0,
-//! evaluated as a sum of its complex modes (eigenvalues polished on the characteristic polynomial) where
-//! they reproduce the matrix exponential, and as the matrix exponential itself where they do not
-//! (near-double roots, a free cart's double zero).
+//! linear system z' = A z, not proportionally damped; z(t) = exp(A (t - t0)) z0, evaluated as a sum of
+//! its complex modes (eigenvalues polished on the characteristic polynomial) where they reproduce the
+//! matrix exponential, and as the matrix exponential itself where they do not (near-double roots, a free
+//! cart's double zero).
+//!
+//! With string friction (Sec. IV's enhancement) the cart either moves against the constant force
+//! P = -dir F_c, z' = A z + b, solved by Duhamel's integral z = exp(A τ) z0 + ∫_0^τ exp(A s) b ds (on a
+//! free cart, by the particular solution in which ball and cart accelerate together), or is held still:
+//! the stretch alone is then a damped oscillator against a still surface, an infinitely heavy cart.
 
-use nalgebra::{Complex, Matrix4, RowVector4, Vector4};
+use nalgebra::{Complex, Matrix4, Matrix5, RowVector4, Vector4, Vector5};
 
 use super::Point;
+use crate::model::contact::Cart;
 use crate::model::params::Params;
 use crate::model::setup::{Setup, State};
 
@@ -36,6 +42,10 @@ pub struct Compliance {
     balanced: Matrix4<f64>,
     /// On a free cart (k = 0), the grip in closed form.
     free: Option<Free>,
+    /// On a cart held by string friction, the stretch alone in closed form.
+    held: Free,
+    /// M, kg.
+    cart_mass: f64,
     /// An upper bound on the fastest frequency in the grip, rad/s.
     pub fastest: f64,
     /// The grip's modes, when they are distinct: a sum of exponentials is much cheaper than the matrix
@@ -114,6 +124,36 @@ impl Modes {
         }
         (z, dz)
     }
+
+    /// z and z' after `tau` from the modal coefficients `c`, with the constant forcing whose modal
+    /// coefficients are `beta`: each mode gains β_i (e^{s_i τ} - 1)/s_i.
+    #[inline]
+    fn at_forced(
+        &self,
+        c: &Vector4<Complex<f64>>,
+        beta: &Vector4<Complex<f64>>,
+        tau: f64,
+    ) -> (Vector4<f64>, Vector4<f64>) {
+        let mut z = Vector4::zeros();
+        let mut dz = Vector4::zeros();
+        for i in 0..4 {
+            let s = self.s[i];
+            let (grow, grow_m1) = exp_and_m1(s * tau);
+            let integral = if s == Complex::new(0.0, 0.0) {
+                Complex::new(tau, 0.0)
+            } else {
+                grow_m1 / s
+            };
+            let w = c[i] * grow + beta[i] * integral;
+            let dw = (c[i] * s + beta[i]) * grow;
+            for j in 0..4 {
+                let vj = self.v[(j, i)];
+                z[j] += (vj * w).re;
+                dz[j] += (vj * dw).re;
+            }
+        }
+        (z, dz)
+    }
 }
 
 impl Compliance {
@@ -121,6 +161,26 @@ impl Compliance {
     fn exp(&self, tau: f64, z: &Vector4<f64>) -> Vector4<f64> {
         let balanced = (self.balanced * tau).exp() * z.component_mul(&self.scale);
         balanced.component_div(&self.scale)
+    }
+
+    /// The forcing of a push P on the cart, b = P (0, 1/M, 0, -1/M).
+    fn forcing(&self, push: f64) -> Vector4<f64> {
+        Vector4::new(0.0, push, 0.0, -push) / self.cart_mass
+    }
+
+    /// exp(A τ) z + ∫_0^τ exp(A s) b ds for the push P, from the exponential of the balanced augmented
+    /// matrix [[S A S⁻¹, S b / P], [0, 0]] applied to (S z, P).
+    fn exp_forced(&self, tau: f64, z: &Vector4<f64>, push: f64) -> Vector4<f64> {
+        let unit = self.forcing(1.0).component_mul(&self.scale);
+        let augmented = Matrix5::from_fn(|i, j| match (i, j) {
+            (4, _) => 0.0,
+            (_, 4) => unit[i],
+            _ => self.balanced[(i, j)],
+        });
+        let scaled = z.component_mul(&self.scale);
+        let start = Vector5::new(scaled[0], scaled[1], scaled[2], scaled[3], push);
+        let end = (augmented * tau).exp() * start;
+        Vector4::new(end[0], end[1], end[2], end[3]).component_div(&self.scale)
     }
 
     pub fn new(params: &Params, setup: &Setup) -> Self {
@@ -145,17 +205,9 @@ impl Compliance {
         };
         let scale = Vector4::new(s_x, big_m.sqrt(), kb.sqrt(), me.sqrt());
         let balanced = Matrix4::from_fn(|i, j| scale[i] * a[(i, j)] / scale[j]);
-        let free = (k == 0.0).then(|| {
-            let (c, kappa) = (cb * both, kb * both);
-            Free {
-                a: 0.5 * c,
-                d2: 0.25 * c * c - kappa,
-                c,
-                kappa,
-                share: big_m * both,
-                big_m,
-            }
-        });
+        let free = (k == 0.0).then(|| Free::new(cb * both, kb * both, big_m * both, big_m));
+        // A held cart is an infinitely heavy one: m_eff e'' = -(k_b e + c_b e'), and X, V stay put.
+        let held = Free::new(cb / me, kb / me, f64::INFINITY, f64::INFINITY);
         Compliance {
             kb,
             cb,
@@ -163,6 +215,8 @@ impl Compliance {
             scale,
             balanced,
             free,
+            held,
+            cart_mass: big_m,
             fastest,
             modes,
         }
@@ -187,6 +241,19 @@ struct Free {
 }
 
 impl Free {
+    /// The oscillator e'' + c e' + κ e = 0 on a cart whose share is `share` = M (1/m_eff + 1/M) and whose
+    /// mass is `big_m` (both infinite for a held cart).
+    fn new(c: f64, kappa: f64, share: f64, big_m: f64) -> Self {
+        Free {
+            a: 0.5 * c,
+            d2: 0.25 * c * c - kappa,
+            c,
+            kappa,
+            share,
+            big_m,
+        }
+    }
+
     /// (ψ, ψ', φ, φ') at τ: the solutions with (ψ, ψ') = (1, -a) and (φ, φ') = (0, 1) at 0, so that
     /// e = e0 ψ + (e0' + a e0) φ. Overdamped, through the slow root -κ/(a + d) and expm1, so that
     /// nothing overflows or cancels.
@@ -264,50 +331,178 @@ impl Free {
         let dddf = -c * ddf - kappa * df;
         (reach(ddf, dddf), kb * reach(e, de) + cb * reach(de, dde))
     }
+
+    /// A bound on the cart's |V''| over the phase and on the size of the terms V is summed from besides
+    /// V0 (which the caller adds): V = V0 - (e' - e0')/share, so V'' = -e'''/share, and e''' solves the
+    /// oscillator too.
+    fn cart_bounds(&self, z0: &Vector4<f64>) -> (f64, f64) {
+        let (a, c, kappa) = (self.a, self.c, self.kappa);
+        let reach = |y: f64, dy: f64| y.abs() + (dy + a * y).abs() * self.phi_max();
+        let (e, de) = (z0[2], z0[3]);
+        let dde = -c * de - kappa * e;
+        let ddde = -c * dde - kappa * de;
+        let dddde = -c * ddde - kappa * dde;
+        (
+            reach(ddde, dddde) / self.share,
+            (de.abs() + reach(de, dde)) / self.share,
+        )
+    }
 }
+
+/// On a free cart (k = 0) moving against the constant string friction P, the particular solution in
+/// which ball and cart accelerate together: z_p(τ) = (a τ²/2, a τ, e_p, 0), a = P/(M + m_eff), the ball's
+/// spring carrying F = -m_eff a, e_p = F/k_b. (With a spring, the equilibrium P/k would serve, but for a
+/// heavy cart on a soft spring it lies far from the motion and its cancellation would cost digits: the
+/// push then enters through Duhamel's integral instead, see [`Drive::Pushed`].)
+#[derive(Clone, Copy, Debug)]
+struct Drift {
+    accel: f64,
+    e: f64,
+}
+
+impl Drift {
+    fn new(setup: &Setup, kb: f64, push: f64) -> Self {
+        let accel = push / (setup.cart_mass + setup.m_eff);
+        Drift {
+            accel,
+            e: -setup.m_eff * accel / kb,
+        }
+    }
+
+    /// z_p and z_p' after τ.
+    fn at(&self, tau: f64) -> (Vector4<f64>, Vector4<f64>) {
+        let a = self.accel;
+        (
+            Vector4::new(0.5 * a * tau * tau, a * tau, self.e, 0.0),
+            Vector4::new(a * tau, a, 0.0, 0.0),
+        )
+    }
+}
+
+/// What the cart does under a grip.
+#[derive(Clone, Copy, Debug)]
+enum Drive {
+    /// Moving without string friction: z' = A z.
+    Unforced,
+    /// A free cart moving against the string friction: z = z_p + z_h, z_h' = A z_h.
+    Drift(Drift),
+    /// A cart on a spring moving against the string friction P: z' = A z + b, b = P (0, 1/M, 0, -1/M)
+    /// (the cart feels P, and e'' = u'' - V''), so z(τ) = exp(A τ) z0 + ∫_0^τ exp(A s) b ds: in the modes,
+    /// each term gains β_i (e^{s_i τ} - 1)/s_i with β = V⁻¹ b; through the exponential of the augmented
+    /// matrix [[A, b], [0, 0]] otherwise.
+    Pushed { push: f64 },
+    /// Held by string friction: X and V stay put, the stretch is the held oscillator.
+    Held,
+}
+
+/// (e^x, e^x - 1) for complex x, the second without cancellation for small |x|, from one `sin_cos`:
+/// Re(e^x - 1) = (e^a - 1) cos b - (1 - cos b), with 1 - cos b = sin² b / (1 + cos b) where cos b > 0.
+#[inline]
+fn exp_and_m1(x: Complex<f64>) -> (Complex<f64>, Complex<f64>) {
+    let (sin, cos) = x.im.sin_cos();
+    let size = x.re.exp();
+    let versine = if cos > 0.0 {
+        sin * sin / (1.0 + cos)
+    } else {
+        1.0 - cos
+    };
+    (
+        Complex::new(size * cos, size * sin),
+        Complex::new(x.re.exp_m1() * cos - versine, size * sin),
+    )
+}
+
+/// The coefficients of a state (or a forcing) in the grip's modes.
+type Coefficients = Vector4<Complex<f64>>;
 
 /// A grip phase of the compliant ball.
 #[derive(Clone, Copy, Debug)]
 pub struct CompliantGrip {
     pub start: State,
-    /// (X, V, e, e') at the start.
+    /// (X, V, e, e') at the start, less the particular solution there on a drifting free cart: the state
+    /// the unforced system (or, pushed, the forced one) carries from the start.
     z0: Vector4<f64>,
     pub compliance: Compliance,
-    /// The modal coefficients of z0, when the modes reproduce the matrix exponential.
-    coefficients: Option<Vector4<Complex<f64>>>,
+    drive: Drive,
+    /// The modal coefficients of z0 and of the push's forcing, when the modes reproduce the matrix
+    /// exponential.
+    coefficients: Option<(Coefficients, Coefficients)>,
 }
 
 impl CompliantGrip {
-    pub(super) fn new(compliance: Compliance, start: State, e: f64, setup: &Setup) -> Self {
+    /// The grip from `start` with stretch `e`, the cart doing `cart` (held, or moving against its string
+    /// friction, if any).
+    pub(super) fn new(
+        compliance: Compliance,
+        start: State,
+        e: f64,
+        setup: &Setup,
+        cart: Cart,
+    ) -> Self {
         let de = setup.slip(&start);
+        let push = cart.friction(setup);
+        let drive = match cart {
+            Cart::Stuck => Drive::Held,
+            Cart::Moving(_) if push == 0.0 => Drive::Unforced,
+            Cart::Moving(_) if setup.k == 0.0 => {
+                Drive::Drift(Drift::new(setup, compliance.kb, push))
+            }
+            Cart::Moving(_) => Drive::Pushed { push },
+        };
+        let mut z0 = Vector4::new(start.x, start.v, e, de);
+        if let Drive::Drift(d) = &drive {
+            z0 -= d.at(0.0).0;
+        }
         let mut grip = CompliantGrip {
             start,
-            z0: Vector4::new(start.x, start.v, e, de),
+            z0,
             compliance,
+            drive,
             coefficients: None,
         };
         // The modes are used only where they reproduce the matrix exponential, in the energy norm, to
         // MODAL_CHECK at the middle and the end of the rest of the contact (near-double roots, as for a
-        // critically damped ball on a very heavy cart, fail it). A free cart has its closed form.
-        if let (Some(modes), None) = (&compliance.modes, &compliance.free) {
+        // critically damped ball on a very heavy cart, fail it). A free cart and a held one have their
+        // closed forms.
+        if let (Some(modes), None, false) = (
+            &compliance.modes,
+            &compliance.free,
+            matches!(drive, Drive::Held),
+        ) {
             let z0 = grip.z0.map(|x| Complex::new(x, 0.0));
             let c = modes.v_inv * z0;
-            let size = grip.size(setup);
+            let push = grip.push();
+            let beta = modes.v_inv * compliance.forcing(push).map(|x| Complex::new(x, 0.0));
             let remaining = setup.duration - start.t;
+            let size = grip.reach(setup, remaining);
             let agrees = [0.0, 0.5 * remaining, remaining].iter().all(|&tau| {
                 let exact = if tau == 0.0 {
                     grip.z0
-                } else {
+                } else if push == 0.0 {
                     compliance.exp(tau, &grip.z0)
+                } else {
+                    compliance.exp_forced(tau, &grip.z0, push)
                 };
-                let (modal, _) = modes.at(&c, tau);
+                let (modal, _) = if push == 0.0 {
+                    modes.at(&c, tau)
+                } else {
+                    modes.at_forced(&c, &beta, tau)
+                };
                 grip.energy_norm(setup, &(modal - exact)) <= MODAL_CHECK * size
             });
             if agrees && size > 0.0 {
-                grip.coefficients = Some(c);
+                grip.coefficients = Some((c, beta));
             }
         }
         grip
+    }
+
+    /// The push on the cart carried by Duhamel's integral (0 otherwise).
+    fn push(&self) -> f64 {
+        match self.drive {
+            Drive::Pushed { push } => push,
+            _ => 0.0,
+        }
     }
 
     /// z and z' at `t`.
@@ -315,16 +510,37 @@ impl CompliantGrip {
     fn propagate(&self, t: f64) -> (Vector4<f64>, Vector4<f64>) {
         let tau = t - self.start.t;
         let c = &self.compliance;
-        if let Some(free) = &c.free {
-            let [z, dz] = free.at(&self.z0, tau, c.kb, c.cb);
-            return (z, dz);
-        }
-        match (&self.compliance.modes, &self.coefficients) {
-            (Some(modes), Some(c)) => modes.at(c, tau),
-            _ => {
-                let z = self.compliance.exp(tau, &self.z0);
-                (z, self.compliance.a * z)
+        // A drift is only made on a free cart (k = 0), which always has its closed form.
+        match (&self.drive, &c.free) {
+            (Drive::Held, _) => {
+                let [z, dz] = c.held.at(&self.z0, tau, c.kb, c.cb);
+                (z, dz)
             }
+            (Drive::Drift(d), Some(free)) => {
+                let [z, dz] = free.at(&self.z0, tau, c.kb, c.cb);
+                let (zp, dzp) = d.at(tau);
+                (z + zp, dz + dzp)
+            }
+            (Drive::Unforced, Some(free)) => {
+                let [z, dz] = free.at(&self.z0, tau, c.kb, c.cb);
+                (z, dz)
+            }
+            (Drive::Pushed { push }, _) => match (&c.modes, &self.coefficients) {
+                (Some(modes), Some((coefficients, beta))) => {
+                    modes.at_forced(coefficients, beta, tau)
+                }
+                _ => {
+                    let z = c.exp_forced(tau, &self.z0, *push);
+                    (z, c.a * z + c.forcing(*push))
+                }
+            },
+            (Drive::Unforced | Drive::Drift(_), None) => match (&c.modes, &self.coefficients) {
+                (Some(modes), Some((coefficients, _))) => modes.at(coefficients, tau),
+                _ => {
+                    let z = c.exp(tau, &self.z0);
+                    (z, c.a * z)
+                }
+            },
         }
     }
 
@@ -343,7 +559,7 @@ impl CompliantGrip {
         let s0 = &self.start;
         let (z, dz) = self.propagate(t);
         let (x, v, e, de) = (z[0], z[1], z[2], z[3]);
-        // m_eff (u' - u0') = -∫F dt, u' = e' + V.
+        // m_eff (u' - u0') = -∫F dt, u' = e' + V (a drift has no V or e' at the start).
         let impulse = -setup.m_eff * ((de + v) - (self.z0[3] + self.z0[1]));
         let state = State {
             t,
@@ -363,13 +579,15 @@ impl CompliantGrip {
         }
     }
 
-    /// The energy-norm size of the start state, sqrt(2 E) with E = k X²/2 + M V²/2 + k_b e²/2 +
-    /// m_eff u'²/2, which the dashpot can only lower.
-    fn size(&self, setup: &Setup) -> f64 {
-        self.energy_norm(setup, &self.z0)
+    /// A bound on the energy-norm size sqrt(2 E) of the state carried from the start over the next
+    /// `tau`, E = k X²/2 + M V²/2 + k_b e²/2 + m_eff u'²/2. The dashpot only lowers E; a push P on the
+    /// cart raises it at most at |P V| <= |P| sqrt(2 E / M), so sqrt(2 E) grows at most at |P|/sqrt(M).
+    fn reach(&self, setup: &Setup, tau: f64) -> f64 {
+        self.energy_norm(setup, &self.z0) + self.push().abs() * tau / setup.cart_mass.sqrt()
     }
 
-    /// |g · z| <= |g T⁻¹| sqrt(2E) for a row g in z-coordinates (Cauchy-Schwarz in the energy norm).
+    /// |g · z| <= |g T⁻¹| sqrt(2E) for a row g in z-coordinates (Cauchy-Schwarz in the energy norm),
+    /// over the rest of the contact.
     fn bound(&self, setup: &Setup, g: RowVector4<f64>) -> f64 {
         let kb = self.compliance.kb;
         let gx = if setup.k > 0.0 {
@@ -382,21 +600,67 @@ impl CompliantGrip {
             + (g[2] / kb.sqrt()).powi(2)
             + (g[3] / setup.m_eff.sqrt()).powi(2))
         .sqrt();
-        norm * self.size(setup)
+        norm * self.reach(setup, setup.duration - self.start.t)
     }
 
-    /// A bound on |F''| over the phase, and the size of F (for the rounding floor).
+    /// A bound on |g z''| over the phase: z'' = A² z + A b, bounded in the energy norm; pushed and in
+    /// its modes also by the modes' amplitudes, z'' = Σ s_i (c_i s_i + β_i) e^{s_i τ} v_i (|e^{s_i τ}| <= 1
+    /// for a passive system), the smaller taken.
+    fn second(&self, setup: &Setup, g: RowVector4<f64>) -> f64 {
+        let c = &self.compliance;
+        let energy = self.bound(setup, g * c.a * c.a) + (g * c.a * c.forcing(self.push()))[0].abs();
+        let modal = match (&self.drive, &c.modes, &self.coefficients) {
+            (Drive::Pushed { .. }, Some(modes), Some((coefficients, beta))) => {
+                let remaining = setup.duration - self.start.t;
+                (0..4)
+                    .map(|i| {
+                        let s = modes.s[i];
+                        let row: Complex<f64> = (0..4).map(|j| modes.v[(j, i)] * g[j]).sum();
+                        let growth = (s.re.max(0.0) * remaining).exp();
+                        row.norm() * s.norm() * (coefficients[i] * s + beta[i]).norm() * growth
+                    })
+                    .sum()
+            }
+            _ => f64::INFINITY,
+        };
+        energy.min(modal)
+    }
+
+    /// A bound on |F''| over the phase, and the size of F (for the rounding floor). A drift's force,
+    /// k_b e_p, is constant.
     pub(super) fn force_bounds(&self, setup: &Setup) -> (f64, f64) {
         let c = &self.compliance;
-        if let Some(free) = &c.free {
-            return free.bounds(&self.z0, c.kb, c.cb);
+        match (&self.drive, &c.free) {
+            (Drive::Held, _) => c.held.bounds(&self.z0, c.kb, c.cb),
+            (Drive::Drift(d), Some(free)) => {
+                let (curvature, size) = free.bounds(&self.z0, c.kb, c.cb);
+                (curvature, size + c.kb * d.e.abs())
+            }
+            (_, Some(free)) => free.bounds(&self.z0, c.kb, c.cb),
+            _ => (
+                self.second(setup, RowVector4::new(0.0, 0.0, c.kb, c.cb)),
+                self.bound(setup, RowVector4::new(0.0, 0.0, c.kb, 0.0))
+                    + self.bound(setup, RowVector4::new(0.0, 0.0, 0.0, c.cb)),
+            ),
         }
-        let g = RowVector4::new(0.0, 0.0, c.kb, c.cb);
-        (
-            self.bound(setup, g * c.a * c.a),
-            self.bound(setup, RowVector4::new(0.0, 0.0, c.kb, 0.0))
-                + self.bound(setup, RowVector4::new(0.0, 0.0, 0.0, c.cb)),
-        )
+    }
+
+    /// For the moving cart's stopping: a bound on |V''| over the phase, and the size of the terms V is
+    /// summed from (for the rounding floor). A drift's V is linear.
+    pub(super) fn cart_bounds(&self, setup: &Setup) -> (f64, f64) {
+        let c = &self.compliance;
+        let (curvature, size) = match &c.free {
+            Some(free) => free.cart_bounds(&self.z0),
+            None => {
+                let v = RowVector4::new(0.0, 1.0, 0.0, 0.0);
+                (self.second(setup, v), self.bound(setup, v))
+            }
+        };
+        let drift = match &self.drive {
+            Drive::Drift(d) => d.accel.abs() * (setup.duration - self.start.t),
+            _ => 0.0,
+        };
+        (curvature, self.start.v.abs() + size + drift)
     }
 }
 
@@ -443,5 +707,94 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// A grip on a cart moving against string friction solves z' = A z + b (its modes against the
+    /// exponential of the augmented matrix, and both against the equation by central differences), from a
+    /// heavy cart on a soft spring (whose equilibrium P/k lies metres away) to a light stiff one and a
+    /// free one; a held cart stays put while the stretch rings down.
+    #[test]
+    fn a_pushed_grip_solves_the_forced_system_and_a_held_one_stays_put() {
+        let mut modal = 0;
+        let start = State {
+            t: 1e-3,
+            vx: 3.0,
+            omega: 40.0,
+            x: 2e-3,
+            v: 1.5,
+        };
+        for (cart_mass, stiffness, damping) in [
+            (1709.0, 1.0, 1.0),
+            (0.01, 15e3, 0.3),
+            (0.05, 4e4, 0.0),
+            (0.01, 0.0, 0.5),
+        ] {
+            let params = Params {
+                cart_mass,
+                stiffness,
+                cart_friction: 20.0,
+                ball_stiffness: 4e5,
+                ball_damping: damping,
+                ..Params::default()
+            };
+            let setup = Setup::new(&params);
+            let compliance = Compliance::new(&params, &setup);
+            let grip = CompliantGrip::new(compliance, start, 1e-4, &setup, Cart::Moving(1));
+            let push = Cart::Moving(1).friction(&setup);
+            let b = compliance.forcing(push);
+            let scale = grip.energy_norm(&setup, &grip.z0) + 1.0;
+            for tau in [1e-6, 1e-4, 1e-3, 3e-3] {
+                let t = start.t + tau;
+                let (z, dz) = grip.propagate(t);
+                if let (Drive::Pushed { push }, Some(_)) = (&grip.drive, &grip.coefficients) {
+                    modal += 1;
+                    let exact = compliance.exp_forced(tau, &grip.z0, *push);
+                    let error = grip.energy_norm(&setup, &(z - exact));
+                    assert!(
+                        error <= 1e-12 * scale,
+                        "M {cart_mass}: modes off by {error}"
+                    );
+                }
+                let rate = compliance.a * z + b;
+                let h = 1e-8;
+                let numerical = (grip.propagate(t + h).0 - grip.propagate(t - h).0) / (2.0 * h);
+                for i in 0..4 {
+                    let size = rate[i].abs() + dz[i].abs() + 1.0;
+                    assert!(
+                        (dz[i] - rate[i]).abs() <= 1e-9 * size,
+                        "M {cart_mass} z'[{i}]"
+                    );
+                    assert!(
+                        (numerical[i] - rate[i]).abs() <= 1e-5 * size,
+                        "M {cart_mass} z'[{i}]: {} vs {}",
+                        numerical[i],
+                        rate[i]
+                    );
+                }
+            }
+            let held = CompliantGrip::new(
+                compliance,
+                State { v: 0.0, ..start },
+                1e-4,
+                &setup,
+                Cart::Stuck,
+            );
+            let mut previous = f64::INFINITY;
+            for tau in [0.0, 1e-4, 1e-3, 3e-3] {
+                let p = held.at(&setup, start.t + tau);
+                assert_eq!((p.state.x, p.state.v), (start.x, 0.0));
+                // m_eff e'' = -F while the patch is held.
+                assert!(
+                    (setup.m_eff * p.dde + p.friction).abs() <= 1e-9 * p.friction.abs().max(1.0)
+                );
+                let energy = compliance.kb * p.e * p.e + setup.m_eff * p.de * p.de;
+                assert!(
+                    energy <= previous * (1.0 + 1e-12),
+                    "the held stretch gains energy"
+                );
+                previous = energy;
+            }
+        }
+        assert!(modal >= 8, "the modes were checked {modal} times");
     }
 }

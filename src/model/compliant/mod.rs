@@ -16,6 +16,15 @@
 //!   proportionally damped system, solved in its complex modes ([`CompliantGrip`] on the single cart,
 //!   [`ChainGrip`] on a chain). The grip breaks when |F| reaches mu N, into a slide the way F points.
 //!
+//! - String friction on the single cart (Sec. IV's first enhancement): the cart moves against -dir F_c
+//!   (the rigid [`Slide`]'s push while the patch slides; while it grips, the constant push enters the
+//!   grip's linear system through Duhamel's integral, or on a free cart as the uniformly accelerated
+//!   particular solution) and the phase also ends when V reaches zero; or it is held still (the rigid
+//!   ball's held slide; in a grip the stretch alone, a damped oscillator on a still surface) and the
+//!   phase also ends when the net force on it, F - k X, reaches ±F_c. The ball's force F is
+//!   continuous across every transition, so a stopped cart is held while |F - k X| <= F_c and otherwise
+//!   moves the way it is pushed ([`transition::at_rest`]). On a chain the combination is refused.
+//!
 //! Chatter: an undamped stiff ball may switch many times; every phase advances time and the solver stops
 //! after [`super::error::MAX_TRANSITIONS`] with `SolveError::TooManyPhases`.
 
@@ -41,6 +50,7 @@ use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
+use super::transition;
 use super::units::brief;
 use cart_grip::EXP_ROUNDING;
 
@@ -283,9 +293,10 @@ pub struct CompliantState {
     e: f64,
 }
 
-/// The tangentially compliant ball on the single cart or on a chain (no string friction). With a spring
-/// (k > 0) every grip is solved by [`ChainGrip`], the single cart being a chain of one mass; a free cart
-/// (k = 0) has a double zero root there, and its grips are solved by [`CompliantGrip`].
+/// The tangentially compliant ball on the single cart (with or without string friction) or on a chain
+/// (without). With a spring (k > 0) and no string friction every grip is solved by [`ChainGrip`], the
+/// single cart being a chain of one mass; a free cart (k = 0) has a double zero root there, and its grips
+/// are solved by [`CompliantGrip`], as are all grips with string friction.
 pub struct CompliantBall {
     support: Support,
     spring: BallSpring,
@@ -295,14 +306,16 @@ pub struct CompliantBall {
 }
 
 impl CompliantBall {
-    /// The model for `params` and the setup it runs on, refused with string friction or when the cart
-    /// or the ball's spring is too fast to resolve. `modal` solves every grip as a chain's (with a
-    /// spring); otherwise by the cart's own 4-state system, the chain's length ignored.
+    /// The model for `params` and the setup it runs on, refused with string friction on a chain with
+    /// springs or when the cart or the ball's spring is too fast to resolve. `modal` solves every grip
+    /// as a chain's (with a spring, without string friction); otherwise by the cart's own 4-state
+    /// system, the chain's length ignored.
     pub fn new(params: &Params, modal: bool) -> Result<(Self, Setup), SolveError> {
-        if params.cart_friction > 0.0 {
+        let links = params.chain.max(1.0);
+        let string = params.cart_friction > 0.0;
+        if string && links > 1.0 && params.stiffness > 0.0 {
             return Err(SolveError::StringFrictionCompliantBall);
         }
-        let links = params.chain.max(1.0);
         // Without springs (k = 0) the chain's other masses never move: the ball meets its first mass
         // alone.
         let setup = if links > 1.0 && params.stiffness == 0.0 {
@@ -315,7 +328,7 @@ impl CompliantBall {
             Setup::new(params)
         };
         let spring = BallSpring::new(params, &setup);
-        let support = if modal {
+        let support = if modal && !string {
             let chain = Chain::shared(params, &setup);
             let key = (
                 Chain::key(params, &setup),
@@ -348,6 +361,78 @@ impl CompliantBall {
             incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
         };
         Ok((model, setup))
+    }
+}
+
+/// A branch that never rises: the event of a cart without string friction.
+const STAND_IN: (f64, f64) = (-1.0, 0.0);
+
+/// The events at the single cart with string friction, as two branches that rise through zero: moving in
+/// direction d, its velocity -d (V - `v_offset`) (it stops; the second branch is a stand-in); held, the
+/// net force ±(F - k X) - F_c (it is pushed free either way). Without string friction both are stand-ins.
+struct CartEvents {
+    cart: Cart,
+    v_offset: f64,
+    /// The size of the forces on the cart at the start, mu N0 + k |X| + F_c.
+    forces: f64,
+}
+
+impl CartEvents {
+    #[inline]
+    fn at(&self, setup: &Setup, p: &Point) -> [(f64, f64); 2] {
+        if setup.cart_friction == 0.0 {
+            return [STAND_IN; 2];
+        }
+        let push = p.friction - setup.k * p.state.x;
+        match self.cart {
+            Cart::Moving(d) => {
+                let d = f64::from(d);
+                let accel = (push + self.cart.friction(setup)) / setup.cart_mass;
+                [(-d * (p.state.v - self.v_offset), -d * accel), STAND_IN]
+            }
+            // X is fixed: the push changes as F does.
+            Cart::Stuck => [
+                (push - setup.cart_friction, p.friction_rate),
+                (-push - setup.cart_friction, -p.friction_rate),
+            ],
+        }
+    }
+
+    /// The branches' curvature bound and rounding floor, given a bound on |V''| and the size of the terms
+    /// V is summed from (for a moving cart), or a bound on |F''| and the size of F's terms (held).
+    fn bounds(
+        &self,
+        setup: &Setup,
+        (speed_curvature, speeds): (f64, f64),
+        force_curvature: f64,
+        force_terms: f64,
+    ) -> (f64, f64) {
+        match self.cart {
+            _ if setup.cart_friction == 0.0 => (0.0, 0.0),
+            Cart::Moving(_) => (speed_curvature, ROUNDING * (self.v_offset.abs() + speeds)),
+            Cart::Stuck => (
+                force_curvature,
+                ROUNDING * (self.forces + EXP_ROUNDING * force_terms),
+            ),
+        }
+    }
+
+    /// The cause of a rise of branch 0 or 1.
+    fn cause(&self, branch: usize) -> Cause {
+        match (self.cart, branch) {
+            (Cart::Moving(_), _) => Cause::CartStop,
+            (Cart::Stuck, 0) => Cause::Unstick(1),
+            (Cart::Stuck, _) => Cause::Unstick(-1),
+        }
+    }
+}
+
+/// The grip breaking forward (margin branch 0) or backward (1).
+fn grip_break(branch: usize) -> Cause {
+    if branch == 0 {
+        Cause::GripBreak(1.0)
+    } else {
+        Cause::GripBreak(-1.0)
     }
 }
 
@@ -453,7 +538,18 @@ impl Contact for CompliantBall {
             full: ChainState::from_contact(&state),
             e: 0.0,
         };
-        (carried, (ball, Cart::Moving(1)))
+        // With string friction the cart starts at rest under the ball's first force (0 sliding, as
+        // N(0) = 0; the dashpot's on the arriving slip gripping).
+        let cart = if setup.cart_friction > 0.0 {
+            let force = match ball {
+                Ball::Slide(_) => 0.0,
+                Ball::Grip => spring.cb * slip0,
+            };
+            transition::at_rest(setup, force)
+        } else {
+            Cart::Moving(1)
+        };
+        (carried, (ball, cart))
     }
 
     fn time(state: &CompliantState) -> f64 {
@@ -464,14 +560,12 @@ impl Contact for CompliantBall {
         state.contact
     }
 
-    fn motion(&self, setup: &Setup, state: &CompliantState, (ball, _): Mode) -> CompliantMotion {
+    fn motion(&self, setup: &Setup, state: &CompliantState, (ball, cart): Mode) -> CompliantMotion {
         let t0 = state.contact.t;
         match ball {
             Ball::Slide(dir) => {
                 let rigid = match &self.support {
-                    Support::Cart(_) => {
-                        Rigid::Cart(Slide::new(setup, state.contact, dir, Cart::Moving(1)))
-                    }
+                    Support::Cart(_) => Rigid::Cart(Slide::new(setup, state.contact, dir, cart)),
                     Support::Chain { chain, .. } => Rigid::Chain(Arc::new(ChainMotion::new(
                         chain.clone(),
                         setup,
@@ -489,7 +583,7 @@ impl Contact for CompliantBall {
             Ball::Grip => {
                 match &self.support {
                     Support::Cart(compliance) => CompliantMotion::Grip(Box::new(
-                        CompliantGrip::new(**compliance, state.contact, state.e, setup),
+                        CompliantGrip::new(**compliance, state.contact, state.e, setup, cart),
                     )),
                     Support::Chain { modes, .. } => CompliantMotion::ChainGrip(ChainGrip::new(
                         modes.clone(),
@@ -507,7 +601,7 @@ impl Contact for CompliantBall {
         setup: &Setup,
         motion: &CompliantMotion,
         state: &CompliantState,
-        _: Mode,
+        (_, cart): Mode,
         cause: Cause,
     ) -> Found<Point> {
         let (t0, end) = (state.contact.t, setup.duration);
@@ -515,6 +609,18 @@ impl Contact for CompliantBall {
         let s = &state.contact;
         let last = Cell::new(None::<Point>);
         let speeds = self.incoming + s.vx.abs() + setup.r * s.omega.abs() + s.v.abs();
+        // The cart's velocity starts on its own zero after it stopped or came unstuck (and at first
+        // contact): measured from its start value, so rounding cannot fake a stop there.
+        let v_offset = if matches!(cause, Cause::Start | Cause::CartStop | Cause::Unstick(_)) {
+            s.v
+        } else {
+            0.0
+        };
+        let events = CartEvents {
+            cart,
+            v_offset,
+            forces: peak + setup.k * s.x.abs() + setup.cart_friction,
+        };
         let event = match motion {
             CompliantMotion::Slide(slide) => {
                 let dir = slide.dir();
@@ -531,16 +637,28 @@ impl Contact for CompliantBall {
                     let p = slide.at(setup, t);
                     last.set(Some(p));
                     let (slip, rate) = slide.patch_slip(setup, &p);
-                    [(-dir * (slip - offset), -dir * rate)]
+                    let [first, second] = events.at(setup, &p);
+                    [(-dir * (slip - offset), -dir * rate), first, second]
                 };
                 let (slip_curvature, terms, fastest) = slide.slip_bounds(setup);
                 let noise = ROUNDING * (speeds + terms + slide.stretch.speed(w));
+                let (cart_curvature, cart_noise) = match &slide.rigid {
+                    // The rigid slide's bound is on V'' moving, on F'' = (F - k X)'' held.
+                    Rigid::Cart(rigid) => {
+                        let curvature = rigid.curvature(setup).1;
+                        let speeds = rigid.cart_speed_scale(setup);
+                        events.bounds(setup, (curvature, speeds), curvature, 0.0)
+                    }
+                    Rigid::Chain(_) => (0.0, 0.0),
+                };
+                let noise = [noise, cart_noise, cart_noise];
                 // While the stretch's transient lasts, on its scale; after, on the cart's.
                 let split = slide.stretch.settled().clamp(t0, end);
                 let early = if slide.stretch.damped {
                     let curvature = slip_curvature + slide.stretch.third(w, t0);
                     let step = setup.event_step(fastest.max(slide.stretch.lambda));
-                    first_rise_from_tangent(f, t0, split, step, [curvature], [noise])
+                    let curvature = [curvature, cart_curvature, cart_curvature];
+                    first_rise_from_tangent(f, t0, split, step, curvature, noise)
                 } else {
                     None
                 };
@@ -548,46 +666,62 @@ impl Contact for CompliantBall {
                     .or_else(|| {
                         let curvature = slip_curvature + slide.stretch.third(w, split);
                         let step = setup.event_step(fastest);
-                        first_rise_from_tangent(f, split, end, step, [curvature], [noise])
+                        let curvature = [curvature, cart_curvature, cart_curvature];
+                        first_rise_from_tangent(f, split, end, step, curvature, noise)
                     })
-                    .map(|(t, _)| (t, Cause::SlipZero))
+                    .map(|(t, branch)| {
+                        let cause = match branch {
+                            0 => Cause::SlipZero,
+                            _ => events.cause(branch - 1),
+                        };
+                        (t, cause)
+                    })
             }
-            grip => {
+            CompliantMotion::ChainGrip(grip) => {
                 let margin_curvature = peak * w * w;
-                // Stages of the search: (from, to, curvature, step), and the force's rounding.
-                let (stages, noise) = match grip {
-                    CompliantMotion::ChainGrip(grip) => {
-                        let (stages, size) = grip.search_stages(setup);
-                        let stages = stages
-                            .into_iter()
-                            .map(|(from, to, curvature, step)| {
-                                (from, to, curvature + margin_curvature, step)
-                            })
-                            .collect();
-                        (stages, ROUNDING * (peak + size))
-                    }
-                    CompliantMotion::Grip(grip) => {
-                        let (curvature, size) = grip.force_bounds(setup);
-                        let step = setup.event_step(grip.compliance.fastest);
-                        let stage = (t0, end, curvature + margin_curvature, step);
-                        (vec![stage], ROUNDING * (peak + EXP_ROUNDING * size))
-                    }
-                    CompliantMotion::Slide(_) => unreachable!("matched above"),
-                };
+                let (stages, size) = grip.search_stages(setup);
+                let noise = ROUNDING * (peak + size);
                 let f = |t: f64| {
                     let p = grip.at(setup, t);
                     last.set(Some(p));
                     setup.grip_margins(t, p.friction, p.friction_rate)
                 };
                 stages
-                    .iter()
-                    .find_map(|&(from, to, curvature, step)| {
-                        first_rise_from_tangent(f, from, to, step, [curvature; 2], [noise; 2])
+                    .into_iter()
+                    .find_map(|(from, to, curvature, step)| {
+                        let curvature = [curvature + margin_curvature; 2];
+                        first_rise_from_tangent(f, from, to, step, curvature, [noise; 2])
                     })
-                    .map(|(t, branch)| {
-                        let sign = if branch == 0 { 1.0 } else { -1.0 };
-                        (t, Cause::GripBreak(sign))
-                    })
+                    .map(|(t, branch)| (t, grip_break(branch)))
+            }
+            CompliantMotion::Grip(grip) => {
+                let margin_curvature = peak * w * w;
+                let (curvature, size) = grip.force_bounds(setup);
+                let step = setup.event_step(grip.compliance.fastest);
+                let noise = ROUNDING * (peak + EXP_ROUNDING * size);
+                let (cart_curvature, cart_noise) =
+                    events.bounds(setup, grip.cart_bounds(setup), curvature, size);
+                let f = |t: f64| {
+                    let p = grip.at(setup, t);
+                    last.set(Some(p));
+                    let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
+                    let [first, second] = events.at(setup, &p);
+                    [forward, backward, first, second]
+                };
+                let curvature = [
+                    curvature + margin_curvature,
+                    curvature + margin_curvature,
+                    cart_curvature,
+                    cart_curvature,
+                ];
+                let noise = [noise, noise, cart_noise, cart_noise];
+                first_rise_from_tangent(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                    let cause = match branch {
+                        0 | 1 => grip_break(branch),
+                        _ => events.cause(branch - 2),
+                    };
+                    (t, cause)
+                })
             }
         };
         Found {
@@ -622,11 +756,32 @@ impl Contact for CompliantBall {
         }
     }
 
-    /// A slide ends in a grip; a grip breaks into a slide the way the force points.
-    fn next(&self, _: &Setup, _: &mut CompliantState, (ball, cart): Mode, cause: Cause) -> Mode {
-        match (ball, cause) {
-            (Ball::Grip, Cause::GripBreak(sign)) => (Ball::Slide(sign), cart),
-            _ => (Ball::Grip, cart),
+    /// A slide ends in a grip; a grip breaks into a slide the way the force points; a cart pushed free
+    /// moves the way it was pushed; a cart that stops is held or pushed on by the net force on it,
+    /// F - k X ([`transition::at_rest`]). The force F is continuous across each of these, so the other
+    /// half of the mode stays.
+    fn next(
+        &self,
+        setup: &Setup,
+        state: &mut CompliantState,
+        (ball, cart): Mode,
+        cause: Cause,
+    ) -> Mode {
+        match cause {
+            Cause::GripBreak(sign) => (Ball::Slide(sign), cart),
+            Cause::Unstick(dir) => (ball, Cart::Moving(dir)),
+            Cause::CartStop => {
+                let s = &mut state.contact;
+                s.v = 0.0;
+                state.full = ChainState::from_contact(s);
+                let force = match ball {
+                    Ball::Slide(dir) => dir * setup.mu * setup.normal(s.t),
+                    // Gripping, e' is the contact point's slip on the cart.
+                    Ball::Grip => self.spring.kb * state.e + self.spring.cb * setup.slip(s),
+                };
+                (ball, transition::at_rest(setup, force - setup.k * s.x))
+            }
+            Cause::SlipZero | Cause::Start => (Ball::Grip, cart),
         }
     }
 }
