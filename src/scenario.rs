@@ -247,11 +247,19 @@ impl Scenario {
         }
     }
 
-    /// True when the scenario sets a shot parameter (a stroke on court, for `snapback shot`).
+    /// True when the scenario sets a shot parameter (a stroke on court, for `snapback shot`), unless it
+    /// lists every parameter with the shot's at their defaults: the explorer saved every bounce so before
+    /// it had shot mode (a shot it saves now leaves out the incidence, which the shot sets).
     pub fn is_shot(&self) -> bool {
-        self.values
-            .keys()
-            .any(|key| spec_named(key).is_some_and(|s| s.group == Group::Shot))
+        let shot_keys = || {
+            self.values
+                .iter()
+                .filter_map(|(key, value)| Some((spec_named(key)?, *value)))
+                .filter(|(spec, _)| spec.group == Group::Shot)
+        };
+        let every_key_at_defaults = self.values.len() == PARAMS.len()
+            && shot_keys().all(|(spec, value)| value == spec.default);
+        shot_keys().next().is_some() && !every_key_at_defaults
     }
 
     /// `base` with the scenario's values set.

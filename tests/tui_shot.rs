@@ -452,3 +452,81 @@ fn picking_a_shot_preset_turns_shot_mode_on_and_the_picker_finds_it_again() {
     drive(&mut app, 160, 48, vec![char('p')]);
     assert_eq!(app.mode, snapback::tui::Mode::Picker(index));
 }
+
+#[test]
+fn m_leaves_shot_mode_and_the_bounces_own_incidence_comes_back() {
+    let own = Params {
+        angle_deg: 45.0,
+        speed: 12.0,
+        spin: -50.0,
+        ..Params::default()
+    };
+    // Tab into the shot view turns shot mode on; m turns it off and shows the contact view again.
+    let (app, screen) = explore(own, Theme::default(), (160, 48), {
+        let mut events = tabs(3);
+        events.push(char('m'));
+        events
+    });
+    assert!(!app.shots.on);
+    assert_eq!(app.view, View::Contact);
+    assert_eq!(
+        (app.params.angle_deg, app.params.speed, app.params.spin),
+        (45.0, 12.0, -50.0)
+    );
+    assert!(screen.contains("shot mode off"), "{screen}");
+    assert!(!screen.contains("set by the shot"), "{screen}");
+    // m turns it on again from any view, and the strings' incidence follows the shot.
+    let (app, screen) = explore(own, Theme::default(), (160, 48), vec![char('m')]);
+    assert!(app.shots.on);
+    assert_eq!(app.view, View::Contact);
+    let strings = shot::hit(&own).unwrap().incidence;
+    assert_eq!(app.params.angle_deg, strings.theta1_deg);
+    assert!(
+        line_with(&screen, "θ1").contains("set by the shot"),
+        "{screen}"
+    );
+    // And m once more gives the bounce back.
+    let (app, _) = explore(own, Theme::default(), (160, 48), vec![char('m'), char('m')]);
+    assert!(!app.shots.on);
+    assert_eq!(app.params, own);
+}
+
+#[test]
+fn a_file_listing_the_shot_keys_at_their_defaults_is_a_bounce() {
+    // The explorer used to save every key: such a file is a bounce, a shot preset is a shot.
+    let mut p = Params::default();
+    p.angle_deg = 40.0;
+    let every_key = scenario::Scenario::from_params("old", "saved before shot mode", &p);
+    assert!(!every_key.is_shot());
+    assert!(scenario::preset("topspin-forehand").unwrap().is_shot());
+    let dir = std::env::temp_dir().join(format!("snapback-tui-shot-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("old.toml");
+    every_key.save(&path).unwrap();
+    let mut app = App::new(Params::default(), Theme::default()).unwrap();
+    app.dir = dir.clone();
+    let mut events = vec![char('o')];
+    events.extend("old.toml".chars().map(char));
+    events.push(key(KeyCode::Enter));
+    drive(&mut app, 160, 48, events);
+    assert!(!app.shots.on);
+    assert_eq!(app.params.angle_deg, 40.0);
+    // A shot saved in shot mode, even the default one, opens as a shot.
+    let mut app = App::new(Params::default(), Theme::default()).unwrap();
+    app.dir = dir.clone();
+    let mut events = vec![char('m'), char('s')];
+    events.extend("shot.toml".chars().map(char));
+    events.push(key(KeyCode::Enter));
+    drive(&mut app, 160, 48, events);
+    let saved = scenario::Scenario::load(&dir.join("shot.toml")).unwrap();
+    assert!(saved.is_shot(), "{saved:?}");
+    let mut reopened = App::new(Params::default(), Theme::default()).unwrap();
+    reopened.dir = dir.clone();
+    let mut events = vec![char('o')];
+    events.extend("shot.toml".chars().map(char));
+    events.push(key(KeyCode::Enter));
+    drive(&mut reopened, 160, 48, events);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert!(reopened.shots.on);
+    assert_eq!(reopened.params, app.params);
+}

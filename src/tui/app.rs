@@ -138,6 +138,8 @@ pub enum Action {
     ToggleFree,
     /// Fit the free parameters to the measurements in the background, or stop the fit under way.
     Fit,
+    /// Turn shot mode on, or off again (the bounce's own incidence comes back).
+    ToggleShot,
 }
 
 /// Who gets the keys.
@@ -480,10 +482,34 @@ impl App {
             return;
         }
         self.shots.on = true;
+        self.shots.before = Some(self.params);
         if shot::derived(self.selected_spec().id) {
             self.selected = PARAMS.len();
         }
         self.set_params(self.params, "parameters");
+    }
+
+    /// Leaves shot mode: the shot group leaves the panel, the bounce's own incidence (from before shot
+    /// mode) comes back, and the shot view gives way to the contact view.
+    pub fn leave_shot(&mut self) {
+        self.shots.on = false;
+        let mut params = self.params;
+        if let Some(before) = self.shots.before.take() {
+            for id in shot::DERIVED {
+                params.set(id, before.get(id));
+            }
+        }
+        if self.selected >= PARAMS.len() {
+            self.selected = 0;
+        }
+        if self.view == View::Shot {
+            self.view = View::Contact;
+        }
+        self.set_params(params, "parameters");
+        self.message = Some(Message {
+            text: shot::MODE_OFF.into(),
+            tone: Tone::Info,
+        });
     }
 
     /// Applies one action; any change of parameters re-solves and recomputes everything shown.
@@ -595,6 +621,17 @@ impl App {
             Action::Quit if self.lab.fitting.is_some() => self.update_lab(action),
             Action::Quit => self.quit_or_ask(),
             Action::ToggleFree | Action::Fit => self.update_lab(action),
+            Action::ToggleShot => {
+                if self.shots.on {
+                    self.leave_shot();
+                } else {
+                    self.explore_shot();
+                    self.message = Some(Message {
+                        text: shot::MODE_ON.into(),
+                        tone: Tone::Info,
+                    });
+                }
+            }
             Action::OpenPicker
             | Action::PickerUp
             | Action::PickerDown

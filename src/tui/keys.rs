@@ -297,13 +297,14 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Char('f'))],
         Action::ToggleFree,
-        "mark this parameter free for a fit, or fixed",
+        "mark free or fixed / fit to --data; F or Esc stops",
         None,
     ),
+    bind(&[Plain(KeyCode::Char('F'))], Action::Fit, "", None),
     bind(
-        &[Plain(KeyCode::Char('F'))],
-        Action::Fit,
-        "fit the free ones to --data; F, Esc or q stop it",
+        &[Plain(KeyCode::Char('m'))],
+        Action::ToggleShot,
+        "shot mode on / off: θ1, v1, ω1 follow the racquet",
         None,
     ),
 ];

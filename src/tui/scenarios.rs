@@ -243,11 +243,17 @@ impl App {
         };
         let mut scenario = Scenario::from_params(&name, &description, &self.params);
         // Outside shot mode the shot's parameters are the defaults: a file without them opens as a bounce.
-        if !self.shots.on {
-            scenario
-                .values
-                .retain(|key, _| spec_named(key).is_none_or(|s| s.group != Group::Shot));
-        }
+        // In shot mode the incidence is the shot's to set: a file without it opens as a shot.
+        let shot = self.shots.on;
+        scenario.values.retain(|key, _| {
+            spec_named(key).is_none_or(|s| {
+                if shot {
+                    !crate::tui::shot::derived(s.id)
+                } else {
+                    s.group != Group::Shot
+                }
+            })
+        });
         match scenario.save(path) {
             Ok(()) => {
                 self.file_params = Some(self.params);

@@ -15,9 +15,13 @@ use crate::model::Params;
 use crate::model::params::{ParamId, ParamSpec, spec};
 use crate::shot::{self, Shot, ShotError};
 
-/// What the status line says when the shot view turns shot mode on.
+/// What the status line says when shot mode comes on (the shot view, or m).
 pub const MODE_ON: &str = "shot mode: θ1, v1 and ω1 now follow from the racquet and the incoming ball, \
-                           and the contact view shows the bounce on the strings";
+                           and the contact view shows the bounce on the strings (m leaves it)";
+
+/// What the status line says when m turns shot mode off.
+pub const MODE_OFF: &str = "shot mode off: the bounce's own θ1, v1 and ω1 are back (Tab to the shot \
+                            view or m turns it on again)";
 
 /// The parameters the frame change sets in a shot.
 pub const DERIVED: [ParamId; 3] = [ParamId::Angle, ParamId::Speed, ParamId::Spin];
@@ -100,6 +104,8 @@ pub struct Shots {
     /// True while the explorer explores a shot: from a shot preset, scenario or flag, or once the shot
     /// view has been shown.
     pub on: bool,
+    /// The parameters as they were when shot mode came on: leaving it brings their incidence back.
+    pub before: Option<Params>,
     /// The newest shot played for the current parameters, or for earlier ones while those are played.
     pub shown: Option<Arc<Played>>,
     /// The keys of the shots asked for and not answered yet.
