@@ -494,8 +494,10 @@ fn m_leaves_shot_mode_and_the_bounces_own_incidence_comes_back() {
 #[test]
 fn a_file_listing_the_shot_keys_at_their_defaults_is_a_bounce() {
     // The explorer used to save every key: such a file is a bounce, a shot preset is a shot.
-    let mut p = Params::default();
-    p.angle_deg = 40.0;
+    let p = Params {
+        angle_deg: 40.0,
+        ..Params::default()
+    };
     let every_key = scenario::Scenario::from_params("old", "saved before shot mode", &p);
     assert!(!every_key.is_shot());
     assert!(scenario::preset("topspin-forehand").unwrap().is_shot());
