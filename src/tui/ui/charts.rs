@@ -228,7 +228,8 @@ fn cursor_line(
         }
     }
     if now.cart_stuck {
-        left.push(Span::styled(", cart stuck", Style::new().fg(theme.stuck())));
+        let stuck = format!(", {} stuck", carrier(&solved.bounce.params));
+        left.push(Span::styled(stuck, Style::new().fg(theme.stuck())));
     }
     let state = if app.playing {
         Span::styled("▶ playing ", theme.key())
@@ -304,7 +305,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
             from: p.start * 1e3,
             to: p.end * 1e3,
             label: if p.cart == Cart::Stuck {
-                format!("{}, cart stuck", p.kind.name())
+                format!("{}, {} stuck", p.kind.name(), carrier(&bounce.params))
             } else {
                 p.kind.name().to_string()
             },
@@ -335,7 +336,10 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
             ]),
         ),
         (
-            Line::from(Span::styled(" cart displacement X (mm) ", theme.title())),
+            Line::from(Span::styled(
+                format!(" {} displacement X (mm) ", carrier(&bounce.params)),
+                theme.title(),
+            )),
             Line::from(Span::styled(" X (mm) ", theme.title())),
         ),
         (
@@ -372,5 +376,14 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
             axis_style: theme.dim(),
         };
         frame.render_widget(plot, row);
+    }
+}
+
+/// What the ball lands on, as the charts name it: the cart, or a chain's first mass (the one it touches).
+fn carrier(params: &crate::model::Params) -> &'static str {
+    if params.chain > 1.0 {
+        "first mass"
+    } else {
+        "cart"
     }
 }

@@ -223,6 +223,7 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
         }
     }
     if wide {
+        let chain = b.params.chain > 1.0;
         let share = |j: f64| format!("{:.1} %", 100.0 * j / e.initial);
         lines.push(Line::from(vec![
             label("", "rebound speed v2"),
@@ -235,7 +236,14 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
             ]));
         }
         lines.push(Line::from(vec![
-            label("", "left in the cart"),
+            label(
+                "",
+                if chain {
+                    "left in the chain"
+                } else {
+                    "left in the cart"
+                },
+            ),
             Span::raw(share(e.final_cart)),
         ]));
         lines.push(Line::from(vec![
@@ -244,7 +252,14 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
         ]));
         if b.params.cart_friction > 0.0 {
             lines.push(Line::from(vec![
-                label("", "lost at the cart"),
+                label(
+                    "",
+                    if chain {
+                        "lost at mass 1"
+                    } else {
+                        "lost at the cart"
+                    },
+                ),
                 Span::raw(share(e.cart_friction_loss)),
             ]));
         }
