@@ -1,7 +1,8 @@
 //! Random compliant-ball bounces, shared by the compliant ball's tests on the cart and on a chain.
 
 use proptest::prelude::*;
-use snapback::model::Params;
+use proptest::test_runner::TestCaseError;
+use snapback::model::{Bounce, Params, SolveError, solve};
 
 use super::prop::log_range;
 use super::rng::Rng;
@@ -79,4 +80,69 @@ pub fn compliant_strategy(
             ..Params::default()
         },
     )
+}
+
+/// The bounce of `p`, or `None` for a refusal a compliant ball may meet: an undamped (or nearly) stiff
+/// ball that chatters past the phase cap or the work budget, or a motion too fast to resolve (checked to
+/// be beyond the limit). Any other refusal fails the test.
+pub fn solved_or_refused(p: &Params) -> Result<Option<Bounce>, TestCaseError> {
+    match solve(p) {
+        Ok(b) => Ok(Some(b)),
+        Err(SolveError::TooManyPhases { .. } | SolveError::Stalled { .. })
+            if p.ball_damping < 0.1 =>
+        {
+            Ok(None)
+        }
+        Err(SolveError::BallTooFast { radians, .. } | SolveError::TooFast { radians }) => {
+            prop_assert!(radians > snapback::model::error::MAX_RADIANS);
+            Ok(None)
+        }
+        Err(e) => panic!("{e}"),
+    }
+}
+
+/// What every compliant bounce on the cart must show: a finite outcome, no negative energy term, the
+/// energy balanced, phases tiling [0, T], and |F| <= mu N along the contact.
+#[allow(dead_code)] // the chain's tests run checks of their own
+pub fn check_basics(p: &Params, b: &Bounce) -> Result<(), TestCaseError> {
+    let o = &b.outcome;
+    for value in [
+        o.omega2,
+        o.vx2,
+        o.vy2,
+        o.speed2,
+        o.theta2_deg,
+        b.final_state.x,
+        b.final_state.v,
+    ] {
+        prop_assert!(value.is_finite());
+    }
+    let e = b.energy();
+    for value in [
+        e.final_ball,
+        e.final_cart,
+        e.ball_spring,
+        e.dashpot_loss,
+        e.cart_friction_loss,
+    ] {
+        prop_assert!(value.is_finite() && value >= -1e-12 * e.initial);
+    }
+    prop_assert!(e.friction_loss >= -1e-9 * e.initial, "{e:?}");
+    prop_assert!(e.residual.abs() < 1e-10, "residual {e:?}");
+    prop_assert_eq!(b.phases[0].start, 0.0);
+    prop_assert_eq!(b.phases.last().unwrap().end, p.duration);
+    for pair in b.phases.windows(2) {
+        prop_assert_eq!(pair[0].end, pair[1].start);
+    }
+    let n_peak = b.setup.n0;
+    for s in &b.series(200) {
+        prop_assert!(
+            s.friction.abs() <= p.mu * s.normal + 1e-8 * p.mu * n_peak + 1e-12,
+            "|F| = {} > mu N = {} at t = {}",
+            s.friction.abs(),
+            p.mu * s.normal,
+            s.t
+        );
+    }
+    Ok(())
 }
