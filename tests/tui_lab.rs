@@ -275,6 +275,11 @@ fn f_marks_parameters_free_and_refuses_what_cannot_be_fitted() {
     drive(&mut app, 160, 48, events);
     assert!(app.lab.free.is_empty());
     assert!(message(&app).contains("whole number"), "{}", message(&app));
+    // In shot mode (m) the selection moves to the shot's first parameter, which the data cannot see.
+    let mut app = lab(Params::default(), Theme::default());
+    drive(&mut app, 160, 48, vec![char('m'), char('f')]);
+    assert!(app.lab.free.is_empty());
+    assert!(message(&app).contains("is the shot's"), "{}", message(&app));
 }
 
 #[test]
