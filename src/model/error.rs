@@ -29,14 +29,6 @@ pub enum SolveError {
     /// The caller's cancellation check said the solve is no longer wanted.
     #[error("the solve was cancelled")]
     Cancelled,
-    /// The ball's grip on a chain would need a second modal system (the first mass held, or pushed by
-    /// the string friction): not modelled.
-    #[error(
-        "a compliant ball (--ball-stiffness > 0) on a chain with springs (--chain > 1) is not modelled \
-         together with string friction on its first mass: set --chain 1, --ball-stiffness 0 (a rigid \
-         ball) or --cart-friction 0"
-    )]
-    StringFrictionCompliantBall,
     #[error(
         "the ball's contact {part} is too fast to resolve: the grip's fastest rate times T = {radians:.3e} \
          rad exceeds {MAX_RADIANS:e} ({advice})"

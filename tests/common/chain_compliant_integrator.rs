@@ -17,16 +17,24 @@
 //! dashpot, when the spring's initial rate k_b |slip0| does not beat the friction limit's mu N0 w;
 //! otherwise it slides the way the arriving slip points.
 //!
-//! Two more components ride along as quadratures of the energy budget: the friction loss
-//! ∫ F (patch slip) dt over the slides and the dashpot loss ∫ c_b e'² dt.
+//! String friction F_c on the first mass (`cart_friction`): moving in direction d, it feels -d F_c
+//! besides F and its springs, until V_1 reaches zero; then it is held (X_1' = V_1' = 0) while
+//! |F - S_1| <= F_c, S_1 = kappa (X_1 - X_2) its spring (kappa X_1 alone), and otherwise moves the way
+//! F - S_1 pushes it. It starts held when F_c > 0 (and the ball's first force cannot push it free).
+//! While it is held the patch grips or slides on a still surface and the masses behind swing against it.
+//!
+//! Three more components ride along as quadratures of the energy budget: the friction loss
+//! ∫ F (patch slip) dt over the slides, the dashpot loss ∫ c_b e'² dt and the string friction's loss
+//! ∫ F_c |V_1| dt.
 
 use snapback::model::Params;
 use std::f64::consts::PI;
 
 /// The longest chain.
 const MAX_LINKS: usize = 16;
-/// v_x, omega, X_1..X_N, V_1..V_N, e, friction loss, dashpot loss (the first 2N + 5 are used).
-const DIM: usize = 2 * MAX_LINKS + 5;
+/// v_x, omega, X_1..X_N, V_1..V_N, e, friction loss, dashpot loss, string friction loss (the first
+/// 2N + 6 are used).
+const DIM: usize = 2 * MAX_LINKS + 6;
 type Y = [f64; DIM];
 
 /// At most this many phases; a chattering bounce stops there (and says so in `capped`).
@@ -47,6 +55,8 @@ pub struct Budget {
     pub friction_loss: f64,
     /// ∫ c_b e'² dt.
     pub dashpot_loss: f64,
+    /// ∫ F_c |V_1| dt.
+    pub string_loss: f64,
 }
 
 impl Budget {
@@ -58,7 +68,8 @@ impl Budget {
             - self.chain
             - self.ball_spring
             - self.friction_loss
-            - self.dashpot_loss)
+            - self.dashpot_loss
+            - self.string_loss)
             / self.initial
     }
 }
@@ -82,6 +93,9 @@ pub struct Reference {
     pub transitions: Vec<f64>,
     /// True when the bounce stopped at [`MAX_PHASES`] (chatter) before T.
     pub capped: bool,
+    /// Whether string friction held the first mass at some time, and how often it stopped after moving.
+    pub held: bool,
+    pub stops: usize,
     pub energy: Budget,
 }
 
@@ -99,7 +113,12 @@ struct Model {
     w: f64,
     kb: f64,
     cb: f64,
+    fc: f64,
 }
+
+/// What the first mass does: moving in direction +1 or -1 (0 without string friction), or held
+/// (`None`).
+type Cart = Option<f64>;
 
 impl Model {
     fn new(p: &Params) -> Model {
@@ -119,11 +138,12 @@ impl Model {
             w: PI / p.duration,
             kb: p.ball_stiffness,
             cb: 2.0 * p.ball_damping * (p.ball_stiffness * m_eff).sqrt(),
+            fc: p.cart_friction,
         }
     }
 
     fn dim(&self) -> usize {
-        2 * self.n + 5
+        2 * self.n + 6
     }
     fn xi(&self, i: usize) -> usize {
         2 + i
@@ -173,15 +193,28 @@ impl Model {
         self.kappa * (behind + ahead)
     }
 
-    fn rate(&self, dir: f64, t: f64, y: &Y) -> Y {
+    /// The first mass's own spring, kappa (X_1 - X_2) (kappa X_1 for one mass).
+    fn first_spring(&self, y: &Y) -> f64 {
+        let behind = if self.n > 1 { y[self.xi(1)] } else { 0.0 };
+        self.kappa * (y[self.xi(0)] - behind)
+    }
+
+    fn rate(&self, (dir, cart): (f64, Cart), t: f64, y: &Y) -> Y {
         let (f, de) = self.force(dir, t, y);
         let mut out = [0.0; DIM];
         out[0] = -f / self.m;
         out[1] = self.r * f / self.inertia;
         for i in 0..self.n {
             out[self.xi(i)] = y[self.vi(i)];
-            let push = if i == 0 { f } else { 0.0 };
+            let push = match (i, cart) {
+                (0, Some(d)) => f - d * self.fc,
+                _ => 0.0,
+            };
             out[self.vi(i)] = (push - self.spring(y, i)) / self.link;
+        }
+        if cart.is_none() {
+            out[self.xi(0)] = 0.0;
+            out[self.vi(0)] = 0.0;
         }
         let ei = self.ei();
         out[ei] = de;
@@ -191,10 +224,11 @@ impl Model {
             f * (self.contact_slip(y) - de)
         };
         out[ei + 2] = self.cb * de * de;
+        out[ei + 3] = self.fc * y[self.vi(0)].abs();
         out
     }
 
-    fn rk4(&self, dir: f64, t: f64, y: &Y, h: f64) -> Y {
+    fn rk4(&self, mode: (f64, Cart), t: f64, y: &Y, h: f64) -> Y {
         let d = self.dim();
         let add = |a: &Y, b: &Y, s: f64| -> Y {
             let mut out = [0.0; DIM];
@@ -203,10 +237,10 @@ impl Model {
             }
             out
         };
-        let k1 = self.rate(dir, t, y);
-        let k2 = self.rate(dir, t + h / 2.0, &add(y, &k1, h / 2.0));
-        let k3 = self.rate(dir, t + h / 2.0, &add(y, &k2, h / 2.0));
-        let k4 = self.rate(dir, t + h, &add(y, &k3, h));
+        let k1 = self.rate(mode, t, y);
+        let k2 = self.rate(mode, t + h / 2.0, &add(y, &k1, h / 2.0));
+        let k3 = self.rate(mode, t + h / 2.0, &add(y, &k2, h / 2.0));
+        let k4 = self.rate(mode, t + h, &add(y, &k3, h));
         let mut out = [0.0; DIM];
         for i in 0..d {
             out[i] = y[i] + h / 6.0 * (k1[i] + 2.0 * k2[i] + 2.0 * k3[i] + k4[i]);
@@ -223,6 +257,24 @@ impl Model {
             let patch_slip = self.contact_slip(y) - de;
             (-dir * patch_slip, 0.0)
         }
+    }
+
+    /// The first mass's event function: positive once a moving one has reversed or a held one is pushed
+    /// harder than F_c (never without string friction).
+    fn cart_event(&self, (dir, cart): (f64, Cart), t: f64, y: &Y) -> f64 {
+        if self.fc == 0.0 {
+            return -1.0;
+        }
+        match cart {
+            Some(d) => -d * y[self.vi(0)],
+            None => (self.force(dir, t, y).0 - self.first_spring(y)).abs() - self.fc,
+        }
+    }
+
+    /// A held first mass, or one moving the way the net force pushes it.
+    fn cart_at_rest(&self, dir: f64, t: f64, y: &Y) -> Cart {
+        let push = self.force(dir, t, y).0 - self.first_spring(y);
+        (push.abs() > self.fc).then(|| push.signum())
     }
 
     fn budget(&self, vx1: f64, omega1: f64, y: &Y) -> Budget {
@@ -248,6 +300,7 @@ impl Model {
             ball_spring: 0.5 * self.kb * y[ei] * y[ei],
             friction_loss: y[ei + 1],
             dashpot_loss: y[ei + 2],
+            string_loss: y[ei + 3],
         }
     }
 }
@@ -311,6 +364,23 @@ pub fn integrate(p: &Params, max_step: f64) -> Reference {
             1e-11 * (scale + 1.0)
         }
     };
+    let force_scale = model.mu * model.n0;
+    let cart_tolerance = |cart: Cart| match cart {
+        Some(_) => 1e-11 * (scale + 1.0),
+        None => 1e-11 * (force_scale + model.fc),
+    };
+    // Held at first unless the ball's first force (the dashpot's on a gripping arrival) pushes harder
+    // than F_c.
+    let mut cart: Cart = Some(0.0);
+    if model.fc > 0.0 {
+        cart = model.cart_at_rest(dir, 0.0, &y);
+    }
+    let mut held = cart.is_none();
+    let mut stops = 0;
+    let ended = |mode: (f64, Cart), t: f64, y: &Y| {
+        model.event(mode.0, t, y).0 > tolerance(mode.0)
+            || model.cart_event(mode, t, y) > cart_tolerance(mode.1)
+    };
     let end = p.duration;
     let mut t = 0.0;
     let mut kinds = vec![dir as i8];
@@ -318,8 +388,8 @@ pub fn integrate(p: &Params, max_step: f64) -> Reference {
     let mut capped = false;
     while t < end {
         let h = max_step.min(end - t);
-        let next = model.rk4(dir, t, &y, h);
-        if model.event(dir, t + h, &next).0 <= tolerance(dir) {
+        let next = model.rk4((dir, cart), t, &y, h);
+        if !ended((dir, cart), t + h, &next) {
             y = next;
             t += h;
             continue;
@@ -331,20 +401,31 @@ pub fn integrate(p: &Params, max_step: f64) -> Reference {
             if mid <= lo || mid >= hi {
                 break;
             }
-            let ym = model.rk4(dir, t, &y, mid);
-            if model.event(dir, t + mid, &ym).0 > tolerance(dir) {
+            let ym = model.rk4((dir, cart), t, &y, mid);
+            if ended((dir, cart), t + mid, &ym) {
                 hi = mid;
             } else {
                 lo = mid;
             }
         }
-        y = model.rk4(dir, t, &y, hi);
+        y = model.rk4((dir, cart), t, &y, hi);
         t += hi;
         // A transition within rounding of the end changes nothing.
         if t >= end * (1.0 - 1e-12) {
             break;
         }
-        dir = model.event(dir, t, &y).1;
+        let (ball_event, next_dir) = model.event(dir, t, &y);
+        if model.cart_event((dir, cart), t, &y) > cart_tolerance(cart) {
+            if cart.is_some() {
+                y[model.vi(0)] = 0.0;
+                stops += 1;
+            }
+            cart = model.cart_at_rest(dir, t, &y);
+            held |= cart.is_none();
+        }
+        if ball_event > tolerance(dir) {
+            dir = next_dir;
+        }
         kinds.push(dir as i8);
         transitions.push(t);
         if kinds.len() >= MAX_PHASES {
@@ -362,6 +443,8 @@ pub fn integrate(p: &Params, max_step: f64) -> Reference {
         kinds,
         transitions,
         capped,
+        held,
+        stops,
         energy: model.budget(vx1, p.spin, &y),
     }
 }

@@ -398,7 +398,7 @@ enum Drive {
 /// (e^x, e^x - 1) for complex x, the second without cancellation for small |x|, from one `sin_cos`:
 /// Re(e^x - 1) = (e^a - 1) cos b - (1 - cos b), with 1 - cos b = sin² b / (1 + cos b) where cos b > 0.
 #[inline]
-fn exp_and_m1(x: Complex<f64>) -> (Complex<f64>, Complex<f64>) {
+pub(super) fn exp_and_m1(x: Complex<f64>) -> (Complex<f64>, Complex<f64>) {
     let (sin, cos) = x.im.sin_cos();
     let size = x.re.exp();
     let versine = if cos > 0.0 {
@@ -576,6 +576,7 @@ impl CompliantGrip {
             de,
             dde: dz[3],
             slip_rate: 0.0,
+            accel: dz[1],
         }
     }
 

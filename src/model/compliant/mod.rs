@@ -23,19 +23,27 @@
 //!   ball's held slide; in a grip the stretch alone, a damped oscillator on a still surface) and the
 //!   phase also ends when the net force on it, F - k X, reaches ±F_c. The ball's force F is
 //!   continuous across every transition, so a stopped cart is held while |F - k X| <= F_c and otherwise
-//!   moves the way it is pushed ([`transition::at_rest`]). On a chain the combination is refused.
+//!   moves the way it is pushed ([`transition::at_rest`]).
+//! - String friction on a chain's first mass: sliding, the chain moves as for the rigid ball with string
+//!   friction (pushed, or held with the masses behind in their clamped modes); gripping a moving first
+//!   mass, the push -d F_c enters the chain's grip modes through Duhamel's integral ([`ChainGrip`]);
+//!   gripping a held one, the stretch rings down on a still surface while the masses behind swing
+//!   ([`HeldChainGrip`]). The events and rules are the single cart's, the first mass in the cart's place
+//!   and its link spring N k (X_1 - X_2) in place of k X.
 //!
 //! Chatter: an undamped stiff ball may switch many times; every phase advances time and the solver stops
 //! after [`super::error::MAX_TRANSITIONS`] with `SolveError::TooManyPhases`.
 
 mod cart_grip;
 mod chain_grip;
+mod held_chain;
 mod stretch;
 
 use std::sync::Arc;
 
 pub use cart_grip::{Compliance, CompliantGrip};
 pub use chain_grip::{ChainGrip, GripModes};
+pub use held_chain::HeldChainGrip;
 pub use stretch::Stretch;
 
 use std::cell::{Cell, RefCell};
@@ -93,7 +101,8 @@ pub struct CompliantSlide {
 pub enum CompliantMotion {
     Slide(CompliantSlide),
     Grip(Box<CompliantGrip>),
-    ChainGrip(ChainGrip),
+    ChainGrip(Box<ChainGrip>),
+    HeldChainGrip(Box<HeldChainGrip>),
 }
 
 /// Everything at one instant of a compliant phase.
@@ -110,20 +119,29 @@ pub struct Point {
     pub dde: f64,
     /// While sliding, the rate of the rigid ball's slip v_x - r omega - V (0 in a grip).
     pub slip_rate: f64,
+    /// The contact mass's acceleration V' (0 held still).
+    pub accel: f64,
 }
 
 impl CompliantSlide {
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> Point {
         let (e, de, dde) = self.stretch.at(setup.w, t);
-        let (state, friction, slip_rate) = match &self.rigid {
+        let (state, friction, slip_rate, accel) = match &self.rigid {
             Rigid::Cart(slide) => {
                 let (state, friction) = slide.evaluate(setup, t);
-                (state, friction, slide.slip_rate(setup, &state, friction))
+                let accel = slide.cart_acceleration(setup, &state, friction);
+                (
+                    state,
+                    friction,
+                    slide.slip_rate(setup, &state, friction),
+                    accel,
+                )
             }
             Rigid::Chain(motion) => {
                 let c = motion.contact(setup, t);
-                (c.state, c.friction, -c.friction / setup.m_eff - c.accel)
+                let slip_rate = -c.friction / setup.m_eff - c.accel;
+                (c.state, c.friction, slip_rate, c.accel)
             }
         };
         Point {
@@ -134,6 +152,7 @@ impl CompliantSlide {
             de,
             dde,
             slip_rate,
+            accel,
         }
     }
 
@@ -170,6 +189,7 @@ impl CompliantMotion {
             CompliantMotion::Slide(s) => s.at(setup, t),
             CompliantMotion::Grip(g) => g.at(setup, t),
             CompliantMotion::ChainGrip(g) => g.at(setup, t),
+            CompliantMotion::HeldChainGrip(g) => g.at(setup, t),
         }
     }
 
@@ -185,7 +205,9 @@ impl CompliantMotion {
                 let p = s.at(setup, t);
                 (p.e, s.patch_slip(setup, &p).0)
             }
-            CompliantMotion::Grip(_) | CompliantMotion::ChainGrip(_) => (self.at(setup, t).e, 0.0),
+            CompliantMotion::Grip(_)
+            | CompliantMotion::ChainGrip(_)
+            | CompliantMotion::HeldChainGrip(_) => (self.at(setup, t).e, 0.0),
         }
     }
 
@@ -197,6 +219,7 @@ impl CompliantMotion {
             },
             CompliantMotion::Grip(g) => g.start,
             CompliantMotion::ChainGrip(g) => g.start.contact(),
+            CompliantMotion::HeldChainGrip(g) => g.ball.start,
         }
     }
 
@@ -206,6 +229,10 @@ impl CompliantMotion {
             CompliantMotion::Grip(g) => BallSpring {
                 kb: g.compliance.kb,
                 cb: g.compliance.cb,
+            },
+            CompliantMotion::HeldChainGrip(g) => BallSpring {
+                kb: g.ball.compliance.kb,
+                cb: g.ball.compliance.cb,
             },
             CompliantMotion::ChainGrip(g) => g.modes.spring(),
         }
@@ -219,6 +246,7 @@ impl CompliantMotion {
                 ..
             }) => Some(motion.chain().energy(&motion.full(setup, t))),
             CompliantMotion::ChainGrip(g) => Some(g.modes.chain().energy(&g.full(setup, t))),
+            CompliantMotion::HeldChainGrip(g) => Some(g.chain.chain().energy(&g.full(setup, t))),
             _ => None,
         }
     }
@@ -231,6 +259,7 @@ impl CompliantMotion {
                 rigid: Rigid::Chain(_),
                 ..
             }) | CompliantMotion::ChainGrip(_)
+                | CompliantMotion::HeldChainGrip(_)
         )
     }
 
@@ -247,6 +276,7 @@ impl CompliantMotion {
             }
             CompliantMotion::Grip(g) => g.compliance.fastest,
             CompliantMotion::ChainGrip(g) => g.modes.fastest,
+            CompliantMotion::HeldChainGrip(g) => g.fastest(),
         }
     }
 
@@ -261,7 +291,9 @@ impl CompliantMotion {
                 let coarse = 2.0 / s.slip_bounds(setup).2.max(w);
                 integrate(&f, start, split, fine) + integrate(&f, split, end, coarse)
             }
-            CompliantMotion::Grip(_) | CompliantMotion::ChainGrip(_) => {
+            CompliantMotion::Grip(_)
+            | CompliantMotion::ChainGrip(_)
+            | CompliantMotion::HeldChainGrip(_) => {
                 integrate(&f, start, end, 2.0 / self.fastest(setup).max(w))
             }
         }
@@ -275,12 +307,14 @@ thread_local! {
         const { RefCell::new(None) };
 }
 
-/// What the ball touches: the single cart, or a chain with the modes of the ball gripping it.
+/// What the ball touches: the single cart, or a chain with the modes of the ball gripping it (and, with
+/// string friction, the cart's constants for the ball's stretch on a held first mass).
 enum Support {
     Cart(Box<Compliance>),
     Chain {
         chain: Arc<Chain>,
         modes: Arc<GripModes>,
+        held: Option<Box<Compliance>>,
     },
 }
 
@@ -293,10 +327,11 @@ pub struct CompliantState {
     e: f64,
 }
 
-/// The tangentially compliant ball on the single cart (with or without string friction) or on a chain
-/// (without). With a spring (k > 0) and no string friction every grip is solved by [`ChainGrip`], the
-/// single cart being a chain of one mass; a free cart (k = 0) has a double zero root there, and its grips
-/// are solved by [`CompliantGrip`], as are all grips with string friction.
+/// The tangentially compliant ball on the single cart or on a chain, with or without string friction.
+/// With a spring (k > 0) every grip on a moving contact mass is solved by [`ChainGrip`], the single cart
+/// without string friction being a chain of one mass, and a grip on a held first mass of a chain by
+/// [`HeldChainGrip`]; a free cart (k = 0) has a double zero root there, and its grips are solved by
+/// [`CompliantGrip`], as are all grips on the single cart with string friction.
 pub struct CompliantBall {
     support: Support,
     spring: BallSpring,
@@ -306,16 +341,12 @@ pub struct CompliantBall {
 }
 
 impl CompliantBall {
-    /// The model for `params` and the setup it runs on, refused with string friction on a chain with
-    /// springs or when the cart or the ball's spring is too fast to resolve. `modal` solves every grip
-    /// as a chain's (with a spring, without string friction); otherwise by the cart's own 4-state
-    /// system, the chain's length ignored.
+    /// The model for `params` and the setup it runs on, refused when the cart or the ball's spring is
+    /// too fast to resolve. `modal` solves every grip as a chain's (with a spring; on the single cart
+    /// without string friction); otherwise by the cart's own 4-state system, the chain's length ignored.
     pub fn new(params: &Params, modal: bool) -> Result<(Self, Setup), SolveError> {
         let links = params.chain.max(1.0);
         let string = params.cart_friction > 0.0;
-        if string && links > 1.0 && params.stiffness > 0.0 {
-            return Err(SolveError::StringFrictionCompliantBall);
-        }
         // Without springs (k = 0) the chain's other masses never move: the ball meets its first mass
         // alone.
         let setup = if links > 1.0 && params.stiffness == 0.0 {
@@ -328,7 +359,7 @@ impl CompliantBall {
             Setup::new(params)
         };
         let spring = BallSpring::new(params, &setup);
-        let support = if modal && !string {
+        let support = if modal && (!string || links > 1.0) {
             let chain = Chain::shared(params, &setup);
             let key = (
                 Chain::key(params, &setup),
@@ -338,13 +369,14 @@ impl CompliantBall {
             let modes = reuse(&LAST_GRIP_MODES, key, || {
                 Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb))
             });
-            Support::Chain { chain, modes }
+            let held = string.then(|| Box::new(Compliance::new(params, &setup)));
+            Support::Chain { chain, modes, held }
         } else {
             Support::Cart(Box::new(Compliance::new(params, &setup)))
         };
         let (cart_fastest, ball_fastest) = match &support {
             Support::Cart(c) => (setup.omega_slide.max(setup.omega_grip), c.fastest),
-            Support::Chain { chain, modes } => (chain.slide.fastest, modes.fastest),
+            Support::Chain { chain, modes, .. } => (chain.slide.fastest, modes.fastest),
         };
         let radians = cart_fastest * setup.duration;
         if radians > MAX_RADIANS {
@@ -395,6 +427,28 @@ impl CartEvents {
                 (push - setup.cart_friction, p.friction_rate),
                 (-push - setup.cart_friction, -p.friction_rate),
             ],
+        }
+    }
+
+    /// The same on a chain's first mass, given the link force N k (X_1 - X_2) and its rate where it is
+    /// held: moving, its velocity V_1; held, the net push F - N k (X_1 - X_2).
+    #[inline]
+    fn at_chain(&self, setup: &Setup, p: &Point, (link, link_rate): (f64, f64)) -> [(f64, f64); 2] {
+        if setup.cart_friction == 0.0 {
+            return [STAND_IN; 2];
+        }
+        match self.cart {
+            Cart::Moving(d) => {
+                let d = f64::from(d);
+                [(-d * (p.state.v - self.v_offset), -d * p.accel), STAND_IN]
+            }
+            Cart::Stuck => {
+                let (push, rate) = (p.friction - link, p.friction_rate - link_rate);
+                [
+                    (push - setup.cart_friction, rate),
+                    (-push - setup.cart_friction, -rate),
+                ]
+            }
         }
     }
 
@@ -571,7 +625,7 @@ impl Contact for CompliantBall {
                         setup,
                         state.full,
                         dir,
-                        Cart::Moving(1),
+                        cart,
                     ))),
                 };
                 CompliantMotion::Slide(CompliantSlide {
@@ -585,12 +639,22 @@ impl Contact for CompliantBall {
                     Support::Cart(compliance) => CompliantMotion::Grip(Box::new(
                         CompliantGrip::new(**compliance, state.contact, state.e, setup, cart),
                     )),
-                    Support::Chain { modes, .. } => CompliantMotion::ChainGrip(ChainGrip::new(
-                        modes.clone(),
-                        state.full,
-                        state.e,
-                        setup,
+                    Support::Chain {
+                        chain,
+                        held: Some(compliance),
+                        ..
+                    } if cart == Cart::Stuck => CompliantMotion::HeldChainGrip(Box::new(
+                        HeldChainGrip::new(**compliance, chain.clone(), setup, state.full, state.e),
                     )),
+                    Support::Chain { modes, .. } => {
+                        CompliantMotion::ChainGrip(Box::new(ChainGrip::new(
+                            modes.clone(),
+                            state.full,
+                            state.e,
+                            setup,
+                            cart.friction(setup),
+                        )))
+                    }
                 }
             }
         }
@@ -637,7 +701,13 @@ impl Contact for CompliantBall {
                     let p = slide.at(setup, t);
                     last.set(Some(p));
                     let (slip, rate) = slide.patch_slip(setup, &p);
-                    let [first, second] = events.at(setup, &p);
+                    let [first, second] = match &slide.rigid {
+                        Rigid::Cart(_) => events.at(setup, &p),
+                        Rigid::Chain(motion) if motion.is_held() => {
+                            events.at_chain(setup, &p, motion.link(setup, t))
+                        }
+                        Rigid::Chain(_) => events.at_chain(setup, &p, (0.0, 0.0)),
+                    };
                     [(-dir * (slip - offset), -dir * rate), first, second]
                 };
                 let (slip_curvature, terms, fastest) = slide.slip_bounds(setup);
@@ -649,7 +719,19 @@ impl Contact for CompliantBall {
                         let speeds = rigid.cart_speed_scale(setup);
                         events.bounds(setup, (curvature, speeds), curvature, 0.0)
                     }
-                    Rigid::Chain(_) => (0.0, 0.0),
+                    Rigid::Chain(_) if setup.cart_friction == 0.0 => (0.0, 0.0),
+                    // Held, the push's F = dir mu N(t) and the link force; moving, V_1.
+                    Rigid::Chain(motion) if motion.is_held() => {
+                        let (curvature, terms) = motion.link_curvature();
+                        (
+                            peak * w * w + curvature,
+                            ROUNDING * (peak + terms + setup.cart_friction),
+                        )
+                    }
+                    Rigid::Chain(motion) => {
+                        let (curvature, terms) = motion.cart_curvature(setup);
+                        (curvature, ROUNDING * (v_offset.abs() + terms))
+                    }
                 };
                 let noise = [noise, cart_noise, cart_noise];
                 // While the stretch's transient lasts, on its scale; after, on the cart's.
@@ -676,6 +758,62 @@ impl Contact for CompliantBall {
                         };
                         (t, cause)
                     })
+            }
+            CompliantMotion::ChainGrip(grip) if setup.cart_friction > 0.0 => {
+                // The grip on a first mass moving against its string friction: also its stopping.
+                let margin_curvature = peak * w * w;
+                let (stages, size) = grip.search_stages(setup);
+                let noise = ROUNDING * (peak + size);
+                let (stop_curvature, speeds) = grip.first_mass_bounds(setup);
+                let stop_noise = ROUNDING * (v_offset.abs() + speeds);
+                let f = |t: f64| {
+                    let p = grip.at(setup, t);
+                    last.set(Some(p));
+                    let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
+                    [forward, backward, events.at_chain(setup, &p, (0.0, 0.0))[0]]
+                };
+                stages
+                    .into_iter()
+                    .find_map(|(from, to, curvature, step)| {
+                        let curvature = curvature + margin_curvature;
+                        let curvature = [curvature, curvature, stop_curvature];
+                        let noise = [noise, noise, stop_noise];
+                        first_rise_from_tangent(f, from, to, step, curvature, noise)
+                    })
+                    .map(|(t, branch)| match branch {
+                        0 | 1 => (t, grip_break(branch)),
+                        _ => (t, Cause::CartStop),
+                    })
+            }
+            CompliantMotion::HeldChainGrip(held) => {
+                let margin_curvature = peak * w * w;
+                let (curvature, size) = held.ball.force_bounds(setup);
+                let (link_curvature, link_terms) = held.chain.link_curvature();
+                let step = setup.event_step(held.fastest());
+                let noise = ROUNDING * (peak + EXP_ROUNDING * size);
+                let push_noise = ROUNDING * (peak + size + link_terms + setup.cart_friction);
+                let f = |t: f64| {
+                    let p = held.at(setup, t);
+                    last.set(Some(p));
+                    let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
+                    let [first, second] = events.at_chain(setup, &p, held.chain.link(setup, t));
+                    [forward, backward, first, second]
+                };
+                let push_curvature = curvature + link_curvature;
+                let curvature = [
+                    curvature + margin_curvature,
+                    curvature + margin_curvature,
+                    push_curvature,
+                    push_curvature,
+                ];
+                let noise = [noise, noise, push_noise, push_noise];
+                first_rise_from_tangent(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                    let cause = match branch {
+                        0 | 1 => grip_break(branch),
+                        _ => events.cause(branch - 2),
+                    };
+                    (t, cause)
+                })
             }
             CompliantMotion::ChainGrip(grip) => {
                 let margin_curvature = peak * w * w;
@@ -747,6 +885,7 @@ impl Contact for CompliantBall {
                 ..
             }) => chain.full(setup, t),
             CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
+            CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
             _ => ChainState::from_contact(&point.state),
         };
         CompliantState {
@@ -773,13 +912,23 @@ impl Contact for CompliantBall {
             Cause::CartStop => {
                 let s = &mut state.contact;
                 s.v = 0.0;
-                state.full = ChainState::from_contact(s);
+                // The spring holding the contact mass back: k X on the cart, N k (X_1 - X_2) on a chain.
+                let spring = match &self.support {
+                    Support::Chain { chain, .. } => {
+                        state.full.v[0] = 0.0;
+                        chain.link_force(&state.full)
+                    }
+                    Support::Cart(_) => {
+                        state.full = ChainState::from_contact(s);
+                        setup.k * s.x
+                    }
+                };
                 let force = match ball {
                     Ball::Slide(dir) => dir * setup.mu * setup.normal(s.t),
                     // Gripping, e' is the contact point's slip on the cart.
                     Ball::Grip => self.spring.kb * state.e + self.spring.cb * setup.slip(s),
                 };
-                (ball, transition::at_rest(setup, force - setup.k * s.x))
+                (ball, transition::at_rest(setup, force - spring))
             }
             Cause::SlipZero | Cause::Start => (Ball::Grip, cart),
         }

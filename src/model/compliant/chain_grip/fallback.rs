@@ -20,6 +20,28 @@ impl GripModes {
         })
     }
 
+    /// For a grip pushed by string friction: the augmented matrix Ã⁺ = [[Ã, b̃], [0, 0]] with b̃ = T b the
+    /// unit push on the first mass (b̃ = (0, 0, 0, Φ_1j): Q is mass-normalised), so that
+    /// exp(Ã⁺ τ) (z̃0, P) = (exp(Ã τ) z̃0 + ∫_0^τ exp(Ã s) b̃ P ds, P); a step h with |Ã⁺ h|₁ <= 1 and
+    /// exp(Ã⁺ h).
+    pub(super) fn forced_checkpoint(&self) -> &(DMatrix<f64>, f64, DMatrix<f64>) {
+        self.forced_checkpoint.get_or_init(|| {
+            let size = 2 * (self.n + 1);
+            let mut augmented = DMatrix::<f64>::zeros(size + 1, size + 1);
+            augmented.view_mut((0, 0), (size, size)).copy_from(&self.a);
+            for j in 0..self.n {
+                augmented[(self.n + 2 + j, size)] = self.phi1[j];
+            }
+            let h = 1.0
+                / augmented
+                    .column_iter()
+                    .map(|c| c.lp_norm(1))
+                    .fold(0.0, f64::max);
+            let step = (&augmented * h).exp();
+            (augmented, h, step)
+        })
+    }
+
     /// z̃ = T z for z = (u, Q, u', Q').
     pub(super) fn to_energy(&self, z: &[f64]) -> DVector<f64> {
         let dof = self.n + 1;
@@ -83,15 +105,27 @@ impl GripModes {
 }
 
 impl ChainGrip {
-    /// z̃ = exp(Ã τ) z̃0: exp(Ã h) applied k times from the start (each result kept for the next call),
-    /// then the Taylor series of exp(Ã δ) applied to that, δ = τ - k h < h, |Ã δ| <= 1.
+    /// z̃ = exp(Ã τ) z̃0 (pushed: (z̃, P) = exp(Ã⁺ τ) (z̃0, P)): exp(Ã h) applied k times from the start
+    /// (each result kept for the next call), then the Taylor series of exp(Ã δ) applied to that,
+    /// δ = τ - k h < h, |Ã δ| <= 1.
     pub(super) fn exponential(&self, tau: f64) -> DVector<f64> {
-        let (h, step) = self.modes.checkpoint();
+        let (a, h, step) = if self.push == 0.0 {
+            let (h, step) = self.modes.checkpoint();
+            (&self.modes.a, *h, step)
+        } else {
+            let (augmented, h, step) = self.modes.forced_checkpoint();
+            (augmented, *h, step)
+        };
         let k = (tau.max(0.0) / h).floor() as usize;
         let base = {
             let mut points = self.checkpoints.lock().unwrap_or_else(|e| e.into_inner());
             if points.is_empty() {
-                points.push(self.modes.to_energy(&self.z0));
+                let start = self.modes.to_energy(&self.z0);
+                points.push(if self.push == 0.0 {
+                    start
+                } else {
+                    start.push(self.push)
+                });
             }
             while points.len() <= k {
                 let next = step * points.last().expect("the start");
@@ -103,7 +137,7 @@ impl ChainGrip {
         let mut sum = base.clone();
         let mut term = base;
         for m in 1..40 {
-            term = (&self.modes.a * &term) * (delta / m as f64);
+            term = (a * &term) * (delta / m as f64);
             sum += &term;
             if term.norm() <= f64::EPSILON * sum.norm() {
                 break;

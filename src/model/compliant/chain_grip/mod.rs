@@ -23,6 +23,11 @@
 //! otherwise (near-double roots) the grip is evaluated through the matrix exponential of its state
 //! matrix, exactly but slowly.
 //!
+//! String friction on a moving first mass adds the constant push P = -d F_c to its equation, a forcing
+//! b = (0, 0, 0, Φ_1j P) of z' = A z + b. By Duhamel's integral each mode gains β_i (e^{s_i τ} - 1)/s_i,
+//! β_i the push's coefficient by the same orthogonality (accepted by the same checks as the start
+//! state's); the fallback exponentiates the state matrix augmented with the push's column.
+//!
 //! By job: this file holds the modes and a grip's evaluation; [`roots`] finds the roots, [`coefficients`]
 //! writes a start state in the modes, [`search`] bounds |F''| for the event search, and [`fallback`] is
 //! the matrix exponential.
@@ -41,6 +46,7 @@ mod tests;
 use super::super::chain::modes::MAX;
 use super::super::chain::{Chain, ChainState};
 use super::super::setup::{Setup, State};
+use super::cart_grip::exp_and_m1;
 use super::{BallSpring, Point};
 use coefficients::coefficients;
 
@@ -104,6 +110,9 @@ pub struct GripModes {
     lower: Option<DMatrix<f64>>,
     /// For the exponential: a step h with |Ã h|₁ <= 1 and exp(Ã h), made when a grip first needs it.
     checkpoint: OnceLock<(f64, DMatrix<f64>)>,
+    /// The same for a grip pushed by string friction: the augmented matrix [[Ã, b̃], [0, 0]] of the unit
+    /// push b̃, a step for it and its exponential.
+    forced_checkpoint: OnceLock<(DMatrix<f64>, f64, DMatrix<f64>)>,
     /// An upper bound on the fastest rate in the grip, rad/s.
     pub fastest: f64,
 }
@@ -157,6 +166,7 @@ impl GripModes {
             a,
             lower,
             checkpoint: OnceLock::new(),
+            forced_checkpoint: OnceLock::new(),
             fastest,
         };
         if grip.lower.is_some() {
@@ -186,12 +196,25 @@ pub struct ChainGrip {
     z0: Vec<f64>,
     /// The weighted modal coefficients of z0, when the modes reproduce it.
     coefficients: Option<Vec<C64>>,
+    /// The string friction's push on the moving first mass, P = -d F_c (0 without).
+    push: f64,
+    /// The weighted modal coefficients β of the push's forcing b (where P != 0 and the modes reproduce
+    /// it): by Duhamel's integral each mode gains β_i (e^{s_i τ} - 1)/s_i.
+    beta: Option<Vec<C64>>,
     /// Without them, z̃ at the start and after every step h of the exponential, as far as asked for.
     checkpoints: Arc<Mutex<Vec<DVector<f64>>>>,
 }
 
 impl ChainGrip {
-    pub fn new(modes: Arc<GripModes>, start: ChainState, e: f64, setup: &Setup) -> ChainGrip {
+    /// The grip from `start` with stretch `e`, the first mass pushed by `push` (the string friction
+    /// -d F_c on a first mass moving in direction d, or 0).
+    pub fn new(
+        modes: Arc<GripModes>,
+        start: ChainState,
+        e: f64,
+        setup: &Setup,
+        push: f64,
+    ) -> ChainGrip {
         let n = modes.n;
         let slide = &modes.chain.slide;
         let q = slide.project(&start.x);
@@ -201,15 +224,32 @@ impl ChainGrip {
         z0[n + 1] = start.vx - setup.r * start.omega;
         z0[1..=n].copy_from_slice(&q[..n]);
         z0[n + 2..].copy_from_slice(&dq[..n]);
-        let coefficients = modes
+        let mut coefficients = modes
             .modes
             .as_ref()
             .and_then(|list| coefficients(&modes, list, &z0));
+        // The push P on the first mass is the forcing b = (0, 0, 0, Φ_1j P) of z' = A z + b; its
+        // coefficients come from the same orthogonality (and the same checks) as the state's.
+        let beta = match (&modes.modes, push != 0.0 && coefficients.is_some()) {
+            (Some(list), true) => {
+                let mut b = vec![0.0; 2 * n + 2];
+                for j in 0..n {
+                    b[n + 2 + j] = modes.phi1[j] * push;
+                }
+                coefficients::coefficients(&modes, list, &b)
+            }
+            _ => None,
+        };
+        if push != 0.0 && beta.is_none() {
+            coefficients = None;
+        }
         ChainGrip {
             modes,
             start,
             z0,
             coefficients,
+            push,
+            beta,
             checkpoints: Arc::new(Mutex::new(Vec::new())),
         }
     }
@@ -223,9 +263,9 @@ impl ChainGrip {
         let mut dz = vec![0.0; 2 * n + 2];
         match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
-                for (mode, &ci) in list.iter().zip(c) {
-                    let a = ci * exp(mode.s * tau);
-                    let (da, dda) = (a * mode.s, a * mode.s * mode.s);
+                for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
+                    let (a, da) = self.term(mode, ci, i, tau);
+                    let dda = da * mode.s;
                     z[0] += (a * mode.u).re;
                     z[n + 1] += (da * mode.u).re;
                     dz[n + 1] += (dda * mode.u).re;
@@ -236,6 +276,14 @@ impl ChainGrip {
                     }
                 }
                 dz[..=n].copy_from_slice(&z[n + 1..]);
+            }
+            _ if self.push != 0.0 => {
+                let dof = n + 1;
+                let (augmented, _, _) = g.forced_checkpoint();
+                let zt = self.exponential(tau);
+                let dzt = augmented * &zt;
+                z.copy_from_slice(&g.energy_to_state(&zt.rows(0, 2 * dof).into_owned()));
+                dz.copy_from_slice(&g.energy_to_state(&dzt.rows(0, 2 * dof).into_owned()));
             }
             _ => {
                 let zt = self.exponential(tau);
@@ -254,14 +302,13 @@ impl ChainGrip {
         let tau = t - self.start.t;
         let n = g.n;
         // The contact quantities alone need only one exponential per mode.
-        let (du, force, dforce, e, de, dde, x1, v1) = match (&g.modes, &self.coefficients) {
+        let (du, force, dforce, e, de, dde, x1, v1, a1) = match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
                 let zero = C64::new(0.0, 0.0);
-                let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde) =
-                    (zero, zero, zero, zero, zero, zero, zero);
-                for (mode, &ci) in list.iter().zip(c) {
-                    let a = ci * exp(mode.s * tau);
-                    let da = a * mode.s;
+                let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde, mut a1) =
+                    (zero, zero, zero, zero, zero, zero, zero, zero);
+                for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
+                    let (a, da) = self.term(mode, ci, i, tau);
                     u += a * mode.u;
                     du += da * mode.u;
                     f += a * mode.force;
@@ -269,9 +316,10 @@ impl ChainGrip {
                     e += a * mode.e;
                     de += da * mode.e;
                     dde += da * mode.s * mode.e;
+                    a1 += da * mode.s * (mode.u - mode.e);
                 }
                 let (u, du, e, de) = (u.re, du.re, e.re, de.re);
-                (du, f.re, df.re, e, de, dde.re, u - e, du - de)
+                (du, f.re, df.re, e, de, dde.re, u - e, du - de, a1.re)
             }
             _ => {
                 let (z, dz) = self.propagate(t);
@@ -280,7 +328,17 @@ impl ChainGrip {
                 let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
                 let (e, de, dde) = (z[0] - x1, z[n + 1] - v1, dz[n + 1] - a1);
                 let force = g.kb * e + g.cb * de;
-                (z[n + 1], force, g.kb * de + g.cb * dde, e, de, dde, x1, v1)
+                (
+                    z[n + 1],
+                    force,
+                    g.kb * de + g.cb * dde,
+                    e,
+                    de,
+                    dde,
+                    x1,
+                    v1,
+                    a1,
+                )
             }
         };
         let (vx, omega) = self.ball(setup, du);
@@ -298,6 +356,24 @@ impl ChainGrip {
             de,
             dde,
             slip_rate: 0.0,
+            accel: a1,
+        }
+    }
+
+    /// A mode's weighted amplitude and its rate after `tau`: c_i e^{s_i τ}, plus the push's
+    /// β_i (e^{s_i τ} - 1)/s_i (rate (c_i s_i + β_i) e^{s_i τ}) on a pushed first mass.
+    #[inline]
+    fn term(&self, mode: &Mode, ci: C64, i: usize, tau: f64) -> (C64, C64) {
+        match &self.beta {
+            Some(beta) => {
+                let (grow, grow_m1) = exp_and_m1(mode.s * tau);
+                let b = beta[i];
+                (ci * grow + b * grow_m1 / mode.s, (ci * mode.s + b) * grow)
+            }
+            None => {
+                let a = ci * exp(mode.s * tau);
+                (a, a * mode.s)
+            }
         }
     }
 

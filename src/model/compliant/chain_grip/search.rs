@@ -3,7 +3,9 @@
 
 use super::super::super::setup::Setup;
 use super::super::stretch::SETTLED;
-use super::{ChainGrip, NEGLIGIBLE};
+use nalgebra::DVector;
+
+use super::{C64, ChainGrip, NEGLIGIBLE};
 
 impl ChainGrip {
     /// The stages of the event search over the rest of the contact, (from, to, bound on |F''|, step),
@@ -59,16 +61,26 @@ impl ChainGrip {
                 let terms: Vec<(f64, f64)> = list
                     .iter()
                     .zip(c)
-                    .map(|(mode, ci)| {
-                        let growth = if mode.s.re <= 0.0 {
-                            (mode.s.re * elapsed).exp()
-                        } else {
-                            (mode.s.re * remaining).exp()
+                    .enumerate()
+                    .map(|(i, (mode, ci))| {
+                        let growth = growth(mode.s.re, elapsed, remaining);
+                        // Pushed, F'' = Re Σ (c_i s_i + β_i) s_i e^{s_i τ} and the push's share of F is
+                        // β_i (e^{s_i τ} - 1)/s_i, at most |β_i| τ e^{max(Re s_i, 0) τ}.
+                        let (part, term) = match &self.beta {
+                            Some(beta) => {
+                                let rate = (ci * mode.s + beta[i]) * mode.force;
+                                let shift = (beta[i] * mode.force).norm() * remaining;
+                                let part = rate.norm() * mode.s.norm() * growth;
+                                (part, ((ci * mode.force).norm() + shift) * growth)
+                            }
+                            None => {
+                                let term = (ci * mode.force).norm() * growth;
+                                (term * mode.s.norm_sqr(), term)
+                            }
                         };
-                        let term = (ci * mode.force).norm() * growth;
-                        curvature += term * mode.s.norm_sqr();
+                        curvature += part;
                         size += term;
-                        (term * mode.s.norm_sqr(), mode.s.norm())
+                        (part, mode.s.norm())
                     })
                     .collect();
                 let fastest = terms
@@ -91,6 +103,12 @@ impl ChainGrip {
                 let force: Vec<f64> = (0..2 * dof)
                     .map(|i| g.kb * stretch[i] + g.cb * rate[i])
                     .collect();
+                if self.push != 0.0 {
+                    let (curvature, _) = self.energy_bounds(setup, &force);
+                    let (_, stretch) = self.energy_bounds(setup, &stretch);
+                    let (_, rate) = self.energy_bounds(setup, &rate);
+                    return (curvature, stretch * g.kb + rate * g.cb, g.fastest);
+                }
                 let second = g.a.transpose() * g.a.transpose() * g.dual(&force);
                 let size = g.energy_norm(&self.z0);
                 (
@@ -100,5 +118,60 @@ impl ChainGrip {
                 )
             }
         }
+    }
+
+    /// For the first mass's stopping: a bound on |V_1''| over the rest of the contact, and the size of
+    /// the terms V_1 is summed from. In the modes V_1 = Re Σ (c_i s_i + β_i) e^{s_i τ} X_1i (X_1i the
+    /// first mass in mode i), so |V_1''| <= Σ |(c_i s_i + β_i) X_1i| |s_i|² e^{max(Re s_i, 0) τ}.
+    pub fn first_mass_bounds(&self, setup: &Setup) -> (f64, f64) {
+        let g = &self.modes;
+        let remaining = setup.duration - self.start.t;
+        match (&g.modes, &self.coefficients) {
+            (Some(list), Some(c)) => {
+                let (mut curvature, mut size) = (0.0, self.start.v[0].abs());
+                for (i, (mode, ci)) in list.iter().zip(c).enumerate() {
+                    let beta = self.beta.as_ref().map_or(C64::new(0.0, 0.0), |b| b[i]);
+                    let term = ((ci * mode.s + beta) * (mode.u - mode.e)).norm()
+                        * growth(mode.s.re, 0.0, remaining);
+                    curvature += term * mode.s.norm_sqr();
+                    size += term;
+                }
+                (curvature, size)
+            }
+            _ => {
+                let mut first = vec![0.0; 2 * g.n + 2];
+                first[g.n + 2..].copy_from_slice(&g.phi1[..g.n]);
+                let (curvature, size) = self.energy_bounds(setup, &first);
+                (curvature, size + self.start.v[0].abs())
+            }
+        }
+    }
+
+    /// For a row h in z-coordinates, bounds on |h z''| and |h z| over the rest of the contact through
+    /// the energy norm: |h z| <= |T⁻ᵀ hᵀ| sqrt(2E), z'' = A² z + A b, and sqrt(2E) grows at most at
+    /// |b̃| = |P| (Σ Φ_1j²)^(1/2) under the push (the dashpot only lowers it).
+    fn energy_bounds(&self, setup: &Setup, h: &[f64]) -> (f64, f64) {
+        let g = &self.modes;
+        let push = self.push.abs();
+        let unit: f64 = g.phi1[..g.n].iter().map(|p| p * p).sum::<f64>().sqrt();
+        let reach = g.energy_norm(&self.z0) + push * unit * (setup.duration - self.start.t);
+        let dual = g.dual(h);
+        let second = g.a.transpose() * g.a.transpose() * &dual;
+        let mut forcing = DVector::<f64>::zeros(2 * g.n + 2);
+        for j in 0..g.n {
+            forcing[g.n + 2 + j] = g.phi1[j];
+        }
+        let constant = (dual.transpose() * &g.a * forcing)[0].abs() * push;
+        (second.norm() * reach + constant, dual.norm() * reach)
+    }
+}
+
+/// How much a mode of rate s may have grown (or least shrunk) over the contact from `elapsed` after the
+/// grip's start: e^{Re s elapsed} for a decaying mode, e^{Re s remaining} otherwise.
+fn growth(re: f64, elapsed: f64, remaining: f64) -> f64 {
+    if re <= 0.0 {
+        (re * elapsed).exp()
+    } else {
+        (re * remaining).exp()
     }
 }

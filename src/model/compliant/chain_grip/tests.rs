@@ -62,7 +62,7 @@ fn the_modes_reproduce_the_matrix_exponential() {
             start.x[i] = 1e-3 * (rng.unit() - 0.5);
             start.v[i] = rng.unit() - 0.5;
         }
-        let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup);
+        let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         if grip.coefficients.is_none() {
             continue;
         }
@@ -146,7 +146,7 @@ fn the_exponential_fallback_agrees_with_the_modes() {
             start.x[i] = 1e-3 * (rng.unit() - 0.5);
             start.v[i] = rng.unit() - 0.5;
         }
-        let modal = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup);
+        let modal = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         let fallback = ChainGrip {
             coefficients: None,
             ..modal.clone()
@@ -175,6 +175,69 @@ fn the_exponential_fallback_agrees_with_the_modes() {
             );
         }
     }
+}
+
+/// A grip on a first mass pushed by string friction, z' = A z + b: its modes (with the push's Duhamel
+/// terms) against the exponential of the augmented matrix, directly and through the fallback's
+/// checkpoints, and the bounds on |F''| and |V_1''| holding for both.
+#[test]
+fn a_pushed_grip_solves_the_forced_system() {
+    let mut rng = Lcg(41);
+    let mut modal = 0;
+    for case in 0..60 {
+        let p = Params {
+            ball_stiffness: rng.log(1e4, 1e7),
+            ..random(&mut rng)
+        };
+        let (g, setup) = grip_modes(&p);
+        let mut start = ChainState::from_contact(&setup.initial(50.0));
+        start.t = 1e-3;
+        for i in 0..g.n {
+            start.x[i] = 1e-3 * (rng.unit() - 0.5);
+            start.v[i] = rng.unit() - 0.5;
+        }
+        let push = if rng.unit() < 0.5 { -20.0 } else { 20.0 } * rng.unit();
+        let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, push);
+        let fallback = ChainGrip {
+            coefficients: None,
+            beta: None,
+            checkpoints: Arc::new(Mutex::new(Vec::new())),
+            ..grip.clone()
+        };
+        let g = &grip.modes;
+        let (augmented, _, _) = g.forced_checkpoint();
+        let start_energy = g.to_energy(&grip.z0).push(push);
+        let scale = g.energy_norm(&grip.z0) + push.abs();
+        modal += usize::from(grip.beta.is_some());
+        for (name, evaluated) in [("modes", &grip), ("fallback", &fallback)] {
+            let (force_bound, _, _) = evaluated.force_bounds(&setup, start.t);
+            let (speed_bound, _) = evaluated.first_mass_bounds(&setup);
+            for k in 0..=8 {
+                let tau = 0.5e-3 * k as f64;
+                let t = start.t + tau;
+                let exact = (augmented * tau).exp() * &start_energy;
+                let (z, _) = evaluated.propagate(t);
+                let error = (g.to_energy(&z) - exact.rows(0, 2 * g.n + 2)).norm();
+                assert!(
+                    error <= 1e-9 * scale,
+                    "case {case} {name} tau {tau}: {error:e}"
+                );
+                let h = 1e-9;
+                let (a, b) = (evaluated.at(&setup, t), evaluated.at(&setup, t + h));
+                let force = (b.friction_rate - a.friction_rate) / h;
+                assert!(
+                    force.abs() <= force_bound * (1.0 + 1e-6),
+                    "case {case} {name}: |F''|"
+                );
+                let speed = (b.accel - a.accel) / h;
+                assert!(
+                    speed.abs() <= speed_bound * (1.0 + 1e-6),
+                    "case {case} {name}: |V_1''|"
+                );
+            }
+        }
+    }
+    assert!(modal >= 50, "the modes served {modal} of 60 pushed grips");
 }
 
 #[test]
