@@ -50,7 +50,8 @@ pub fn summary(b: &Bounce) -> String {
         let stuck;
         let slip = match (p.kind, p.slip_sign, p.cart) {
             (PhaseKind::Grip, _, Cart::Stuck) if compliant => {
-                "patch grips the stuck cart, F = k_b e + c_b e'"
+                stuck = format!("patch grips the stuck {cart}, F = k_b e + c_b e'");
+                &stuck
             }
             (PhaseKind::Grip, _, Cart::Stuck) => {
                 stuck = format!("rolling on the stuck {cart}");
