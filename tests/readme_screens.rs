@@ -135,7 +135,10 @@ fn draw(capture: &Capture) -> String {
         ..Theme::default()
     };
     let mut terminal = Terminal::new(TestBackend::new(capture.size.0, capture.size.1)).unwrap();
-    let scenario = capture.preset.as_deref().map(|name| scenario::preset(name).unwrap());
+    let scenario = capture
+        .preset
+        .as_deref()
+        .map(|name| scenario::preset(name).unwrap());
     let params = scenario
         .as_ref()
         .map_or_else(Params::default, |s| s.apply(Params::default()));
