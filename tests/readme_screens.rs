@@ -1,6 +1,7 @@
 //! README.md's captures of the explorer are the explorer's screens: each `text` block after a comment
-//! `<!-- screen WIDTHxHEIGHT [no-colour] [data=FILE] keys: KEY ... -->` must be what the explorer draws on
-//! a screen of that size (with the measurements in FILE, as `--data FILE`) after those keys (`]x14`
+//! `<!-- screen WIDTHxHEIGHT [no-colour] [data=FILE] [preset=NAME] keys: KEY ... -->` must be what the
+//! explorer draws on a screen of that size (with the measurements in FILE, as `--data FILE`, started from
+//! the preset, as `--preset NAME`, in shot mode for a shot) after those keys (`]x14`
 //! presses `]` fourteen times; `Tab`, `}` and other characters as named), once the heatmap, if shown,
 //! has filled in.
 
@@ -12,6 +13,7 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use snapback::analysis::fit::data;
 use snapback::model::Params;
+use snapback::scenario;
 use snapback::tui::ui::theme::Theme;
 use snapback::tui::{App, EventSource, Input, run};
 
@@ -27,6 +29,8 @@ struct Capture {
     colour: bool,
     /// The measurements' file, relative to the repository.
     data: Option<String>,
+    /// The preset the explorer starts from.
+    preset: Option<String>,
     keys: Vec<Input>,
     shown: String,
 }
@@ -78,6 +82,10 @@ fn captures() -> Vec<Capture> {
             .iter()
             .find_map(|o| o.strip_prefix("data="))
             .map(String::from);
+        let preset = options
+            .iter()
+            .find_map(|o| o.strip_prefix("preset="))
+            .map(String::from);
         let start = n + 1 + lines[n + 1..].iter().position(|l| *l == "```text").unwrap();
         let end = start + 1 + lines[start + 1..].iter().position(|l| *l == "```").unwrap();
         found.push(Capture {
@@ -85,6 +93,7 @@ fn captures() -> Vec<Capture> {
             size: (w.parse().unwrap(), h.parse().unwrap()),
             colour,
             data,
+            preset,
             keys: keys(key_spec),
             shown: lines[start + 1..end].join("\n"),
         });
@@ -126,7 +135,17 @@ fn draw(capture: &Capture) -> String {
         ..Theme::default()
     };
     let mut terminal = Terminal::new(TestBackend::new(capture.size.0, capture.size.1)).unwrap();
-    let mut app = App::new(Params::default(), theme).unwrap();
+    let scenario = capture
+        .preset
+        .as_deref()
+        .map(|name| scenario::preset(name).unwrap());
+    let params = scenario
+        .as_ref()
+        .map_or_else(Params::default, |s| s.apply(Params::default()));
+    let mut app = App::new(params, theme).unwrap();
+    if scenario.is_some_and(|s| s.is_shot()) {
+        app.explore_shot();
+    }
     if let Some(file) = &capture.data {
         let text = std::fs::read_to_string(file).unwrap();
         app.load_data(data::parse(&text, file).unwrap());
@@ -148,8 +167,8 @@ fn every_screen_capture_is_the_explorers_screen() {
     let captures = captures();
     assert_eq!(
         captures.len(),
-        4,
-        "the contact, sweep and heatmap views, and the lab"
+        5,
+        "the contact, sweep and heatmap views, the lab and the shot"
     );
     let mut stale = Vec::new();
     for capture in &captures {

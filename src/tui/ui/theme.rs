@@ -105,12 +105,12 @@ impl Theme {
         })
     }
 
-    /// The grip limit +/- mu N.
     /// The cart's displacement while string friction holds it still.
     pub fn stuck(&self) -> Color {
         self.pick(Color::Blue)
     }
 
+    /// The grip limit +/- mu N.
     pub fn limit(&self) -> Color {
         self.pick(Color::Red)
     }
