@@ -19,20 +19,16 @@ use rng::Rng;
 
 #[path = "support/compliant.rs"]
 mod compliant_params;
-use compliant_params::{check_basics, compliant_strategy, random_compliant, solved_or_refused};
+use compliant_params::{
+    check_basics, compliant_strategy, peak_friction, random_compliant, solved_or_refused,
+};
 
 #[path = "support/prop.rs"]
 mod prop;
-use prop::{config, log_range};
+use prop::{check_cart_motion, config, log_range};
 
 /// The reference's step: a 250th of a radian of the fastest oscillation (see `step_for`).
 const PER_RADIAN: f64 = 0.004;
-
-/// mu N0, the largest sliding friction of a bounce.
-fn peak_friction(p: &Params) -> f64 {
-    let vy1 = p.speed * (90.0 - p.angle_deg).to_radians().cos();
-    p.mu * (1.0 + p.ey) * std::f64::consts::PI * p.mass * vy1 / (2.0 * p.duration)
-}
 
 /// A random compliant ball on a chain of 2 to 16 masses with springs, the string friction from a
 /// thousandth to three times mu N0.
@@ -213,24 +209,6 @@ proptest! {
             return Ok(());
         };
         check_basics(&p, &b)?;
-        let speed_scale = p.speed + p.radius * p.spin.abs();
-        for s in &b.series(200) {
-            if s.kind == PhaseKind::Grip {
-                prop_assert!(s.patch_slip == 0.0, "patch slip {} in a grip at {}", s.patch_slip, s.t);
-            }
-        }
-        // A held first mass stays still; a moving one never turns within a phase.
-        for (index, phase) in b.phases.iter().enumerate() {
-            let first = b.sample_in(index, phase.start);
-            for i in 1..=8 {
-                let s = b.sample_in(index, phase.start + phase.duration() * f64::from(i) / 8.0);
-                match phase.cart {
-                    Cart::Stuck => prop_assert!(s.v == 0.0 && s.x == first.x),
-                    Cart::Moving(dir) => {
-                        prop_assert!(f64::from(dir) * s.v >= -1e-9 * speed_scale, "turned inside a phase");
-                    }
-                }
-            }
-        }
+        check_cart_motion(&p, &b)?;
     }
 }

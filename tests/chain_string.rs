@@ -20,7 +20,7 @@ use chain_draw::{close, random_chain};
 
 #[path = "support/prop.rs"]
 mod prop;
-use prop::{config, log_range};
+use prop::{check_cart_motion, config, log_range};
 
 /// mu N0, the largest sliding friction of a bounce.
 fn peak_friction(p: &Params) -> f64 {
@@ -270,18 +270,6 @@ proptest! {
                 prop_assert!(s.slip.abs() <= 1e-9 * speed_scale, "slip {} in grip at {}", s.slip, s.t);
             }
         }
-        // A held first mass stays still; a moving one never turns within a phase.
-        for (index, phase) in b.phases.iter().enumerate() {
-            let first = b.sample_in(index, phase.start);
-            for i in 1..=8 {
-                let s = b.sample_in(index, phase.start + phase.duration() * f64::from(i) / 8.0);
-                match phase.cart {
-                    Cart::Stuck => prop_assert!(s.v == 0.0 && s.x == first.x),
-                    Cart::Moving(dir) => {
-                        prop_assert!(f64::from(dir) * s.v >= -1e-9 * speed_scale, "turned inside a phase");
-                    }
-                }
-            }
-        }
+        check_cart_motion(&p, &b)?;
     }
 }

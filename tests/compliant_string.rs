@@ -16,17 +16,13 @@ use rng::Rng;
 
 #[path = "support/compliant.rs"]
 mod compliant_params;
-use compliant_params::{check_basics, compliant_strategy, random_compliant, solved_or_refused};
+use compliant_params::{
+    check_basics, compliant_strategy, peak_friction, random_compliant, solved_or_refused,
+};
 
 #[path = "support/prop.rs"]
 mod prop;
-use prop::{config, log_range};
-
-/// mu N0, the largest sliding friction of a bounce.
-fn peak_friction(p: &Params) -> f64 {
-    p.mu * (1.0 + p.ey) * std::f64::consts::PI * p.mass * p.speed * p.angle_deg.to_radians().sin()
-        / (2.0 * p.duration)
-}
+use prop::{check_cart_motion, config, log_range};
 
 /// A random compliant ball on the single cart with string friction from a thousandth to three times
 /// mu N0.
@@ -235,24 +231,6 @@ proptest! {
             return Ok(());
         };
         check_basics(&p, &b)?;
-        let speed_scale = p.speed + p.radius * p.spin.abs();
-        for s in &b.series(200) {
-            if s.kind == PhaseKind::Grip {
-                prop_assert!(s.patch_slip == 0.0, "patch slip {} in a grip at {}", s.patch_slip, s.t);
-            }
-        }
-        // A held cart stays still; a moving one never turns within a phase.
-        for (index, phase) in b.phases.iter().enumerate() {
-            let first = b.sample_in(index, phase.start);
-            for i in 1..=8 {
-                let s = b.sample_in(index, phase.start + phase.duration() * f64::from(i) / 8.0);
-                match phase.cart {
-                    Cart::Stuck => prop_assert!(s.v == 0.0 && s.x == first.x),
-                    Cart::Moving(dir) => {
-                        prop_assert!(f64::from(dir) * s.v >= -1e-9 * speed_scale, "turned inside a phase");
-                    }
-                }
-            }
-        }
+        check_cart_motion(&p, &b)?;
     }
 }

@@ -7,7 +7,7 @@ use snapback::model::{Cart, Params, PhaseKind, solve};
 
 #[path = "support/prop.rs"]
 mod prop;
-use prop::{config, log_range};
+use prop::{check_cart_motion, config, log_range};
 
 fn params() -> impl Strategy<Value = Params> {
     let ball = (0.005f64..0.5, 0.005f64..0.12, 0.2f64..1.0);
@@ -88,20 +88,7 @@ proptest! {
                 prop_assert!(s.slip.abs() <= 1e-9 * speed_scale, "slip {} in grip at {}", s.slip, s.t);
             }
         }
-        // A stuck cart does not move; a moving one never turns within a phase (its stopping ends it).
-        for (index, phase) in b.phases.iter().enumerate() {
-            let first = b.sample_in(index, phase.start);
-            for i in 1..=8 {
-                let s = b.sample_in(index, phase.start + phase.duration() * f64::from(i) / 8.0);
-                match phase.cart {
-                    Cart::Stuck => prop_assert!(s.v == 0.0 && s.x == first.x),
-                    Cart::Moving(dir) if p.cart_friction > 0.0 => {
-                        prop_assert!(f64::from(dir) * s.v >= -1e-9 * speed_scale, "cart turned inside a phase");
-                    }
-                    Cart::Moving(_) => {}
-                }
-            }
-        }
+        check_cart_motion(&p, &b)?;
         // Both sides of each transition: the state is continuous (only F may jump).
         for pair in series.windows(2) {
             if pair[0].t == pair[1].t {

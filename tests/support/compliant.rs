@@ -2,7 +2,7 @@
 
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
-use snapback::model::{Bounce, Params, SolveError, solve};
+use snapback::model::{Bounce, Params, PhaseKind, SolveError, solve};
 
 use super::prop::log_range;
 use super::rng::Rng;
@@ -102,7 +102,7 @@ pub fn solved_or_refused(p: &Params) -> Result<Option<Bounce>, TestCaseError> {
 }
 
 /// What every compliant bounce on the cart must show: a finite outcome, no negative energy term, the
-/// energy balanced, phases tiling [0, T], and |F| <= mu N along the contact.
+/// energy balanced, phases tiling [0, T], |F| <= mu N along the contact, and no patch slip while it grips.
 #[allow(dead_code)] // the chain's tests run checks of their own
 pub fn check_basics(p: &Params, b: &Bounce) -> Result<(), TestCaseError> {
     let o = &b.outcome;
@@ -143,6 +143,21 @@ pub fn check_basics(p: &Params, b: &Bounce) -> Result<(), TestCaseError> {
             p.mu * s.normal,
             s.t
         );
+        if s.kind == PhaseKind::Grip {
+            prop_assert!(
+                s.patch_slip == 0.0,
+                "patch slip {} in a grip at {}",
+                s.patch_slip,
+                s.t
+            );
+        }
     }
     Ok(())
+}
+
+/// mu N0, the largest sliding friction of a bounce: the scale the string friction is drawn on.
+#[allow(dead_code)] // only the string-friction tests draw it
+pub fn peak_friction(p: &Params) -> f64 {
+    p.mu * (1.0 + p.ey) * std::f64::consts::PI * p.mass * p.speed * p.angle_deg.to_radians().sin()
+        / (2.0 * p.duration)
 }

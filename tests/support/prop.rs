@@ -1,6 +1,9 @@
-//! Shared by the property tests: their configuration and a log-uniform strategy.
+//! Shared by the property tests: their configuration, a log-uniform strategy, and the check that string
+//! friction holds the cart (or a chain's first mass) still and lets a moving one turn only at an event.
 
 use proptest::prelude::*;
+use proptest::test_runner::TestCaseError;
+use snapback::model::{Bounce, Cart, Params};
 
 /// `default` cases, or as many as `PROPTEST_CASES` asks for (`PROPTEST_CASES=100000` searches deeper).
 pub fn config(default: u32) -> ProptestConfig {
@@ -14,4 +17,28 @@ pub fn config(default: u32) -> ProptestConfig {
 /// Values spread evenly in log between `lo` and `hi` (both positive).
 pub fn log_range(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
     (lo.ln()..=hi.ln()).prop_map(f64::exp)
+}
+
+/// With string friction, a held cart does not move within its phase, and a moving one never turns within
+/// a phase (its stopping ends it): checked at eight points of every phase.
+#[allow(dead_code)] // not every property test has string friction
+pub fn check_cart_motion(p: &Params, b: &Bounce) -> Result<(), TestCaseError> {
+    let speed_scale = p.speed + p.radius * p.spin.abs();
+    for (index, phase) in b.phases.iter().enumerate() {
+        let first = b.sample_in(index, phase.start);
+        for i in 1..=8 {
+            let s = b.sample_in(index, phase.start + phase.duration() * f64::from(i) / 8.0);
+            match phase.cart {
+                Cart::Stuck => prop_assert!(s.v == 0.0 && s.x == first.x),
+                Cart::Moving(dir) if p.cart_friction > 0.0 => {
+                    prop_assert!(
+                        f64::from(dir) * s.v >= -1e-9 * speed_scale,
+                        "the cart turned inside a phase"
+                    );
+                }
+                Cart::Moving(_) => {}
+            }
+        }
+    }
+    Ok(())
 }
