@@ -38,10 +38,11 @@ pub fn summary(b: &Bounce) -> String {
     }
     // On a chain the ball touches its first mass; the energy left behind is in all its masses and springs.
     let chain = b.params.chain > 1.0;
-    let (cart, cart_energy) = if chain {
-        ("first mass", "chain + springs")
+    let cart = b.params.touched();
+    let cart_energy = if chain {
+        "chain + springs"
     } else {
-        ("cart", "cart + spring")
+        "cart + spring"
     };
     let _ = writeln!(out, "\nPhases ({})", b.phase_summary());
     // A compliant ball grips through its contact patch, and its force then follows its spring.

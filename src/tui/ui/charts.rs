@@ -228,7 +228,7 @@ fn cursor_line(
         }
     }
     if now.cart_stuck {
-        let stuck = format!(", {} stuck", carrier(&solved.bounce.params));
+        let stuck = format!(", {} stuck", solved.bounce.params.touched());
         left.push(Span::styled(stuck, Style::new().fg(theme.stuck())));
     }
     let state = if app.playing {
@@ -305,7 +305,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
             from: p.start * 1e3,
             to: p.end * 1e3,
             label: if p.cart == Cart::Stuck {
-                format!("{}, {} stuck", p.kind.name(), carrier(&bounce.params))
+                format!("{}, {} stuck", p.kind.name(), bounce.params.touched())
             } else {
                 p.kind.name().to_string()
             },
@@ -337,7 +337,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
         ),
         (
             Line::from(Span::styled(
-                format!(" {} displacement X (mm) ", carrier(&bounce.params)),
+                format!(" {} displacement X (mm) ", bounce.params.touched()),
                 theme.title(),
             )),
             Line::from(Span::styled(" X (mm) ", theme.title())),
@@ -376,14 +376,5 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
             axis_style: theme.dim(),
         };
         frame.render_widget(plot, row);
-    }
-}
-
-/// What the ball lands on, as the charts name it: the cart, or a chain's first mass (the one it touches).
-fn carrier(params: &crate::model::Params) -> &'static str {
-    if params.chain > 1.0 {
-        "first mass"
-    } else {
-        "cart"
     }
 }
