@@ -167,18 +167,7 @@ pub(crate) fn format_rows(rows: &[Row], column: &str, layout: Layout, first: boo
     for (k, r) in rows.iter().enumerate() {
         match layout {
             Layout::Csv => csv_line(&mut text, r),
-            Layout::Json => {
-                text.push_str(if first && k == 0 { "\n" } else { ",\n" });
-                let object = serde_json::to_string_pretty(&object(column, r))
-                    .expect("JSON values always serialize");
-                for (n, line) in object.lines().enumerate() {
-                    if n > 0 {
-                        text.push('\n');
-                    }
-                    text.push_str("  ");
-                    text.push_str(line);
-                }
-            }
+            Layout::Json => push_element(&mut text, &object(column, r), first && k == 0),
             Layout::JsonLines => {
                 let object = serde_json::to_string(&object(column, r))
                     .expect("JSON values always serialize");
@@ -188,6 +177,20 @@ pub(crate) fn format_rows(rows: &[Row], column: &str, layout: Layout, first: boo
         }
     }
     text
+}
+
+/// One element of a pretty-printed JSON array, as serde_json writes it: on its own lines after a comma
+/// (none before the `first`), indented by two.
+pub(crate) fn push_element(text: &mut String, object: &serde_json::Value, first: bool) {
+    text.push_str(if first { "\n" } else { ",\n" });
+    let pretty = serde_json::to_string_pretty(object).expect("JSON values always serialize");
+    for (n, line) in pretty.lines().enumerate() {
+        if n > 0 {
+            text.push('\n');
+        }
+        text.push_str("  ");
+        text.push_str(line);
+    }
 }
 
 /// One CSV line of `r`, its numbers written by ryu straight into `text` (no formatting machinery: the

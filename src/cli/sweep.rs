@@ -172,12 +172,7 @@ fn write_with_bands(
                     text.push_str(&object.to_string());
                     text.push('\n');
                 } else {
-                    // As serde_json's pretty array: each element on its own lines, indented by two.
-                    text.push_str(if i == 0 { "\n" } else { ",\n" });
-                    let pretty = serde_json::to_string_pretty(&object)
-                        .expect("JSON values always serialize");
-                    let indented: Vec<String> = pretty.lines().map(|l| format!("  {l}")).collect();
-                    text.push_str(&indented.join("\n"));
+                    sweep::push_element(&mut text, &object, i == 0);
                 }
             }
         }
