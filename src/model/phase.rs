@@ -127,8 +127,9 @@ impl Phase {
         }
     }
 
-    /// The fastest frequency of the cart (or the chain) while the ball slides, rad/s.
-    pub(super) fn fastest(&self, setup: &Setup) -> f64 {
+    /// The fastest frequency of the cart (or the chain) while the ball slides, rad/s: how densely a scan
+    /// of this phase must sample to see every swing.
+    pub fn fastest(&self, setup: &Setup) -> f64 {
         match &self.motion {
             Motion::Chain(chain) => chain.chain().slide.fastest,
             Motion::Compliant(c) => c.fastest(setup),
