@@ -1,11 +1,13 @@
 //! `snapback simulate` from the outside: each format, unit suffixes, and every class of bad input.
 
+use crate::support::bin;
+
 use assert_cmd::Command;
 use predicates::prelude::*;
 use snapback::model::{Params, solve};
 
 fn snapback() -> Command {
-    Command::cargo_bin("snapback").expect("the binary is built")
+    bin::snapback()
 }
 
 fn json(args: &[&str]) -> serde_json::Value {

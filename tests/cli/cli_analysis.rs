@@ -1,12 +1,14 @@
 //! The analysis commands end to end: formats, exit statuses and one-line errors.
 
+use crate::support::bin;
+
 use assert_cmd::Command;
 use serde_json::Value;
 use snapback::analysis::reproduce;
 use snapback::model::Params;
 
 fn snapback() -> Command {
-    Command::cargo_bin("snapback").unwrap()
+    bin::snapback()
 }
 
 /// Runs the command; returns (status, stdout, stderr).

@@ -1,14 +1,11 @@
 //! The conventions of a command-line tool: shell completions, manual pages, and the package's licence.
 
+use crate::support::bin;
+
 use std::process::{Command, Output};
 
-const BIN: &str = env!("CARGO_BIN_EXE_snapback");
-
 fn snapback(args: &[&str]) -> Output {
-    Command::new(BIN)
-        .args(args)
-        .output()
-        .expect("the binary runs")
+    bin::command().args(args).output().expect("the binary runs")
 }
 
 fn stdout(out: &Output) -> String {

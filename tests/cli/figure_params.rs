@@ -2,12 +2,12 @@
 //! its omega2 against theta1 for its spin and the comparison spin; flags, presets and scenarios all
 //! count, and an `--out` it cannot write is refused.
 
-use std::process::{Command, Output, Stdio};
+use crate::support::bin;
+
+use std::process::{Output, Stdio};
 
 use snapback::analysis::figures::Which;
 use snapback::model::{Params, solve};
-
-const BIN: &str = env!("CARGO_BIN_EXE_snapback");
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
     let dir = std::env::temp_dir().join(format!("snapback-figure-{}-{name}", std::process::id()));
@@ -18,7 +18,7 @@ fn temp_dir(name: &str) -> std::path::PathBuf {
 /// `snapback figure ARGS --out DIR/NAME` with `stdin`, and the SVG written.
 fn figure(dir: &std::path::Path, name: &str, args: &[&str], stdin: &str) -> (Output, String) {
     let path = dir.join(name);
-    let mut child = Command::new(BIN)
+    let mut child = bin::command()
         .arg("figure")
         .args(args)
         .arg("--out")

@@ -1,6 +1,8 @@
 //! `snapback fit`: recovery of known parameters from synthetic data, the coverage of its 95% intervals,
 //! and its command line (formats, errors).
 
+use crate::support::bin;
+
 use assert_cmd::Command;
 use rand::SeedableRng;
 use rand::rngs::StdRng;
@@ -93,6 +95,7 @@ fn a_fit_recovers_known_parameters_within_their_intervals() {
 /// Over 200 seeded data sets the 95% intervals of each of the three parameters hold the truth 90 to 98%
 /// of the time.
 #[test]
+#[ignore = "slow"]
 fn intervals_cover_the_truth_about_95_percent_of_the_time() {
     const SETS: u64 = 200;
     let mut hits = [0usize; 3];
@@ -110,7 +113,7 @@ fn intervals_cover_the_truth_about_95_percent_of_the_time() {
 }
 
 fn snapback() -> Command {
-    Command::cargo_bin("snapback").unwrap()
+    bin::snapback()
 }
 
 const DATA: &str = "# synthetic\nangle,spin,omega2,sigma_omega2\n20,0,135.6,3\n30,0,195.7,3\n40,0,223.5,3\n\

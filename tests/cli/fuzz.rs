@@ -7,12 +7,14 @@
 //! `FUZZ_CASES=1500 cargo test --release --test cli fuzz -- --nocapture` runs a longer campaign (300 by
 //! default) and prints its figures; `FUZZ_SEED` picks another seed.
 
+use crate::support::bin;
+
 use crate::support::rng;
 
 use std::fs::{self, File};
 use std::os::unix::fs::{PermissionsExt, symlink};
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::Stdio;
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::{Duration, Instant};
@@ -45,7 +47,7 @@ fn run(args: &[String], dir: &Path, tag: usize) -> Run {
     let start = Instant::now();
     // Reaped by wait4 below, which also gives the child's CPU time.
     #[allow(clippy::zombie_processes)]
-    let child = Command::new(env!("CARGO_BIN_EXE_snapback"))
+    let child = bin::command()
         .args(args)
         .current_dir(dir)
         .stdin(Stdio::null())
@@ -453,6 +455,7 @@ struct Figures {
 }
 
 #[test]
+#[ignore = "slow"]
 fn the_seeded_campaign_finds_no_panic_hang_bad_exit_or_non_finite_number() {
     let cases: usize = std::env::var("FUZZ_CASES")
         .ok()

@@ -2,11 +2,13 @@
 //! inf, destroyed what was at an output path, or echoed a huge value. Each runs the binary with a
 //! generous time limit (a hang shows as a kill, never as a timing assertion).
 
+use crate::support::bin;
+
 use std::fs;
 use std::io::Read;
 use std::os::unix::fs::{FileTypeExt, PermissionsExt, symlink};
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Stdio};
 use std::time::{Duration, Instant};
 
 use snapback::model::Params;
@@ -16,7 +18,7 @@ use snapback::scenario::Scenario;
 const LIMIT: Duration = Duration::from_secs(120);
 
 fn spawn(args: &[&str], dir: &Path) -> Child {
-    Command::new(env!("CARGO_BIN_EXE_snapback"))
+    bin::command()
         .args(args)
         .current_dir(dir)
         .stdin(Stdio::null())
@@ -126,6 +128,7 @@ fn the_hangs_are_refused_by_every_command() {
 }
 
 #[test]
+#[ignore = "slow"]
 fn the_slow_solves_are_refused_within_their_work_budget_or_phase_cap() {
     refused(
         &["simulate", "--chain", "16", "--ball-stiffness", "1e11"],

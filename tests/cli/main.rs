@@ -3,6 +3,8 @@
 
 #[path = "../support"]
 mod support {
+    pub mod bin;
+    pub mod cpu;
     #[allow(dead_code)] // config.rs uses only some of the pseudo-terminal helpers
     pub mod pty;
     pub mod rng;

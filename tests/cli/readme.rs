@@ -7,6 +7,8 @@
 //! `[..]` for any text within a line. The commands of one block run in `sh`, in order, in one fresh
 //! directory that links the repository's `assets/`, with the binary first on `PATH`, in the C locale.
 
+use crate::support::bin;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -130,6 +132,7 @@ fn every_console_capture_matches_the_binary() {
                 .current_dir(&dir)
                 .env("PATH", &path)
                 .env("NO_COLOR", "1")
+                .env("SNAPBACK_CONFIG_DIR", bin::empty_config())
                 // Numbers as the README prints them (a point, not a comma), whatever the machine's locale.
                 .env("LC_ALL", "C")
                 .output()

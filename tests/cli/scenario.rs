@@ -1,12 +1,14 @@
 //! Presets and scenario files: every preset loads and solves, save then load gives identical parameters,
 //! each kind of bad file names the file, the line and the key, and the command line applies them.
 
+use crate::support::bin;
+
 use assert_cmd::Command;
 use snapback::model::{Params, solve};
 use snapback::scenario::{PRESETS, Scenario, ScenarioError, preset};
 
 fn snapback() -> Command {
-    Command::cargo_bin("snapback").expect("the binary is built")
+    bin::snapback()
 }
 
 fn temp_dir(name: &str) -> std::path::PathBuf {

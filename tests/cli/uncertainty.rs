@@ -1,11 +1,13 @@
 //! Uncertain inputs (`--angle 50±1`, `50+-1`, `--spin -3820rpm±200`): `simulate` and `sweep` report each
 //! outcome's Monte Carlo mean and spread beside the usual output; other commands refuse them.
 
+use crate::support::bin;
+
 use assert_cmd::Command;
 use serde_json::Value;
 
 fn snapback() -> Command {
-    Command::cargo_bin("snapback").unwrap()
+    bin::snapback()
 }
 
 fn json(args: &[&str]) -> Value {

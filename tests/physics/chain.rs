@@ -218,6 +218,7 @@ fn a_chain_length_that_is_not_a_whole_number_is_refused() {
 }
 
 #[test]
+#[ignore = "slow"]
 fn the_chain_agrees_with_numerical_integration() {
     let mut rng = Rng(0x5eed_c4a1_0000_0042);
     let cases = 100;

@@ -226,6 +226,7 @@ fn a_free_chain_is_its_first_mass_alone() {
 }
 
 #[test]
+#[ignore = "slow"]
 fn a_stiff_critically_damped_ball_approaches_the_rigid_ball_on_the_chain() {
     // The rigid ball on the chain is solved in closed form today; the compliant ball must tend to it as
     // k_b grows at critical damping, phase for phase. A ball coupled to the wrong mass or through the
@@ -303,6 +304,7 @@ fn the_reference_balances_energy_on_a_chain() {
 }
 
 #[test]
+#[ignore = "slow"]
 fn the_reference_converges_on_the_solver_cases() {
     let cases = solver_cases();
     let mut worst: f64 = 0.0;
@@ -487,7 +489,6 @@ proptest! {
 }
 
 #[test]
-
 fn the_solver_agrees_with_the_reference() {
     let cases = solver_cases();
     let (worst, multi) = solver_agrees(&cases);
@@ -495,6 +496,8 @@ fn the_solver_agrees_with_the_reference() {
         "chains: worst disagreement {worst:.2e}; {multi} of {} cases with 3 phases or more",
         cases.len()
     );
+    // The agreement must cover bounces that grip and slide again (46 of the 60 do today).
+    assert!(multi >= 40, "only {multi} cases with 3 phases or more");
 }
 
 proptest! {

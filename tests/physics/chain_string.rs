@@ -32,6 +32,7 @@ fn random_params(rng: &mut Rng, chain: f64) -> Params {
 }
 
 #[test]
+#[ignore = "slow"]
 fn string_friction_on_a_chain_agrees_with_numerical_integration() {
     let mut rng = Rng(0x5791_c4a1_f00d_0012);
     let cases = 100;

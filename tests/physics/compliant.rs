@@ -4,7 +4,10 @@
 //! a stiff critically damped ball approaches the rigid ball, an undamped one leaves a rigid surface with
 //! e_x > 0, an independent numerical integration agrees, and properties hold over random inputs.
 
+use std::time::Duration;
+
 use crate::support::compliant_integrator;
+use crate::support::cpu;
 
 use proptest::prelude::*;
 use snapback::model::{Cart, Params, PhaseKind, SolveError, solve};
@@ -195,7 +198,7 @@ fn an_undamped_ball_leaves_a_rigid_surface_with_positive_ex() {
 #[test]
 fn an_undamped_stiff_ball_chatters_but_does_not_stall() {
     for kb in [1e7, 1e8, 1e9] {
-        let started = std::time::Instant::now();
+        let started = cpu::thread();
         match solve(&compliant(kb, 0.0)) {
             Ok(b) => {
                 assert!(b.phases.iter().all(|p| p.end > p.start));
@@ -212,7 +215,8 @@ fn an_undamped_stiff_ball_chatters_but_does_not_stall() {
                 "{e}"
             ),
         }
-        assert!(started.elapsed().as_secs_f64() < 20.0);
+        // CPU time, which a loaded machine does not stretch: the work budget ends it within seconds.
+        assert!(cpu::thread() - started < Duration::from_secs(20));
     }
 }
 
@@ -221,9 +225,12 @@ fn a_lightly_damped_ball_is_quick_and_tends_to_the_undamped_one() {
     // zeta -> 0 makes the stretch's decay rate sqrt(k_b/m_eff)/(2 zeta) huge while sliding.
     let undamped = solve(&compliant(1e6, 0.0)).unwrap().outcome;
     for zeta in [1e-4, 1e-7, 1e-10, 1e-13] {
-        let started = std::time::Instant::now();
+        let started = cpu::thread();
         let b = solve(&compliant(1e6, zeta)).unwrap();
-        assert!(started.elapsed().as_secs_f64() < 1.0, "zeta = {zeta}");
+        assert!(
+            cpu::thread() - started < Duration::from_secs(1),
+            "zeta = {zeta}"
+        );
         let e = b.energy();
         assert!(e.residual.abs() < 1e-10, "zeta = {zeta}: {e:?}");
         let o = b.outcome;
@@ -427,6 +434,7 @@ fn a_slide_that_should_grip_at_once_does() {
 
 /// A ball too fast to resolve is refused with advice that works: each value it names solves.
 #[test]
+#[ignore = "slow"]
 fn a_refused_ball_names_values_that_solve() {
     let cases = [
         Params {

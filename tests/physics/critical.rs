@@ -93,6 +93,7 @@ fn single(p: &Params) -> Regime {
 }
 
 #[test]
+#[ignore = "slow"]
 fn critical_angle_agrees_with_integration_on_single_carts() {
     let carts = [
         ("light-1g", cart(1e-3, 9554.3, -100.0)),
@@ -126,6 +127,7 @@ fn critical_angle_agrees_with_integration_on_single_carts() {
 }
 
 #[test]
+#[ignore = "slow"]
 fn critical_angle_agrees_with_integration_on_chains() {
     let chain = |n: f64, p: Params| Params { chain: n, ..p };
     let integrate = |p: &Params| {
@@ -166,6 +168,7 @@ fn critical_angle_agrees_with_integration_on_chains() {
 }
 
 #[test]
+#[ignore = "slow"]
 fn compliant_ball_critical_angle_is_where_its_patch_first_grips() {
     // The patch never reverses without gripping, so sliding one way and never gripping are one regime.
     let integrate = |p: &Params| {

@@ -3,11 +3,13 @@
 
 #[path = "../support"]
 mod support {
+    pub mod bin;
     pub mod chain;
     pub mod chain_compliant_integrator;
     pub mod chain_integrator;
     pub mod compliant;
     pub mod compliant_integrator;
+    pub mod cpu;
     pub mod flight;
     pub mod integrator;
     pub mod prop;

@@ -1,6 +1,8 @@
 //! `snapback shot`: the flight against an independent integration, the reductions to `simulate`, to the
 //! parabola and to the heavy cart, energy and mirror symmetry, and the command line.
 
+use crate::support::bin;
+
 use crate::support::flight as reference;
 use crate::support::prop;
 use crate::support::rng;
@@ -341,7 +343,7 @@ proptest! {
 }
 
 fn snapback() -> Command {
-    Command::cargo_bin("snapback").unwrap()
+    bin::snapback()
 }
 
 fn shot_json(args: &[&str]) -> serde_json::Value {

@@ -3,6 +3,8 @@
 
 #[path = "../support"]
 mod support {
+    pub mod bin;
+    pub mod cpu;
     pub mod pty;
     pub mod screen;
 }

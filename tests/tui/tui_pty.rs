@@ -7,14 +7,15 @@
 //! come from `cargo test --release --test tui tui_pty -- --ignored --nocapture`, which measures and
 //! prints them.
 
+use crate::support::bin;
+
 use std::time::{Duration, Instant};
 
-use assert_cmd::Command as Cmd;
 use predicates::prelude::*;
 use predicates::str::contains;
 
 use crate::support::pty;
-use pty::{BIN, Pty};
+use pty::Pty;
 
 /// The first frame at 160 x 48 is on screen.
 fn opened(screen: &str) -> bool {
@@ -43,21 +44,21 @@ fn the_binary_opens_takes_keys_and_quits_cleanly() {
 
 #[test]
 fn without_a_terminal_it_points_at_simulate() {
-    Cmd::new(BIN)
+    bin::snapback()
         .assert()
         .code(2)
         .stderr(contains("needs a terminal").and(contains("snapback simulate")));
-    Cmd::new(BIN).arg("tui").assert().code(2);
+    bin::snapback().arg("tui").assert().code(2);
 }
 
 #[test]
 fn a_bad_starting_value_is_a_usage_error() {
-    Cmd::new(BIN)
+    bin::snapback()
         .args(["tui", "--angle", "95"])
         .assert()
         .code(2)
         .stderr(contains("--angle must be in (0, 90] deg; got 95"));
-    Cmd::new(BIN)
+    bin::snapback()
         .args(["tui", "--marker", "sparkle"])
         .assert()
         .code(2);
@@ -161,19 +162,25 @@ fn a_slow_solve_delays_neither_a_key_nor_quitting() {
         48,
     );
     pty.wait_for("the first frame", opened);
+    // CPU time, not the wall clock: the solve alone takes seconds of it, a key or quitting milliseconds.
+    let ui = pty.cpu(true);
     pty.send(b"j");
-    let echo = pty.wait_for("the speed selected", |s| s.contains("▸v1"));
-    assert!(echo < Duration::from_secs(2), "{echo:?}");
+    pty.wait_for("the speed selected", |s| s.contains("▸v1"));
+    let answering = pty.cpu(true) - ui;
+    assert!(
+        answering < Duration::from_millis(500),
+        "the UI thread spent {answering:?} answering a key: it solved"
+    );
     pty.send(b"l");
     pty.wait_for("the new speed", |s| s.contains("10.5 m/s"));
-    let start = Instant::now();
+    let before = pty.cpu(false);
     pty.send(b"q");
+    let quitting = pty.cpu_at_exit() - before;
     let status = pty.exit(Duration::from_secs(10)).expect("q quits");
     assert!(status.success(), "{status:?}");
     assert!(
-        start.elapsed() < Duration::from_secs(2),
-        "{:?}",
-        start.elapsed()
+        quitting < Duration::from_secs(1),
+        "{quitting:?} of CPU time from q to the end: it waited for the solve"
     );
 }
 

@@ -3,7 +3,7 @@
 //! the incidence the frame change sets is refused, a pinned baseline draws, and it reads at 80 x 24 and
 //! in ASCII.
 
-use std::process::Command;
+use crate::support::bin;
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::Terminal;
@@ -19,8 +19,6 @@ use snapback::tui::{App, Scripted, View, run};
 
 use crate::support::screen;
 use screen::{line_with, text};
-
-const BIN: &str = env!("CARGO_BIN_EXE_snapback");
 
 fn key(code: KeyCode) -> Event {
     Event::Key(KeyEvent::new(code, KeyModifiers::NONE))
@@ -55,7 +53,7 @@ fn explore(params: Params, theme: Theme, size: (u16, u16), events: Vec<Event>) -
 
 /// `snapback shot --preset NAME --format json`.
 fn shot_json(name: &str) -> serde_json::Value {
-    let out = Command::new(BIN)
+    let out = bin::command()
         .args(["shot", "--preset", name, "--format", "json"])
         .output()
         .unwrap();
@@ -414,13 +412,13 @@ fn the_command_line_starts_a_shot_as_snapback_shot_plays_it() {
             "the racquet never meets the ball",
         ),
     ] {
-        let out = Command::new(BIN).args(&args).output().unwrap();
+        let out = bin::command().args(&args).output().unwrap();
         assert_eq!(out.status.code(), Some(2), "{args:?}: {out:?}");
         let stderr = String::from_utf8_lossy(&out.stderr);
         assert!(stderr.contains(expected), "{args:?}: {stderr}");
     }
     // A bounce start is as it was: the incidence flags are taken (and no terminal is the one error).
-    let out = Command::new(BIN).args(["--angle", "30"]).output().unwrap();
+    let out = bin::command().args(["--angle", "30"]).output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(stderr.contains("needs a terminal"), "{stderr}");
 }
