@@ -2,6 +2,7 @@
 
 use std::fmt::Write;
 
+use crate::analysis::timeline;
 use crate::model::params::BOUNCE_PARAMS as PARAMS;
 use crate::model::units::{Dimension, show};
 use crate::model::{Bounce, Cart, PhaseKind};
@@ -87,6 +88,15 @@ pub fn summary(b: &Bounce) -> String {
         "  {cart} at release: X = {}, V = {:.3} m/s",
         show(b.final_state.x, Dimension::Length, "mm", 3),
         b.final_state.v
+    );
+    let travel = timeline::travel(b);
+    let _ = writeln!(
+        out,
+        "  {cart} peak: |X| = {} at {:.3} ms, |V| = {:.3} m/s at {:.3} ms",
+        show(travel.peak_x, Dimension::Length, "mm", 3),
+        travel.peak_x_at * 1e3,
+        travel.peak_v,
+        travel.peak_v_at * 1e3
     );
     let _ = writeln!(out, "\nEnergy");
     let share = |j: f64| 100.0 * j / e.initial;
