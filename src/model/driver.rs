@@ -6,7 +6,8 @@
 
 use super::contact::{Ball, Cause, Contact, Found};
 use super::error::{MAX_TRANSITIONS, SolveError};
-use super::phase::{Motion, Phase, PhaseKind};
+use super::phase::{Phase, PhaseKind};
+use super::registry::Motion;
 use super::setup::{Setup, State};
 
 /// The phases of one bounce and the state of ball and surface as the ball leaves.

@@ -907,15 +907,6 @@ impl Params {
         Ok(self)
     }
 
-    /// What the ball touches, as the outputs name it: the cart, or a chain's first mass.
-    pub fn touched(&self) -> &'static str {
-        if self.chain > 1.0 {
-            "first mass"
-        } else {
-            "cart"
-        }
-    }
-
     /// Checks every value against its range.
     pub fn validate(&self) -> Result<(), ParamError> {
         PARAMS

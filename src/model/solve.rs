@@ -8,6 +8,7 @@ use super::driver::run;
 use super::error::SolveError;
 use super::limits;
 use super::params::Params;
+use super::registry::{BallKind, SupportKind};
 use super::setup::Setup;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
@@ -27,24 +28,31 @@ pub fn solve_cancellable(
     limits::bounded(params, || solve_model(params, cancelled))
 }
 
-/// The model for `params`, run by the driver (`limits::bounded` has validated them).
+/// The model for `params` ([`Params::model`]), run by the driver (`limits::bounded` has validated them).
 fn solve_model(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Bounce, SolveError> {
-    if params.ball_stiffness > 0.0 {
-        let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
-        let (phases, last) = run(&model, &setup, cancelled).map_err(|e| match e {
-            SolveError::TooManyPhases { .. } => SolveError::TooManyPhases {
-                hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, or \
-                       lower --ball-stiffness)",
-            },
-            e => e,
-        })?;
-        return Ok(finish(params, setup, phases, last));
-    }
-    let setup = Setup::new(params);
-    let (phases, last) = if params.chain > 1.0 {
-        run(&ChainOfMasses::new(params, &setup)?, &setup, cancelled)?
-    } else {
-        run(&SingleCart::new(params, &setup)?, &setup, cancelled)?
+    let kind = params.model();
+    let (setup, phases, last) = match (kind.ball, kind.support) {
+        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain) => {
+            let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
+            let (phases, last) = run(&model, &setup, cancelled).map_err(|e| match e {
+                SolveError::TooManyPhases { .. } => SolveError::TooManyPhases {
+                    hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, \
+                           or lower --ball-stiffness)",
+                },
+                e => e,
+            })?;
+            (setup, phases, last)
+        }
+        (BallKind::Rigid, SupportKind::Chain) => {
+            let setup = Setup::new(params);
+            let (phases, last) = run(&ChainOfMasses::new(params, &setup)?, &setup, cancelled)?;
+            (setup, phases, last)
+        }
+        (BallKind::Rigid, SupportKind::Cart) => {
+            let setup = Setup::new(params);
+            let (phases, last) = run(&SingleCart::new(params, &setup)?, &setup, cancelled)?;
+            (setup, phases, last)
+        }
     };
     Ok(finish(params, setup, phases, last))
 }
@@ -56,7 +64,7 @@ pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
 }
 
 fn solve_chain_model(params: &Params) -> Result<Bounce, SolveError> {
-    if params.ball_stiffness > 0.0 {
+    if params.model().compliant() {
         return solve(params);
     }
     let setup = Setup::new(params);
