@@ -12,7 +12,7 @@ use super::{Failure, ShotParamArgs, shot};
 pub use crate::config::Theme as ThemeArg;
 use crate::config::{self, Charset};
 use crate::model::Params;
-use crate::model::params::{Group, spec};
+use crate::model::params::spec;
 use crate::scenario::{self, Scenario};
 use crate::tui::{self, OpenError, Options, playback};
 
@@ -81,7 +81,7 @@ fn start(args: &ShotParamArgs) -> Result<(Params, bool), Failure> {
     let shot = args
         .given
         .iter()
-        .any(|(id, _)| spec(*id).group == Group::Shot)
+        .any(|(id, _)| spec(*id).group.is_shot())
         || args
             .preset
             .as_deref()

@@ -21,7 +21,7 @@ use crate::analysis::fit::free::Free;
 use crate::analysis::fit::watch::{Progress, Stage, Watch};
 use crate::analysis::fit::{self, Fit, Options};
 use crate::analysis::uncertainty::Spread;
-use crate::model::params::{BOUNCE_PARAMS as PARAMS, Group, ParamId, ParamSpec, Step, spec};
+use crate::model::params::{BOUNCE_PARAMS as PARAMS, ParamId, ParamSpec, Step, spec};
 use crate::model::{Params, units};
 
 use super::app::{Action, App, Message, Tone, View};
@@ -366,7 +366,7 @@ impl App {
                 Tone::Error,
             );
         }
-        if spec.group == Group::Shot {
+        if spec.group.is_shot() {
             return self.say(
                 format!("{name} is the shot's: measured rebounds do not depend on it, so it cannot be fitted"),
                 Tone::Error,
