@@ -1,5 +1,5 @@
 //! A stroke on court, from the strings to the opponent's baseline: the racquet's bounce in the frame of the
-//! moving strings ([`frame`], the core), the flight with drag and Magnus lift ([`flight`], [`aero`],
+//! moving strings ([`frame`], the core, on the frame of the racquet in the hand: [`racquet`]), the flight with drag and Magnus lift ([`flight`], [`aero`],
 //! integrated by [`dopri`]), the bounce on the court ([`court`], the core again) and the second flight to
 //! the opponent's baseline.
 //!
@@ -12,6 +12,7 @@ pub mod court;
 pub mod dopri;
 pub mod flight;
 pub mod frame;
+pub mod racquet;
 
 use nalgebra::Vector2;
 
@@ -20,6 +21,7 @@ use aero::{Air, Projectile};
 use court::{BASELINE_X, NET_HEIGHT, NET_X};
 use flight::{Hit, Point, Stop, TooLong, fly};
 use frame::{Incidence, Surface};
+use racquet::{Hold, RacquetError};
 
 /// Why a shot cannot be played.
 #[derive(Debug, thiserror::Error)]
@@ -31,6 +33,8 @@ pub enum ShotError {
     NeverMeets(f64),
     #[error("--height must be above the ball's radius ({radius} m); got {height} m")]
     BelowRadius { height: f64, radius: f64 },
+    #[error(transparent)]
+    Racquet(#[from] RacquetError),
     #[error("on the strings: {0}")]
     Strings(SolveError),
     #[error("on the court: {0}")]
@@ -81,6 +85,8 @@ pub struct Contact {
 /// A whole shot.
 #[derive(Clone, Debug)]
 pub struct Shot {
+    /// The racquet that strikes the ball.
+    pub racquet: Hold,
     /// The bounce on the strings.
     pub strings: Contact,
     /// Where the ball lands: x of the centre (and of the contact) as it comes down to its radius, m,
@@ -141,7 +147,7 @@ pub fn incidence(p: &Params) -> Result<Incidence, ShotError> {
 }
 
 /// The bounce on the strings: the frame change, the core (all of `p`'s ball and cart flags, with the
-/// incidence it sees), and back to the court frame.
+/// incidence it sees, on the frame of `p`'s racquet), and back to the court frame.
 pub fn hit(p: &Params) -> Result<Contact, ShotError> {
     let strings = strings(p);
     let incidence = incidence(p)?;
@@ -174,6 +180,7 @@ pub fn play_in(p: &Params, air: Air, trajectory: bool) -> Result<Shot, ShotError
             radius: p.radius,
         });
     }
+    let racquet = Hold::of(p)?;
     let strings = hit(p)?;
     let r = p.radius;
     let projectile = |m: &Motion| Projectile {
@@ -193,6 +200,7 @@ pub fn play_in(p: &Params, air: Air, trajectory: bool) -> Result<Shot, ShotError
         trajectory.then_some(&mut path),
     )?;
     let mut shot = Shot {
+        racquet,
         strings,
         landing_x: None,
         net_clearance: None,
