@@ -19,26 +19,8 @@ use crossterm::terminal::{
     enable_raw_mode,
 };
 use ratatui::Terminal;
-use ratatui::backend::TestBackend;
 
 use super::output::Output;
-
-/// A backend that can bracket each frame so that a slow link never shows half of one.
-pub trait FrameSync {
-    fn begin_frame(&mut self) -> io::Result<()>;
-    fn end_frame(&mut self) -> io::Result<()>;
-}
-
-/// Frames in memory need no bracket.
-impl FrameSync for TestBackend {
-    fn begin_frame(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-
-    fn end_frame(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-}
 
 /// Mouse reports of presses, releases and drags (not of every motion, which would flood a slow link),
 /// in the SGR encoding.
