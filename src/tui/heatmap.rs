@@ -4,7 +4,7 @@
 //! The grid is solved on a worker thread ([`super::worker`]), a row of stiffness at a time, so the
 //! explorer keeps answering keys while it fills in. A request supersedes any older one still running (its
 //! solves are cancelled), and rows that arrive from an older request are dropped, so a map never mixes two
-//! sets of parameters.
+//! sets of parameters. A job that panics stops the map where it got to ([`Heatmap::failed`]).
 
 use std::time::Duration;
 
@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use super::grid::{MASSES, STIFFNESSES, mass, stiffness};
 use super::peak::{self, Peak};
-use super::worker::Worker;
+use super::worker::{Crash, Worker};
 use crate::model::{ParamId, Params, SolveError, solve_cancellable};
 
 /// omega2 along row `j` (stiffness `stiffness(j)`), for every cart mass, `None` where the core refuses;
@@ -88,6 +88,10 @@ pub struct Heatmap {
     refining: Option<u64>,
     /// Started when the first map is complete.
     refiner: Option<PeakWorker>,
+    /// Why the map of the newest request stopped short: its job, or its peak's, panicked.
+    pub failed: Option<Crash>,
+    /// That crash, until the explorer has taken it for the status line.
+    unreported: Option<Crash>,
 }
 
 /// The worker that refines the best cell: a job is the parameters and the cell.
@@ -111,6 +115,8 @@ impl Heatmap {
         self.rows = vec![None; STIFFNESSES];
         self.peak = None;
         self.refining = None;
+        self.failed = None;
+        self.unreported = None;
         if let Some(refiner) = &self.refiner {
             refiner.cancel();
         }
@@ -129,11 +135,15 @@ impl Heatmap {
 
     /// Takes every row that has arrived; true if any was for the newest request.
     pub fn poll(&mut self) -> bool {
-        let arrived: Vec<Row> = match &self.worker {
-            Some(worker) => worker.try_iter().map(row).collect(),
+        // The crash first: the rows its job sent before it are then all in.
+        let (crash, arrived): (_, Vec<Row>) = match &self.worker {
+            Some(worker) => (worker.crash(), worker.try_iter().map(row).collect()),
             None => return false,
         };
-        let mut changed = false;
+        let mut changed = crash.is_some();
+        if let Some(crash) = crash {
+            self.fail(crash);
+        }
         for row in arrived {
             changed |= self.accept(row);
         }
@@ -145,7 +155,7 @@ impl Heatmap {
         let (Some(params), Some((i, j, _))) = (self.requested, self.best()) else {
             return false;
         };
-        if self.rows.iter().any(Option::is_none) {
+        if self.failed.is_some() || self.rows.iter().any(Option::is_none) {
             return false;
         }
         let refiner = self.refiner.get_or_insert_with(spawn_refiner);
@@ -155,6 +165,11 @@ impl Heatmap {
                 false
             }
             Some(generation) => {
+                if let Some(crash) = refiner.crash() {
+                    self.refining = None;
+                    self.fail(crash);
+                    return true;
+                }
                 let answer = refiner.try_iter().filter(|(g, _)| *g == generation).last();
                 match answer {
                     Some((_, peak)) => {
@@ -185,9 +200,22 @@ impl Heatmap {
         self.poll() || changed
     }
 
-    /// True while a requested map, or its peak, is not complete.
+    /// The newest request's job panicked: the map stays as far as it got.
+    fn fail(&mut self, crash: Crash) {
+        self.failed = Some(crash.clone());
+        self.unreported = Some(crash);
+    }
+
+    /// A crash not yet shown in the status line.
+    pub fn take_crash(&mut self) -> Option<Crash> {
+        self.unreported.take()
+    }
+
+    /// True while a requested map, or its peak, is not complete (and nothing has failed).
     pub fn pending(&self) -> bool {
-        self.requested.is_some() && (self.rows.iter().any(Option::is_none) || self.peak.is_none())
+        self.requested.is_some()
+            && self.failed.is_none()
+            && (self.rows.iter().any(Option::is_none) || self.peak.is_none())
     }
 
     /// How many rows are in.

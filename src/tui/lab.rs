@@ -27,7 +27,7 @@ use super::band::Band;
 use super::residuals::Residuals;
 use super::solver::Recent;
 use super::sweep::Sweeps;
-use super::worker::Worker;
+use super::worker::{Crash, Worker};
 
 /// A fit on its way.
 #[derive(Clone, Debug)]
@@ -76,6 +76,11 @@ pub struct Lab {
     residuals_wanted: Option<Params>,
     band_worker: Option<Worker<BandKey, Arc<Band>>>,
     band_wanted: Option<BandKey>,
+    /// The residuals and the band whose jobs panicked: not asked for again.
+    residuals_crashed: Option<Params>,
+    band_crashed: Option<BandKey>,
+    /// A crash of a worker's newest job, until the explorer has taken it for the status line.
+    unreported: Option<Crash>,
     pub(crate) fit_worker: Option<Worker<FitJob, FitEvent>>,
 }
 
@@ -153,7 +158,8 @@ impl Lab {
             if self.residuals_wanted.take().is_some() {
                 worker.cancel();
             }
-        } else if self.residuals_wanted != Some(*params) {
+        } else if self.residuals_wanted != Some(*params) && self.residuals_crashed != Some(*params)
+        {
             self.residuals_wanted = Some(*params);
             worker.submit(*params);
         }
@@ -170,7 +176,10 @@ impl Lab {
             return;
         }
         let key = (Sweeps::key(params), self.spreads.clone());
-        if self.band_for(params).is_some() || self.band_wanted.as_ref() == Some(&key) {
+        if self.band_for(params).is_some()
+            || self.band_wanted.as_ref() == Some(&key)
+            || self.band_crashed.as_ref() == Some(&key)
+        {
             return;
         }
         let worker = self.band_worker.get_or_insert_with(|| {
@@ -184,9 +193,23 @@ impl Lab {
         self.band_wanted = Some(key);
     }
 
-    /// Takes the residuals and the band that have come; true if any did.
+    /// Takes the residuals and the band that have come, or the crash of their job; true if any did.
     pub(crate) fn collect(&mut self, params: &Params) -> bool {
         let mut changed = false;
+        if let Some(crash) = self.residual_worker.as_ref().and_then(Worker::crash)
+            && let Some(wanted) = self.residuals_wanted.take()
+        {
+            self.residuals_crashed = Some(wanted);
+            self.unreported = Some(crash);
+            changed = true;
+        }
+        if let Some(crash) = self.band_worker.as_ref().and_then(Worker::crash)
+            && let Some(wanted) = self.band_wanted.take()
+        {
+            self.band_crashed = Some(wanted);
+            self.unreported = Some(crash);
+            changed = true;
+        }
         if let Some(worker) = &self.residual_worker {
             for (generation, r) in worker.try_iter() {
                 if generation == worker.latest() && self.residuals_wanted == Some(r.params) {
@@ -210,6 +233,11 @@ impl Lab {
             }
         }
         changed
+    }
+
+    /// A crash not yet shown in the status line.
+    pub fn take_crash(&mut self) -> Option<Crash> {
+        self.unreported.take()
     }
 
     /// Stops the fit under way, if any; how many bounces it had solved.

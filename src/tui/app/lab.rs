@@ -15,6 +15,7 @@ use crate::model::units;
 use super::App;
 use crate::tui::lab::{FitEvent, FitJob, Fitting, Lab, fitted_text, symbols};
 use crate::tui::vocabulary::{Action, Message, Tone, View};
+use crate::tui::worker::Worker;
 
 impl App {
     /// Starts the lab on `data`: the residuals are asked for at once.
@@ -37,6 +38,12 @@ impl App {
     pub(super) fn poll_lab(&mut self) -> bool {
         let params = self.params;
         let mut changed = self.lab.collect(&params);
+        if let Some(crash) = self.lab.fit_worker.as_ref().and_then(Worker::crash)
+            && self.lab.fitting.take().is_some()
+        {
+            self.say(format!("fit stopped: {crash}"), Tone::Error);
+            return true;
+        }
         let events: Vec<FitEvent> = match &self.lab.fit_worker {
             Some(worker) => worker
                 .try_iter()

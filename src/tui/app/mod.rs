@@ -26,6 +26,7 @@ use super::solved::Solved;
 use super::solver::{Answer, Arrival, Solver};
 use super::sweep::Sweeps;
 use super::theme::Theme;
+use super::worker::Crash;
 
 /// Everything the explorer shows.
 #[derive(Debug)]
@@ -170,11 +171,20 @@ impl App {
         let shot = self.shots.poll(&self.params);
         let lab = self.poll_lab();
         let taken = self.take(arrived);
+        let crashes = [
+            self.heatmap.take_crash(),
+            self.shots.take_crash(),
+            self.lab.take_crash(),
+        ];
+        let crashed = crashes.iter().any(Option::is_some);
+        for crash in crashes.into_iter().flatten() {
+            self.crashed(crash);
+        }
         let marked = (self.solver.busy() || self.shots.pending())
             && self.changed_at.elapsed() >= STALE_AFTER;
         let flipped = marked != self.stale_marked;
         self.stale_marked = marked;
-        taken || heatmap || shot || lab || flipped
+        taken || heatmap || shot || lab || crashed || flipped
     }
 
     /// Waits until every answer asked for has come, or `patience` has passed; true if all came. For tests
@@ -228,6 +238,7 @@ impl App {
                         self.sweeps = Some(sweeps);
                     }
                 }
+                Arrival::Crash(crash) => self.crashed(crash),
             }
         }
         if changed {
@@ -271,6 +282,15 @@ impl App {
                 }
             }
         }
+    }
+
+    /// A worker's job panicked: the status line says so (the worker has given up that job, so nothing
+    /// waits for it).
+    fn crashed(&mut self, crash: Crash) {
+        self.message = Some(Message {
+            text: crash.to_string(),
+            tone: Tone::Error,
+        });
     }
 
     /// True while the bounce on screen is not that of the current parameters.

@@ -73,6 +73,12 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
     ]));
     let progress = if map.pending() {
         format!(" computing {}/{} ", map.done(), STIFFNESSES)
+    } else if map.failed.is_some() {
+        format!(
+            " stopped at {}/{}: internal error ",
+            map.done(),
+            STIFFNESSES
+        )
     } else {
         String::new()
     };
