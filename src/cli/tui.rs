@@ -78,10 +78,7 @@ pub struct TuiArgs {
 fn start(args: &ShotParamArgs) -> Result<(Params, bool), Failure> {
     let params = args.apply(Params::default()).map_err(Failure::usage)?;
     // Both load: `apply` has read them without error.
-    let shot = args
-        .given
-        .iter()
-        .any(|(id, _)| spec(*id).group.is_shot())
+    let shot = args.given.iter().any(|(id, _)| spec(*id).group.is_shot())
         || args
             .preset
             .as_deref()

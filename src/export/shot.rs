@@ -146,9 +146,7 @@ pub fn table(shot: &Shot) -> String {
     let _ = writeln!(
         out,
         "  {:<24}{:.3} (e_y {:.3} on clamped strings)",
-        "apparent restitution",
-        r.ey_apparent,
-        shot.strings.bounce.params.ey
+        "apparent restitution", r.ey_apparent, shot.strings.bounce.params.ey
     );
     let _ = writeln!(
         out,

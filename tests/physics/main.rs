@@ -29,4 +29,5 @@ mod numerical;
 mod paper;
 mod presets_measured;
 mod properties;
+mod racquet;
 mod shot;
