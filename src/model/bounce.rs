@@ -1,5 +1,5 @@
 //! A solved bounce: the phases in order, the outcome, and queries of the exact solution (samples, the
-//! time series, the ball's phases, the energy budget). Results only: the solving is [`super::solve`]'s.
+//! time series, the ball's phases, the energy budget). Results only: the solving is [`super::solve()`]'s.
 
 use serde::Serialize;
 

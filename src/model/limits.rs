@@ -100,7 +100,7 @@ pub const MAX_RELAXATIONS: f64 = 1e15;
 /// seconds of work.
 const BUDGET: u64 = 12_000_000;
 
-/// The work budget of one solve: [`BUDGET`] evaluations on the single cart, fewer on a chain of N
+/// The work budget of one solve: `BUDGET` evaluations on the single cart, fewer on a chain of N
 /// masses, whose evaluations cost about (N + 1)/2 times as much.
 pub fn budget(params: &Params) -> u64 {
     let links = params.chain.clamp(1.0, 16.0) as u64;
@@ -116,7 +116,7 @@ static WORK_LEFT: AtomicU64 = AtomicU64::new(u64::MAX);
 pub const COMMAND_WORK: u64 = 300_000_000;
 
 /// Limits the work of all the solves this process makes from now on to `units` (evaluations times
-/// [`weight`]): for a command whose number of bounces is fixed by the program, not by the user
+/// `weight`): for a command whose number of bounces is fixed by the program, not by the user
 /// (`reproduce`, `figure`, `critical-angle`), so that parameters that make each bounce costly cannot
 /// make the whole take minutes.
 pub fn limit_work(units: u64) {
@@ -140,7 +140,7 @@ pub fn interrupt() {
     INTERRUPTED.store(true, Ordering::Relaxed);
 }
 
-/// True once [`interrupt`] was called: the cancellation check of [`super::solve`].
+/// True once [`interrupt`] was called: the cancellation check of [`super::solve()`].
 pub fn interrupted() -> bool {
     INTERRUPTED.load(Ordering::Relaxed)
 }

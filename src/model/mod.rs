@@ -1,5 +1,5 @@
 //! The simulation core: the ball-on-cart model of Cross (2010), solved exactly phase by phase.
-//! No terminal, no files, no printing: everything else calls [`solve`] and reads the [`Bounce`].
+//! No terminal, no files, no printing: everything else calls [`solve()`] and reads the [`Bounce`].
 //!
 //! The way through: [`Params`] -> [`Setup`] (everything derived once) -> a contact model ([`cart`],
 //! [`chain`], [`compliant`]), each implementing [`contact::Contact`] -> the phase [`driver`] ->

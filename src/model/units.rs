@@ -184,7 +184,7 @@ fn split_number(text: &str) -> (&str, &str) {
 /// The longest text a message echoes whole.
 const ECHO: usize = 40;
 
-/// User text as a message echoes it: whole up to [`ECHO`] characters, else its start and its length, so
+/// User text as a message echoes it: whole up to `ECHO` characters, else its start and its length, so
 /// that a value 100 000 digits long does not flood the terminal.
 pub fn echo(text: &str) -> String {
     let length = text.chars().count();
