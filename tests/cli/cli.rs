@@ -75,6 +75,17 @@ fn json_has_the_contract_keys() {
     ] {
         assert!(v["energy"][key].is_number(), "energy.{key}");
     }
+    // The strings' travel, beside where they are at release; the table shows it in mm.
+    let travel = snapback::analysis::timeline::travel(&b);
+    assert_eq!(v["cart"]["x"].as_f64().unwrap(), b.final_state.x);
+    assert_eq!(v["cart"]["peak_x"].as_f64().unwrap(), travel.peak_x);
+    assert_eq!(v["cart"]["peak_v"].as_f64().unwrap(), travel.peak_v);
+    snapback()
+        .arg("simulate")
+        .assert()
+        .stdout(predicate::str::contains(
+            "cart peak: |X| = 7.689 mm at 3.075 ms",
+        ));
 }
 
 #[test]
