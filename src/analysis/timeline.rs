@@ -39,7 +39,7 @@ pub struct Travel {
 }
 
 /// The cart's largest |X| and |V| over the contact, from the phases' closed forms: extrema to rounding
-/// (see [`largest`]), not the largest of a set of samples.
+/// (see `largest`), not the largest of a set of samples.
 pub fn travel(b: &Bounce) -> Travel {
     let (peak_x_at, peak_x) = largest(b, |s| s.x.abs());
     let (peak_v_at, peak_v) = largest(b, |s| s.v.abs());
