@@ -1,9 +1,7 @@
 //! The analyses against the core: sweeps against single solves, the critical angle against Eq. (7),
 //! optimisation against a dense scan, the claims coverage, and the figures' SVG.
 
-#[path = "support/rng.rs"]
-mod rng;
-
+use crate::support::rng;
 use snapback::analysis::cases::{HEAVY, SOFT};
 use snapback::analysis::claims;
 use snapback::analysis::critical::{self, Critical};
