@@ -3,10 +3,10 @@
 use clap::{Args, ValueEnum};
 
 use super::{Failure, ShotParamArgs, emit};
+use crate::config;
 use crate::export;
 use crate::model::params::{Group, ParamSpec, spec};
 use crate::model::{ParamId, Params};
-use crate::scenario;
 use crate::shot;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -37,7 +37,7 @@ pub const BASE_PRESET: &str = "topspin-forehand";
 /// The parameters a shot starts from: the defaults with the [`BASE_PRESET`] applied (the paper's e_y = 1
 /// would be a racquet that returns every bit of the ball's normal speed).
 pub fn base() -> Params {
-    scenario::preset(BASE_PRESET)
+    config::preset(BASE_PRESET)
         .expect("the base preset is compiled in")
         .apply(Params::default())
 }

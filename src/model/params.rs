@@ -277,6 +277,37 @@ impl ParamSpec {
         Ok(value)
     }
 
+    /// Where a bare number for this parameter usually lies ([`units::Usual`]); `None` where any value
+    /// of its range is as likely as another, or no other unit could be meant.
+    pub fn usual(&self) -> Option<units::Usual> {
+        let (low, high) = match self.id {
+            ParamId::Mass | ParamId::CartMass => (0.0, 1.0),
+            ParamId::Radius => (0.0, 0.5),
+            ParamId::Duration | ParamId::CourtDuration => (0.0, 0.05),
+            ParamId::Stiffness | ParamId::BallStiffness => (10.0, f64::INFINITY),
+            ParamId::Speed | ParamId::BallSpeed | ParamId::RacquetSpeed => (0.0, 75.0),
+            ParamId::Spin => (0.0, 1000.0),
+            _ => return None,
+        };
+        Some(units::Usual {
+            low,
+            high,
+            typical: self.default,
+        })
+    }
+
+    /// A note for a bare number far outside this parameter's usual range, as `name` shows it:
+    /// `--cart-mass 10 is read as 10 kg; write 10g for grams` ([`units::bare_note`]).
+    pub fn bare_note(&self, name: &str, text: &str) -> Option<String> {
+        units::bare_note(
+            name,
+            text,
+            self.dimension,
+            self.bare_symbol(),
+            self.usual()?,
+        )
+    }
+
     /// True when `value` is in the range (and whole, for a count).
     pub fn allows(&self, value: f64) -> bool {
         self.range.contains(value) && (!self.integer || value.fract() == 0.0)
