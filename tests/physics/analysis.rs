@@ -1,6 +1,7 @@
 //! The analyses against the core: sweeps against single solves, the critical angle against Eq. (7),
 //! optimisation against a dense scan, the claims coverage, and the figures' SVG.
 
+use crate::support::rng;
 use snapback::analysis::cases::{HEAVY, SOFT};
 use snapback::analysis::claims;
 use snapback::analysis::critical::{self, Critical};
@@ -528,6 +529,42 @@ fn the_peak_travel_is_exact_on_every_contact_model() {
                 at.v
             );
         }
+    }
+}
+
+#[test]
+fn the_peak_travel_holds_on_random_bounces() {
+    // Random bounces over every contact model: the peak is never below a dense series' largest sample,
+    // nor above it by more than the series' spacing allows.
+    let mut rng = rng::Rng(0x5eed_7a1e);
+    let mut checked = 0;
+    while checked < 40 {
+        let chain = [1.0, 1.0, 2.0, 5.0][rng.below(4)];
+        let p = Params {
+            angle_deg: rng.uniform(20.0, 85.0),
+            spin: rng.uniform(-400.0, 100.0),
+            cart_mass: rng.log_uniform(1e-3, 0.1),
+            stiffness: rng.log_uniform(2e3, 2e5),
+            cart_friction: [0.0, rng.uniform(0.0, 60.0)][rng.below(2)],
+            ball_stiffness: [0.0, rng.log_uniform(3e4, 1e7)][rng.below(2)],
+            ball_damping: rng.uniform(0.05, 1.0),
+            chain,
+            ..Params::default()
+        };
+        let Ok(b) = solve(&p) else { continue };
+        checked += 1;
+        let t = timeline::travel(&b);
+        let series = b.series(20_001);
+        let x = series.iter().map(|s| s.x.abs()).fold(0.0, f64::max);
+        let v = series.iter().map(|s| s.v.abs()).fold(0.0, f64::max);
+        assert!(
+            t.peak_x >= x * (1.0 - 1e-14) && t.peak_x <= x * (1.0 + 1e-4),
+            "{p:?}: {t:?} {x}"
+        );
+        assert!(
+            t.peak_v >= v * (1.0 - 1e-14) && t.peak_v <= v * (1.0 + 1e-2),
+            "{p:?}: {t:?} {v}"
+        );
     }
 }
 
