@@ -23,6 +23,7 @@ pub mod quadrature;
 pub mod setup;
 pub mod solve;
 pub mod transition;
+pub mod trig;
 pub mod units;
 
 pub use bounce::{Bounce, Outcome, Sample};
