@@ -2,7 +2,7 @@
 
 use crate::model::params::{PARAMS, ParamSpec, Params};
 use crate::model::units;
-use crate::model::{Bounce, solve};
+use crate::model::{Bounce, SolveOptions, solve_with};
 
 use super::AnalysisError;
 
@@ -234,11 +234,16 @@ impl Span {
         column(self.spec)
     }
 
-    /// The bounce with the varied parameter set to `value`.
-    pub fn solve(&self, base: &Params, value: f64) -> Result<Bounce, AnalysisError> {
+    /// The bounce with the varied parameter set to `value`, solved on the caller's terms.
+    pub fn solve(
+        &self,
+        base: &Params,
+        value: f64,
+        options: &SolveOptions,
+    ) -> Result<Bounce, AnalysisError> {
         let mut params = *base;
         params.set(self.spec.id, value);
-        solve(&params).map_err(|source| AnalysisError::Solve {
+        solve_with(&params, options).map_err(|source| AnalysisError::Solve {
             flag: self.spec.flag,
             value: format!(
                 "{} {}",
@@ -303,7 +308,8 @@ fn twelve_digits(value: f64, error: f64) -> Option<f64> {
         } else if scaled < 99_999_999_999.5 {
             p += 1;
         } else {
-            if !(error < 0.125 * unit) {
+            // NaN refuses too.
+            if error.partial_cmp(&(0.125 * unit)) != Some(std::cmp::Ordering::Less) {
                 return None;
             }
             let n = scaled.round();
