@@ -27,6 +27,7 @@ pub mod setup;
 pub mod solvable;
 pub mod solve;
 pub mod transition;
+pub mod trig;
 pub mod units;
 
 pub use bounce::{Bounce, Outcome, Sample};

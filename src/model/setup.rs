@@ -3,6 +3,7 @@
 use std::f64::consts::PI;
 
 use super::params::Params;
+use super::trig::{sin, sin_cos};
 
 /// The tangential state of ball and cart at time `t` (SI).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -81,7 +82,7 @@ impl Setup {
     #[inline]
     pub fn normal(&self, t: f64) -> f64 {
         if (0.0..=self.duration).contains(&t) {
-            self.n0 * (self.w * t).sin()
+            self.n0 * sin(self.w * t)
         } else {
             0.0
         }
@@ -96,14 +97,14 @@ impl Setup {
     /// d(mu N)/dt at `t`, mu N0 w cos(w t).
     #[inline]
     pub fn friction_limit_rate(&self, t: f64) -> f64 {
-        self.peak_friction() * self.w * (self.w * t).cos()
+        self.peak_friction() * self.w * sin_cos(self.w * t).1
     }
 
     /// How far a grip held by static friction `force` (with rate `rate`) is from breaking at `t`, forward
     /// and backward: ±force - mu N(t), each with its rate. The grip breaks when either rises above zero.
     #[inline]
     pub fn grip_margins(&self, t: f64, force: f64, rate: f64) -> [(f64, f64); 2] {
-        let (sin_wt, cos_wt) = (self.w * t).sin_cos();
+        let (sin_wt, cos_wt) = sin_cos(self.w * t);
         let limit = self.peak_friction() * sin_wt.max(0.0);
         let limit_rate = self.peak_friction() * self.w * cos_wt;
         [
