@@ -12,8 +12,8 @@ use super::brent;
 /// Samples of the dense scan that [`peak`] refines.
 const SCAN: usize = 2001;
 
-/// Scan points per period of a phase's fastest swing in [`travel`]: a sinusoid's sampled maximum is then
-/// within 1 - cos(pi/16) = 2% of its true one, inside the margin [`NEAR`] keeps for refinement.
+/// Scan points per period of the surface's fastest swing in [`travel`]: a sinusoid's sampled maximum is
+/// then within 1 - cos(pi/16) = 2% of its true one, inside the margin [`NEAR`] keeps for refinement.
 const PER_PERIOD: f64 = 16.0;
 
 /// Scanned local maxima at least this fraction of the best so far are refined.
@@ -52,9 +52,9 @@ pub fn travel(b: &Bounce) -> Travel {
 }
 
 /// The largest value of `f` of the state over the contact and when, `(t, value)`. `f` need only be
-/// continuous within each phase. Each phase is scanned at [`PER_PERIOD`] points per period of its
-/// fastest swing (or of the normal force, if faster); its ends are candidates, and so is every scanned
-/// local maximum within [`NEAR`] of the best so far, refined by Brent's method between its scanned
+/// continuous within each phase. Each phase is scanned at [`PER_PERIOD`] points per period of the
+/// fastest swing in that phase, as its model answers ([`crate::model::Phase::fastest`]); its ends are candidates, and every scanned local maximum
+/// (an end too) within [`NEAR`] of the best so far is refined by Brent's method between its scanned
 /// neighbours to a relative 1e-12 in time, which puts the value at the maximum to rounding.
 fn largest(b: &Bounce, f: impl Fn(&State) -> f64) -> (f64, f64) {
     let setup = &b.setup;
@@ -80,10 +80,13 @@ fn largest(b: &Bounce, f: impl Fn(&State) -> f64) -> (f64, f64) {
         keep(&mut best, t(0), scan[0]);
         keep(&mut best, t(n), scan[n]);
         let top = scan.iter().copied().fold(f64::NEG_INFINITY, f64::max);
-        for i in 1..n {
-            let local = scan[i] >= scan[i - 1] && scan[i] >= scan[i + 1];
+        // A scanned local maximum, the phase's ends included (a peak can lie between an end and its
+        // neighbour), refined between its neighbours.
+        for i in 0..=n {
+            let (lo, hi) = (i.saturating_sub(1), (i + 1).min(n));
+            let local = scan[i] >= scan[lo] && scan[i] >= scan[hi];
             if local && scan[i] >= NEAR * top.max(best.1) {
-                let (at, neg) = brent::minimize(|s| -value(s), t(i - 1), t(i + 1), t(i), 1e-12);
+                let (at, neg) = brent::minimize(|s| -value(s), t(lo), t(hi), t(i), 1e-12);
                 keep(&mut best, at, -neg);
             }
         }
