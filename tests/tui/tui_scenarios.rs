@@ -411,7 +411,7 @@ fn reset_goes_back_to_where_the_explorer_started() {
     );
     assert_eq!(app.params, light);
     // r resets the selected parameter to its starting value, too.
-    let mut events = vec![char('k'); 5]; // from the speed, round to the cart mass
+    let mut events = vec![char('k'); 7]; // from the speed, round past the frame and the chain to the cart mass
     events.extend([char('L'), char('r')]);
     drive(&mut app, 80, 24, events);
     assert_eq!(app.selected_spec().id, ParamId::CartMass);
