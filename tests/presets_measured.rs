@@ -63,7 +63,8 @@ fn rpm(p: &Params) -> f64 {
 
 #[test]
 fn the_table_holds_what_its_lines_say() {
-    let text = std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(TABLE)).unwrap();
+    let text =
+        std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(TABLE)).unwrap();
     assert!(text.starts_with("# source: Crawford Lindsey, \"String Movement and Spin\""));
     let averages = averages();
     let rows: Vec<usize> = MATERIALS.iter().map(|m| averages[*m].1).collect();
@@ -95,7 +96,10 @@ fn string_presets_meet_their_materials_average() {
                 ("spin", ParamId::Spin),
             ] {
                 let value = spec_named(column).unwrap().parse(&row[column]).unwrap();
-                assert!((p.get(id) / value - 1.0).abs() < 1e-3, "{material}: {column}");
+                assert!(
+                    (p.get(id) / value - 1.0).abs() < 1e-3,
+                    "{material}: {column}"
+                );
             }
         }
         let model = rpm(&p);
@@ -104,13 +108,19 @@ fn string_presets_meet_their_materials_average() {
             "{material}: measured {measured:.0} rpm, model {model:.0} rpm ({:+.1}%)",
             off * 100.0
         );
-        assert!(off.abs() <= 0.10, "{material}: model {model} against {measured}");
+        assert!(
+            off.abs() <= 0.10,
+            "{material}: model {model} against {measured}"
+        );
         spins.insert(material, model);
     }
     // Polyester 20% above nylon in the table; the model's ratio near it.
     let measured = averages["polyester"].0 / averages["nylon"].0;
     let ratio = spins["polyester"] / spins["nylon"];
-    assert!((ratio / measured - 1.0).abs() <= 0.05, "{ratio} against {measured}");
+    assert!(
+        (ratio / measured - 1.0).abs() <= 0.05,
+        "{ratio} against {measured}"
+    );
 }
 
 #[test]
@@ -136,10 +146,18 @@ fn string_presets_are_one_ball_on_one_bed_with_sensible_values() {
             p.duration
         );
         // The compliant ball with string-on-string friction.
-        assert!(p.ball_stiffness > 0.0 && p.cart_friction > 0.0, "{material}");
+        assert!(
+            p.ball_stiffness > 0.0 && p.cart_friction > 0.0,
+            "{material}"
+        );
         // One ball and one bed: every value but the string-on-string friction is the same.
         for spec in PARAMS.iter().filter(|s| s.id != ParamId::CartFriction) {
-            assert_eq!(p.get(spec.id), first.get(spec.id), "{material}: {}", spec.flag);
+            assert_eq!(
+                p.get(spec.id),
+                first.get(spec.id),
+                "{material}: {}",
+                spec.flag
+            );
         }
     }
     // The materials that spin less hold their strings harder.

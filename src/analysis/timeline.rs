@@ -12,8 +12,8 @@ use super::brent;
 /// Samples of the dense scan that [`peak`] refines.
 const SCAN: usize = 2001;
 
-/// Scan points per period of the surface's fastest swing in [`travel`]: a sinusoid's sampled maximum is
-/// then within 1 - cos(pi/16) = 2% of its true one, inside the margin [`NEAR`] keeps for refinement.
+/// Scan points per period of a phase's fastest swing in [`travel`]: a sinusoid's sampled maximum is then
+/// within 1 - cos(pi/16) = 2% of its true one, inside the margin [`NEAR`] keeps for refinement.
 const PER_PERIOD: f64 = 16.0;
 
 /// Scanned local maxima at least this fraction of the best so far are refined.
@@ -51,33 +51,13 @@ pub fn travel(b: &Bounce) -> Travel {
     }
 }
 
-/// An upper bound on the fastest rate at which the surface the ball touches can swing, rad/s: the top
-/// mode of the chain (2 sqrt(k_c / m_c) for its contact mass m_c = M/N on springs k_c = N k, the single
-/// cart's sqrt(k/M) doubled), and with a compliant ball, the ball's spring and dashpot on the ball's
-/// effective mass and the contact mass (as the grip's own bound in the core), or the normal force's pi/T.
-fn fastest_swing(b: &Bounce) -> f64 {
-    let (p, setup) = (&b.params, &b.setup);
-    let n = p.chain.max(1.0);
-    let contact_mass = p.cart_mass / n;
-    let surface = 4.0 * n * p.stiffness / contact_mass;
-    let ball = if p.ball_stiffness > 0.0 {
-        let both = 1.0 / setup.m_eff + 1.0 / contact_mass;
-        let damping = 2.0 * p.ball_damping * (p.ball_stiffness * setup.m_eff).sqrt();
-        (p.ball_stiffness * both + surface).sqrt() + damping * both
-    } else {
-        0.0
-    };
-    surface.sqrt().max(ball).max(setup.w)
-}
-
 /// The largest value of `f` of the state over the contact and when, `(t, value)`. `f` need only be
-/// continuous within each phase. Each phase is scanned at [`PER_PERIOD`] points per period of the
-/// surface's fastest swing ([`fastest_swing`]); its ends are candidates, and every scanned local maximum
-/// (an end too) within [`NEAR`] of the best so far is refined by Brent's method between its scanned
-/// neighbours to a relative 1e-12 in time, which puts the value at the maximum to rounding.
+/// continuous within each phase. Each phase is scanned at [`PER_PERIOD`] points per period of its
+/// fastest swing (or of the normal force, if faster); its ends are candidates, and every scanned local
+/// maximum (an end too) within [`NEAR`] of the best so far is refined by Brent's method between its
+/// scanned neighbours to a relative 1e-12 in time, which puts the value at the maximum to rounding.
 fn largest(b: &Bounce, f: impl Fn(&State) -> f64) -> (f64, f64) {
     let setup = &b.setup;
-    let omega = fastest_swing(b);
     let mut best = (0.0, f64::NEG_INFINITY);
     let keep = |best: &mut (f64, f64), t: f64, v: f64| {
         if v > best.1 {
@@ -87,6 +67,7 @@ fn largest(b: &Bounce, f: impl Fn(&State) -> f64) -> (f64, f64) {
     for phase in &b.phases {
         let (t0, t1) = (phase.start, phase.end);
         let value = |t: f64| f(&phase.state_at(setup, t));
+        let omega = phase.fastest(setup).max(setup.w);
         let n = ((PER_PERIOD * omega * (t1 - t0) / TAU).ceil() as usize).clamp(2, MAX_SCAN);
         let t = |i: usize| {
             if i == n {

@@ -134,6 +134,9 @@ pub trait PhaseMotion {
     /// The energy the sliding friction takes over `[start, end]`, the integral of F times the slip it
     /// works against (the ball's contact point's, or a compliant ball's patch's) on the exact solution.
     fn friction_work(&self, setup: &Setup, start: f64, end: f64) -> f64;
+    /// The fastest angular frequency of the surface's motion in this phase (the cart's, or the chain's
+    /// fastest mode), rad/s.
+    fn fastest(&self, setup: &Setup) -> f64;
     /// The energy held in the ball's own tangential spring at `t` (a compliant ball's k_b e²/2).
     fn ball_spring_energy(&self, setup: &Setup, t: f64) -> f64;
     /// The energy lost in the ball's own dashpot over `[start, end]` (a compliant ball's ∫ c_b e'² dt).

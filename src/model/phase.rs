@@ -72,6 +72,12 @@ impl Phase {
             .surface_energy(setup, &self.state_at(setup, t))
     }
 
+    /// The fastest angular frequency of the surface in this phase, rad/s: how densely a scan of the phase
+    /// must sample to see every swing.
+    pub fn fastest(&self, setup: &Setup) -> f64 {
+        self.motion().fastest(setup)
+    }
+
     pub fn duration(&self) -> f64 {
         self.end - self.start
     }

@@ -87,6 +87,10 @@ impl PhaseMotion for CartMotion {
         integrate(power, start, end, 2.0 / setup.omega_slide.max(setup.w))
     }
 
+    fn fastest(&self, setup: &Setup) -> f64 {
+        setup.omega_slide
+    }
+
     /// A rigid ball holds no tangential energy.
     fn ball_spring_energy(&self, _: &Setup, _: f64) -> f64 {
         0.0

@@ -206,6 +206,10 @@ impl PhaseMotion for Motion {
         )
     }
 
+    fn fastest(&self, _: &Setup) -> f64 {
+        self.chain().slide.fastest
+    }
+
     /// A rigid ball holds no tangential energy.
     fn ball_spring_energy(&self, _: &Setup, _: f64) -> f64 {
         0.0

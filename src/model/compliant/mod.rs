@@ -333,6 +333,10 @@ impl PhaseMotion for CompliantMotion {
         self.integrate(setup, power, start, end)
     }
 
+    fn fastest(&self, setup: &Setup) -> f64 {
+        CompliantMotion::fastest(self, setup)
+    }
+
     /// k_b e²/2.
     fn ball_spring_energy(&self, setup: &Setup, t: f64) -> f64 {
         let e = self.at(setup, t).e;
