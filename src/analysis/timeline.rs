@@ -52,10 +52,11 @@ pub fn travel(b: &Bounce) -> Travel {
 }
 
 /// The largest value of `f` of the state over the contact and when, `(t, value)`. `f` need only be
-/// continuous within each phase. Each phase is scanned at [`PER_PERIOD`] points per period of its
-/// fastest swing (or of the normal force, if faster); its ends are candidates, and every scanned local
-/// maximum (an end too) within [`NEAR`] of the best so far is refined by Brent's method between its
-/// scanned neighbours to a relative 1e-12 in time, which puts the value at the maximum to rounding.
+/// continuous within each phase. Each phase is scanned at [`PER_PERIOD`] points per period of the
+/// fastest swing in that phase, as its model answers ([`crate::model::Phase::fastest`]), or of the normal
+/// force if faster; its ends are candidates, and every scanned local maximum (an end too) within [`NEAR`]
+/// of the best so far is refined by Brent's method between its scanned neighbours to a relative 1e-12 in
+/// time, which puts the value at the maximum to rounding.
 fn largest(b: &Bounce, f: impl Fn(&State) -> f64) -> (f64, f64) {
     let setup = &b.setup;
     let mut best = (0.0, f64::NEG_INFINITY);

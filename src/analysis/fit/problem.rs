@@ -2,8 +2,6 @@
 //! by central differences of the exact solver; rows are solved in parallel. The optimiser
 //! (`levenberg-marquardt`, built on nalgebra 0.34) sees them through [`Problem`].
 
-use std::cell::Cell;
-
 use levenberg_marquardt::LeastSquaresProblem;
 use nalgebra_lm::{DMatrix, DVector, Dyn, U1, VecStorage};
 use rayon::prelude::*;
@@ -11,7 +9,8 @@ use rayon::prelude::*;
 use super::data::{Dataset, Row};
 use super::free::{Free, place};
 use super::watch::Tally;
-use crate::model::{Params, solve_cancellable};
+use crate::model::error::MAX_TRANSITIONS;
+use crate::model::{Params, SolveOptions, solve_with};
 
 /// The residual given to the optimiser where the model cannot be solved, so that it steps back.
 const UNSOLVABLE: f64 = 1e100;
@@ -40,13 +39,14 @@ impl Model<'_> {
     /// The model's value of each measured quantity of `row`, with the free parameters at `u`.
     pub fn predict(&self, row: &Row, u: &[f64]) -> Option<Vec<f64>> {
         let params = row.params(&place(&self.base, self.free, u));
-        let phases = Cell::new(0usize);
-        let over_limit = || {
-            phases.set(phases.get() + 1);
-            self.phase_limit.is_some_and(|limit| phases.get() > limit) || self.tally.cancelled()
+        let cancelled = || self.tally.cancelled();
+        let options = SolveOptions {
+            cancelled: &cancelled,
+            max_phases: self.phase_limit.unwrap_or(MAX_TRANSITIONS),
+            work: None,
         };
         self.tally.solved();
-        let bounce = solve_cancellable(&params, &over_limit).ok()?;
+        let bounce = solve_with(&params, &options).ok()?;
         row.measured
             .iter()
             .map(|m| m.quantity.of(&bounce))
