@@ -8,11 +8,19 @@ use std::process::Stdio;
 
 use snapback::analysis::Span;
 use snapback::analysis::sweep::{self, Layout};
-use snapback::model::Params;
+use snapback::model::{Params, SolveOptions};
 
 fn written(span: &Span, steps: usize, layout: Layout) -> String {
     let mut out = Vec::new();
-    sweep::write(&mut out, &Params::default(), span, steps, layout).unwrap();
+    sweep::write(
+        &mut out,
+        &Params::default(),
+        span,
+        steps,
+        layout,
+        &SolveOptions::default(),
+    )
+    .unwrap();
     String::from_utf8(out).unwrap()
 }
 

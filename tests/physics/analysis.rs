@@ -1,6 +1,7 @@
 //! The analyses against the core: sweeps against single solves, the critical angle against Eq. (7),
 //! optimisation against a dense scan, the claims coverage, and the figures' SVG.
 
+use crate::support::rng;
 use snapback::analysis::cases::{HEAVY, SOFT};
 use snapback::analysis::claims;
 use snapback::analysis::critical::{self, Critical};
@@ -12,8 +13,6 @@ use snapback::export::svg;
 use snapback::model::params::{ParamId, spec_named};
 use snapback::model::{Params, solve};
 use snapback::output::Replace;
-
-use crate::support::rng;
 
 #[test]
 fn sweep_rows_are_single_solves_in_order() {

@@ -106,6 +106,16 @@ impl Pty {
         self.output.lock().unwrap().screen.screen().contents()
     }
 
+    /// True while the program keeps the terminal in the alternate screen.
+    pub fn alternate_screen(&self) -> bool {
+        self.output
+            .lock()
+            .unwrap()
+            .screen
+            .screen()
+            .alternate_screen()
+    }
+
     /// How many bytes the program has written so far.
     pub fn written(&self) -> usize {
         self.output.lock().unwrap().bytes.len()

@@ -14,7 +14,7 @@ use ratatui::backend::TestBackend;
 use snapback::analysis::fit::data;
 use snapback::model::Params;
 use snapback::scenario;
-use snapback::tui::ui::theme::Theme;
+use snapback::tui::theme::Theme;
 use snapback::tui::{App, EventSource, Input, run};
 
 use crate::support::screen;

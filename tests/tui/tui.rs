@@ -8,7 +8,7 @@ use ratatui::symbols::Marker;
 use snapback::model::params::{BOUNCE_PARAMS as PARAMS, spec};
 use snapback::model::{ParamId, Params, solve};
 use snapback::tui::keys::{self, keys_label};
-use snapback::tui::ui::theme::Theme;
+use snapback::tui::theme::Theme;
 use snapback::tui::{App, Mode, Scripted, View, run};
 
 use crate::support::screen;

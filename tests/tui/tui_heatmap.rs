@@ -10,8 +10,9 @@ use ratatui::backend::TestBackend;
 use ratatui::style::Color;
 use ratatui::symbols::Marker;
 use snapback::model::{Params, solve};
-use snapback::tui::heatmap::{self, MASSES, STIFFNESSES};
-use snapback::tui::ui::theme::Theme;
+use snapback::tui::grid::{self, MASSES, STIFFNESSES};
+use snapback::tui::heatmap;
+use snapback::tui::theme::Theme;
 use snapback::tui::{App, EventSource, Input, View, run};
 
 use crate::support::screen;
@@ -83,8 +84,8 @@ fn the_map_fills_in_off_the_ui_thread_and_the_loop_then_sleeps() {
     // The best cell is the largest omega2, and solving it again agrees.
     let (i, j, best) = app.heatmap.best().unwrap();
     let mut p = app.params;
-    p.cart_mass = heatmap::mass(i);
-    p.stiffness = heatmap::stiffness(j);
+    p.cart_mass = grid::mass(i);
+    p.stiffness = grid::stiffness(j);
     assert_eq!(solve(&p).unwrap().outcome.omega2, best);
     // The peak refined from it is at least as high, near it, and solving there agrees; the screen
     // gives the peak, not the cell.

@@ -15,7 +15,7 @@ use snapback::analysis::fit::data::{self, Dataset};
 use snapback::analysis::fit::{self, Options, free};
 use snapback::model::params::BOUNCE_PARAMS as PARAMS;
 use snapback::model::{ParamId, Params, units};
-use snapback::tui::ui::theme::Theme;
+use snapback::tui::theme::Theme;
 use snapback::tui::{Action, App, Scripted, run, ui};
 
 use crate::support::screen;

@@ -14,8 +14,8 @@ use ratatui::layout::Rect;
 use ratatui::style::Color;
 use ratatui::symbols::Marker;
 use snapback::model::{Bounce, ParamId, Params, Sample, solve};
+use snapback::tui::theme::Theme;
 use snapback::tui::ui::schematic::Scene;
-use snapback::tui::ui::theme::Theme;
 use snapback::tui::ui::{self, time_at};
 use snapback::tui::{Action, App, EventSource, Input, Scripted, playback, run};
 

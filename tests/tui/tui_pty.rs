@@ -1,7 +1,8 @@
-//! The real binary in a real pseudo-terminal (portable-pty, see `tests/support/pty.rs`): it opens,
-//! answers keys and quits with status 0; it never waits for a solve; it stays within its byte budget;
-//! signals restore the terminal; a non-UTF-8 locale gets pure ASCII; stray escape sequences swallow no
-//! key. Without a terminal it refuses with status 2.
+//! The real binary in a real pseudo-terminal (portable-pty, see `tests/support/pty.rs`): it opens, answers keys
+//! and quits with status 0; it never waits for a solve; it stays within its byte budget; signals restore
+//! the terminal; a worker's panic is reported in the explorer, which keeps the terminal; a non-UTF-8
+//! locale gets pure ASCII; stray escape sequences swallow no key. Without a terminal it refuses with
+//! status 2.
 //!
 //! Bounds on time here are generous (a loaded 2-core CI machine must pass them); the precise figures
 //! come from `cargo test --release --test tui tui_pty -- --ignored --nocapture`, which measures and
@@ -203,6 +204,36 @@ fn sigterm_restores_the_terminal_and_sighup_ends_at_once() {
     pty.signal("HUP");
     let status = pty.exit(Duration::from_secs(5)).expect("SIGHUP ends it");
     assert_eq!(status.exit_code(), 129, "{status:?}");
+}
+
+#[test]
+fn a_worker_that_panics_is_reported_and_the_explorer_goes_on() {
+    // The bounce's worker, and the heatmap's, whose job fans out to a pool of threads.
+    for (worker, keys) in [("bounce", &b""[..]), ("heatmap", b"\t\t")] {
+        let mut pty = Pty::spawn(&[], &[("SNAPBACK_PANIC_WORKER", worker)], 120, 40);
+        pty.wait_for("the first frame", opened);
+        pty.send(keys);
+        pty.wait_for("the crash in the status line", |s| {
+            s.contains("internal error in the solver") && s.contains("(please report)")
+        });
+        pty.settle(Duration::from_millis(300));
+        let screen = pty.screen();
+        assert!(!screen.contains("solving"), "{worker}: {screen}");
+        assert!(
+            pty.alternate_screen(),
+            "{worker}: the terminal was given back"
+        );
+        // Raw mode still: a key is taken at once, without Enter, and not echoed.
+        pty.send(b"?");
+        pty.wait_for("the help", |s| s.contains("Keys"));
+        pty.send(b"?l");
+        pty.wait_for("the angle to step to 61 degrees", |s| {
+            s.contains("61.0 deg")
+        });
+        pty.send(b"q");
+        let status = pty.exit(pty::PATIENCE).expect("it quits");
+        assert!(status.success(), "{worker}: {status:?}");
+    }
 }
 
 #[test]

@@ -9,7 +9,7 @@ use ratatui::backend::TestBackend;
 use snapback::model::{ParamId, Params, solve};
 use snapback::scenario::{PRESETS, Scenario, preset};
 use snapback::tui::app::Tone;
-use snapback::tui::ui::theme::Theme;
+use snapback::tui::theme::Theme;
 use snapback::tui::{App, Mode, Scripted, keys, run};
 
 use crate::support::screen;

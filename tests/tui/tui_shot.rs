@@ -14,7 +14,7 @@ use snapback::model::params::{PARAMS, ParamId};
 use snapback::scenario;
 use snapback::shot::{self, Shot};
 use snapback::tui::output::ascii;
-use snapback::tui::ui::theme::Theme;
+use snapback::tui::theme::Theme;
 use snapback::tui::{App, Scripted, View, run};
 
 use crate::support::screen;

@@ -12,7 +12,7 @@ use crate::model::{BallPhase, Bounce};
 use crate::tui::app::App;
 use crate::tui::baseline::signed;
 use crate::tui::solved::Solved;
-use crate::tui::ui::theme::Theme;
+use crate::tui::theme::Theme;
 
 /// Phases listed before the rest are summarised as a count.
 const LISTED_PHASES: usize = 6;
