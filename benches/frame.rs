@@ -15,7 +15,7 @@ use ratatui::backend::TestBackend;
 use snapback::model::Params;
 use snapback::model::params::{PARAMS, ParamId};
 use snapback::scenario;
-use snapback::tui::ui::theme::Theme;
+use snapback::tui::theme::Theme;
 use snapback::tui::{Action, App, View, draw, keys, playback};
 
 fn keystroke_to_frame(c: &mut Criterion) {

@@ -55,6 +55,7 @@ pub const PRESETS: &[Preset] = presets![
     "light-0.1g",
     "polyester-strings",
     "nylon-strings",
+    "gut-strings",
     "billiard-cushion",
     "golf-compliant-face",
     "superball-rigid-floor",

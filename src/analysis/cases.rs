@@ -2,7 +2,7 @@
 //! `assets/claims.md`): a heavy cart, a light cart and a light cart on a soft spring.
 
 use crate::model::params::ParamId;
-use crate::model::{Bounce, Params, solve};
+use crate::model::{Bounce, Params, SolveOptions, solve_with};
 
 use super::AnalysisError;
 
@@ -63,9 +63,15 @@ impl Cart {
         p
     }
 
-    /// The bounce of [`Cart::case`].
-    pub fn solve(&self, base: &Params, angle: f64, spin: f64) -> Result<Bounce, AnalysisError> {
-        solve(&self.case(base, angle, spin)).map_err(|source| AnalysisError::Case {
+    /// The bounce of [`Cart::case`], solved on the caller's terms.
+    pub fn solve(
+        &self,
+        base: &Params,
+        angle: f64,
+        spin: f64,
+        options: &SolveOptions,
+    ) -> Result<Bounce, AnalysisError> {
+        solve_with(&self.case(base, angle, spin), options).map_err(|source| AnalysisError::Case {
             case: format!("{} at {angle} deg, omega1 = {spin} rad/s", self.name),
             source,
         })

@@ -5,7 +5,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 
 use crate::model::params::ParamId;
-use crate::model::{Params, PhaseKind, SolveError, solve};
+use crate::model::{Params, PhaseKind, SolveError, SolveOptions, solve_with};
 
 /// Where a sliding regime ends as theta1 rises from glancing incidence: sliding one way throughout
 /// (the critical angle), or sliding without a grip (the first grip).
@@ -84,10 +84,10 @@ struct Regime {
     grips: bool,
 }
 
-fn regime(p: &Params, deg: f64) -> Result<Regime, SolveError> {
+fn regime(p: &Params, deg: f64, options: &SolveOptions) -> Result<Regime, SolveError> {
     let mut q = *p;
     q.set(ParamId::Angle, deg);
-    let b = solve(&q)?;
+    let b = solve_with(&q, options)?;
     Ok(Regime {
         one_way: b.slides_throughout(),
         grips: b.phases.iter().any(|ph| ph.kind == PhaseKind::Grip),
@@ -98,13 +98,18 @@ fn regime(p: &Params, deg: f64) -> Result<Regime, SolveError> {
 /// ball grips; for each threshold the first angle past it and the one before are then bisected to
 /// 1e-9 deg.
 pub fn thresholds(p: &Params) -> Result<Thresholds, SolveError> {
+    thresholds_with(p, &SolveOptions::default())
+}
+
+/// [`thresholds`] with every bounce solved on the caller's terms.
+pub fn thresholds_with(p: &Params, options: &SolveOptions) -> Result<Thresholds, SolveError> {
     let n = (90.0 / SCAN_STEP).round() as usize;
     let angle = |i: usize| if i == n { 90.0 } else { i as f64 * SCAN_STEP };
     let mut scanned: Vec<Regime> = Vec::with_capacity(n);
     for block in (1..=n).collect::<Vec<_>>().chunks(BLOCK) {
         let found: Vec<Regime> = block
             .par_iter()
-            .map(|&i| regime(p, angle(i)))
+            .map(|&i| regime(p, angle(i), options))
             .collect::<Result<_, _>>()?;
         scanned.extend(found);
         if scanned.iter().any(|r| r.grips) {
@@ -122,7 +127,7 @@ pub fn thresholds(p: &Params) -> Result<Thresholds, SolveError> {
         let (mut lo, mut hi) = (angle(first), angle(first + 1));
         while hi - lo > 1e-9 {
             let mid = 0.5 * (lo + hi);
-            if holds(regime(p, mid)?) {
+            if holds(regime(p, mid, options)?) {
                 lo = mid;
             } else {
                 hi = mid;
@@ -138,7 +143,12 @@ pub fn thresholds(p: &Params) -> Result<Thresholds, SolveError> {
 
 /// The full model's critical angle: [`Thresholds::slides_throughout`].
 pub fn full_model(p: &Params) -> Result<Critical, SolveError> {
-    thresholds(p).map(|t| t.slides_throughout)
+    full_model_with(p, &SolveOptions::default())
+}
+
+/// [`full_model`] with every bounce solved on the caller's terms.
+pub fn full_model_with(p: &Params, options: &SolveOptions) -> Result<Critical, SolveError> {
+    thresholds_with(p, options).map(|t| t.slides_throughout)
 }
 
 #[cfg(test)]

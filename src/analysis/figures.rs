@@ -4,7 +4,7 @@
 //! paper's Fig. 3(c) case) these are the paper's figures: the three carts, omega1 = 0 and -100 rad/s.
 
 use crate::model::params::{BOUNCE_PARAMS, ParamId, spec};
-use crate::model::{Params, solve};
+use crate::model::{Params, SolveOptions, solve_with};
 
 use super::cases::{CARTS, SPINS};
 use super::{AnalysisError, Span, sweep};
@@ -68,9 +68,14 @@ impl Which {
 
     /// The figure's data for the ball, speed, friction and impact of `base`.
     pub fn data(self, base: &Params) -> Result<Figure, AnalysisError> {
+        self.data_with(base, &SolveOptions::default())
+    }
+
+    /// [`Which::data`] with every bounce solved on the caller's terms.
+    pub fn data_with(self, base: &Params, options: &SolveOptions) -> Result<Figure, AnalysisError> {
         match self {
-            Which::Fig2 => fig2(base),
-            Which::Fig3 => fig3(base),
+            Which::Fig2 => fig2(base, options),
+            Which::Fig3 => fig3(base, options),
         }
     }
 }
@@ -138,7 +143,7 @@ fn conditions(base: &Params, shown: &[ParamId]) -> String {
 
 /// Fig. 2 around `base`: omega2 against theta1, one panel for omega1 = 0 and one for the given spin
 /// (-100 rad/s when that is 0), each with the given cart and the paper's other carts.
-pub fn fig2(base: &Params) -> Result<Figure, AnalysisError> {
+pub fn fig2(base: &Params, options: &SolveOptions) -> Result<Figure, AnalysisError> {
     let angles = Span::new(spec(ParamId::Angle), 0.1, 90.0, false)?;
     let spins = [
         SPINS[0],
@@ -161,7 +166,7 @@ pub fn fig2(base: &Params) -> Result<Figure, AnalysisError> {
                         spin,
                         ..case.params
                     };
-                    let rows = sweep::sweep(&p, &angles, FIG2_STEPS)?;
+                    let rows = sweep::sweep_with(&p, &angles, FIG2_STEPS, options)?;
                     Ok(Curve {
                         label: case.label.clone(),
                         points: rows.iter().map(|r| (r.value, r.omega2)).collect(),
@@ -191,11 +196,11 @@ pub fn fig2(base: &Params) -> Result<Figure, AnalysisError> {
 
 /// Fig. 3 at `base`: the friction force F, the cart displacement X and the ball's spin omega against
 /// time, at the given angle and spin, for the given cart and the paper's other carts.
-pub fn fig3(base: &Params) -> Result<Figure, AnalysisError> {
+pub fn fig3(base: &Params, options: &SolveOptions) -> Result<Figure, AnalysisError> {
     let series = cases(base)
         .into_iter()
         .map(|case| {
-            let b = solve(&case.params).map_err(|source| AnalysisError::Case {
+            let b = solve_with(&case.params, options).map_err(|source| AnalysisError::Case {
                 case: format!(
                     "{} at {} deg, omega1 = {} rad/s",
                     case.label, base.angle_deg, base.spin

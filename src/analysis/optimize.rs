@@ -4,7 +4,7 @@
 
 use rayon::prelude::*;
 
-use crate::model::{Bounce, Outcome, Params};
+use crate::model::{Bounce, Outcome, Params, SolveOptions};
 
 use super::{AnalysisError, Span, brent};
 
@@ -121,11 +121,30 @@ pub fn optimize(
     minimize: bool,
     scan: usize,
 ) -> Result<Optimum, AnalysisError> {
+    optimize_with(
+        base,
+        span,
+        objective,
+        minimize,
+        scan,
+        &SolveOptions::default(),
+    )
+}
+
+/// [`optimize`] with every bounce solved on the caller's terms.
+pub fn optimize_with(
+    base: &Params,
+    span: &Span,
+    objective: Objective,
+    minimize: bool,
+    scan: usize,
+    options: &SolveOptions,
+) -> Result<Optimum, AnalysisError> {
     if span.spec.integer {
-        return exhaustive(base, span, objective, minimize);
+        return exhaustive(base, span, objective, minimize, options);
     }
     let span = scan_span(span);
-    let cost = |value: f64| cost_at(base, &span, objective, minimize, value);
+    let cost = |value: f64| cost_at(base, &span, objective, minimize, value, options);
     let scan = scan.max(3);
     let costs: Vec<f64> = (0..scan)
         .into_par_iter()
@@ -143,7 +162,7 @@ pub fn optimize(
     } else {
         span.at(best, scan)
     };
-    optimum(base, span, objective, value, false)
+    optimum(base, span, objective, value, false, options)
 }
 
 /// The quantity minimised: the objective, negated to maximise; an undefined objective counts as the
@@ -154,9 +173,10 @@ fn cost_at(
     objective: Objective,
     minimize: bool,
     value: f64,
+    options: &SolveOptions,
 ) -> Result<f64, AnalysisError> {
     let sign = if minimize { 1.0 } else { -1.0 };
-    let bounce = span.solve(base, value)?;
+    let bounce = span.solve(base, value, options)?;
     Ok(objective
         .of(&bounce.outcome)
         .map_or(f64::INFINITY, |v| sign * v))
@@ -184,6 +204,7 @@ fn exhaustive(
     span: &Span,
     objective: Objective,
     minimize: bool,
+    options: &SolveOptions,
 ) -> Result<Optimum, AnalysisError> {
     let values = span.whole_numbers()?;
     let span = Span {
@@ -192,10 +213,10 @@ fn exhaustive(
     };
     let costs: Vec<f64> = values
         .par_iter()
-        .map(|&value| cost_at(base, &span, objective, minimize, value))
+        .map(|&value| cost_at(base, &span, objective, minimize, value, options))
         .collect::<Result<_, _>>()?;
     let value = values[best_of(&costs, objective, &span)?];
-    optimum(base, span, objective, value, true)
+    optimum(base, span, objective, value, true, options)
 }
 
 /// The bounce at the optimum `value`, with its objective.
@@ -205,8 +226,9 @@ fn optimum(
     objective: Objective,
     value: f64,
     exhaustive: bool,
+    options: &SolveOptions,
 ) -> Result<Optimum, AnalysisError> {
-    let bounce = span.solve(base, value)?;
+    let bounce = span.solve(base, value, options)?;
     let objective_value = objective
         .of(&bounce.outcome)
         .expect("the optimum has a defined objective");

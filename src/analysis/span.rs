@@ -2,7 +2,7 @@
 
 use crate::model::params::{PARAMS, ParamSpec, Params};
 use crate::model::units;
-use crate::model::{Bounce, solve};
+use crate::model::{Bounce, SolveOptions, solve_with};
 
 use super::AnalysisError;
 
@@ -234,11 +234,16 @@ impl Span {
         column(self.spec)
     }
 
-    /// The bounce with the varied parameter set to `value`.
-    pub fn solve(&self, base: &Params, value: f64) -> Result<Bounce, AnalysisError> {
+    /// The bounce with the varied parameter set to `value`, solved on the caller's terms.
+    pub fn solve(
+        &self,
+        base: &Params,
+        value: f64,
+        options: &SolveOptions,
+    ) -> Result<Bounce, AnalysisError> {
         let mut params = *base;
         params.set(self.spec.id, value);
-        solve(&params).map_err(|source| AnalysisError::Solve {
+        solve_with(&params, options).map_err(|source| AnalysisError::Solve {
             flag: self.spec.flag,
             value: format!(
                 "{} {}",
@@ -259,10 +264,60 @@ const OVERFLOW_SCALE: f64 = 1.0 / 4_294_967_296.0;
 /// otherwise `value`. Removes the noise of rounding (10.000000000000002 is 10) without moving a value
 /// by more than its own rounding error.
 fn short_decimal(value: f64, error: f64) -> f64 {
-    match format!("{value:.11e}").parse::<f64>() {
-        Ok(decimal) if (decimal - value).abs() <= error => decimal,
-        _ => value,
+    let decimal = twelve_digits(value, error)
+        .or_else(|| format!("{value:.11e}").parse::<f64>().ok())
+        .unwrap_or(value);
+    if (decimal - value).abs() <= error {
+        decimal
+    } else {
+        value
     }
+}
+
+/// Exact powers of ten, 10^0 to 10^22.
+const POWERS: [f64; 23] = [
+    1e0, 1e1, 1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8, 1e9, 1e10, 1e11, 1e12, 1e13, 1e14, 1e15, 1e16,
+    1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
+];
+
+/// The 12-digit decimal nearest `value` as an f64, n 10^-p with n whole, |n| < 10^12, by arithmetic
+/// (no text), where that gives what `{:.11e}` read back gives whenever it can lie within `error`:
+/// `None` (the text's turn) outside 10^-11..10^33, or when `error` is not below an eighth of a unit of
+/// the twelfth digit. Both divisions and products round once from exact operands (n and 10^|p| are
+/// exact), so a candidate is the correctly rounded decimal; the scaled value's own rounding (about
+/// 1e-4 of a unit) can pick the other neighbour only where both lie half a unit away, beyond `error`.
+fn twelve_digits(value: f64, error: f64) -> Option<f64> {
+    let size = value.abs();
+    if !(1e-11..1e33).contains(&size) {
+        return None;
+    }
+    // 12 - (decimal digits before the point), from the binary exponent, then corrected.
+    let binary = i32::try_from((size.to_bits() >> 52) as i64 - 1023).ok()?;
+    let mut p = 11 - (f64::from(binary) * std::f64::consts::LOG10_2).floor() as i32;
+    for _ in 0..3 {
+        let power = POWERS[usize::try_from(p.unsigned_abs())
+            .ok()
+            .filter(|&i| i < POWERS.len())?];
+        let (scaled, unit) = if p >= 0 {
+            (size * power, 1.0 / power)
+        } else {
+            (size / power, power)
+        };
+        if scaled >= 999_999_999_999.5 {
+            p -= 1;
+        } else if scaled < 99_999_999_999.5 {
+            p += 1;
+        } else {
+            // NaN refuses too.
+            if error.partial_cmp(&(0.125 * unit)) != Some(std::cmp::Ordering::Less) {
+                return None;
+            }
+            let n = scaled.round();
+            let decimal = if p >= 0 { n / power } else { n * power };
+            return Some(decimal.copysign(value));
+        }
+    }
+    None
 }
 
 /// The whole number `value` is within rounding of (a relative 1e-9), if any.
@@ -315,6 +370,47 @@ mod tests {
         assert!((v[1] - 10000.0).abs() < 1e-8);
         let lin = Span::parse("angle", "10", "20", false).unwrap();
         assert_eq!(lin.values(11)[3], 13.0);
+    }
+
+    /// The arithmetic decimal agrees with the text's, read back, wherever either is kept.
+    #[test]
+    fn short_decimals_match_the_text() {
+        let by_text = |value: f64, error: f64| match format!("{value:.11e}").parse::<f64>() {
+            Ok(decimal) if (decimal - value).abs() <= error => decimal,
+            _ => value,
+        };
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        let (mut kept, mut arithmetic) = (0, 0);
+        for _ in 0..300_000 {
+            let bits = next();
+            // Short decimals nudged by a few units in the last place, and arbitrary values.
+            let value = if bits % 3 == 0 {
+                f64::from_bits(bits)
+            } else {
+                let digits = (bits >> 20) % 1_000_000_000_000;
+                let exponent = (bits % 50) as i32 - 20;
+                let short: f64 = format!("{digits}e{exponent}").parse().unwrap();
+                let nudge = (bits >> 8) % 9;
+                f64::from_bits(short.to_bits().wrapping_add(nudge).wrapping_sub(4))
+            };
+            let error = value.abs() * f64::EPSILON * ((next() % 64) as f64 + 0.5);
+            let expected = by_text(value, error);
+            let got = short_decimal(value, error);
+            assert_eq!(
+                got.to_bits(),
+                expected.to_bits(),
+                "{value:e} within {error:e}"
+            );
+            kept += usize::from(got != value);
+            arithmetic += usize::from(twelve_digits(value, error).is_some());
+        }
+        assert!(kept > 10_000 && arithmetic > 150_000, "{kept} {arithmetic}");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
-use crate::model::Params;
+use crate::model::{Params, SolveOptions};
 use rayon::prelude::*;
 
 use super::{AnalysisError, Span};
@@ -49,8 +49,18 @@ pub const COLUMNS: [&str; 10] = [
 /// whole-number parameter (the chain) every value must land on a whole number: a `steps` that does not
 /// is refused before anything is solved.
 pub fn sweep(base: &Params, span: &Span, steps: usize) -> Result<Vec<Row>, AnalysisError> {
+    sweep_with(base, span, steps, &SolveOptions::default())
+}
+
+/// [`sweep`] with every bounce solved on the caller's terms.
+pub fn sweep_with(
+    base: &Params,
+    span: &Span,
+    steps: usize,
+    options: &SolveOptions,
+) -> Result<Vec<Row>, AnalysisError> {
     span.check_steps("--steps", steps)?;
-    rows(base, span, steps, 0..steps)
+    rows(base, span, steps, 0..steps, options)
 }
 
 /// The rows of the values with indices `range` out of `steps`, on all cores, in order.
@@ -59,16 +69,22 @@ fn rows(
     span: &Span,
     steps: usize,
     range: std::ops::Range<usize>,
+    options: &SolveOptions,
 ) -> Result<Vec<Row>, AnalysisError> {
     range
         .into_par_iter()
-        .map(|i| row(base, span, span.at(i, steps)))
+        .map(|i| row(base, span, span.at(i, steps), options))
         .collect()
 }
 
 /// The row of the bounce with the varied parameter at `value`.
-pub fn row(base: &Params, span: &Span, value: f64) -> Result<Row, AnalysisError> {
-    let bounce = span.solve(base, value)?;
+pub fn row(
+    base: &Params,
+    span: &Span,
+    value: f64,
+    options: &SolveOptions,
+) -> Result<Row, AnalysisError> {
+    let bounce = span.solve(base, value, options)?;
     let o = &bounce.outcome;
     let patch = bounce.final_patch();
     Ok(Row {
@@ -119,7 +135,14 @@ pub fn write_csv(
     span: &Span,
     steps: usize,
 ) -> Result<(), WriteError> {
-    write(out, base, span, steps, Layout::Csv)
+    write(
+        out,
+        base,
+        span,
+        steps,
+        Layout::Csv,
+        &SolveOptions::default(),
+    )
 }
 
 /// Solves the sweep and writes it in `layout`, block by block, in constant memory; `span.column()`
@@ -132,11 +155,18 @@ pub fn write(
     span: &Span,
     steps: usize,
     layout: Layout,
+    options: &SolveOptions,
 ) -> Result<(), WriteError> {
     span.check_steps("--steps", steps)?;
     let column = span.column();
     for start in (0..steps).step_by(BLOCK) {
-        let block = rows(base, span, steps, start..(start + BLOCK).min(steps))?;
+        let block = rows(
+            base,
+            span,
+            steps,
+            start..(start + BLOCK).min(steps),
+            options,
+        )?;
         // The opening follows the first block, so a sweep of up to BLOCK bounces that fails writes nothing.
         if start == 0 {
             match layout {

@@ -7,8 +7,8 @@ use clap::{Args, ValueEnum};
 
 use super::{Failure, ParamArgs, emit};
 use crate::analysis::critical::{self, Critical};
-use crate::model::Params;
 use crate::model::params::{ParamId, spec};
+use crate::model::{Params, SolveOptions};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -49,8 +49,7 @@ fn describe_grip(c: Critical) -> String {
     }
 }
 
-pub fn run(args: &CriticalAngleArgs) -> Result<(), Failure> {
-    crate::model::limits::limit_work(crate::model::limits::COMMAND_WORK);
+pub fn run(args: &CriticalAngleArgs, options: &SolveOptions) -> Result<(), Failure> {
     let params = args
         .params
         .apply(Params::default())
@@ -59,7 +58,7 @@ pub fn run(args: &CriticalAngleArgs) -> Result<(), Failure> {
     let critical::Thresholds {
         slides_throughout: full,
         first_grip,
-    } = critical::thresholds(&params).map_err(Failure::usage)?;
+    } = critical::thresholds_with(&params, options).map_err(Failure::usage)?;
     let text = match args.format {
         Format::Json => {
             let doc = serde_json::json!({

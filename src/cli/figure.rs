@@ -9,7 +9,7 @@ use clap::Args;
 use super::{Failure, ParamArgs};
 use crate::analysis::figures::Which;
 use crate::export::svg::{self, SvgError};
-use crate::model::Params;
+use crate::model::{Params, SolveOptions};
 use crate::output::{self, Replace, WriteError};
 
 #[derive(Clone, Debug, Args)]
@@ -32,8 +32,7 @@ pub struct FigureArgs {
 /// The extensions `--out` may end in.
 const EXTENSIONS: [&str; 1] = ["svg"];
 
-pub fn run(args: &FigureArgs) -> Result<(), Failure> {
-    crate::model::limits::limit_work(crate::model::limits::COMMAND_WORK);
+pub fn run(args: &FigureArgs, options: &SolveOptions) -> Result<(), Failure> {
     let extension = args
         .out
         .extension()
@@ -52,7 +51,7 @@ pub fn run(args: &FigureArgs) -> Result<(), Failure> {
         .params
         .apply(Params::default())
         .map_err(Failure::usage)?;
-    let figure = which.data(&base).map_err(Failure::usage)?;
+    let figure = which.data_with(&base, options).map_err(Failure::usage)?;
     let replace = if args.force {
         Replace::Any
     } else {

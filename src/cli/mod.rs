@@ -20,6 +20,9 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use crate::model::budget::COMMAND_WORK;
+use crate::model::{SolveOptions, Work};
+
 pub use params_args::{InputError, ParamArgs, ShotParamArgs};
 
 /// Explore a ball bouncing obliquely off a surface that can move sideways (Cross, Am. J. Phys. 78, 2010).
@@ -88,16 +91,22 @@ impl Failure {
 /// Runs the parsed command line.
 pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
-        Some(Commands::Simulate(args)) => headless(|| simulate::run(&args)),
+        Some(Commands::Simulate(args)) => headless(Work::unlimited(), |o| simulate::run(&args, o)),
         Some(Commands::Tui(args)) => tui::run(&args),
-        Some(Commands::Presets(args)) => headless(|| presets::run(&args)),
-        Some(Commands::Sweep(args)) => headless(|| sweep::run(&args)),
-        Some(Commands::CriticalAngle(args)) => headless(|| critical_angle::run(&args)),
-        Some(Commands::Optimize(args)) => headless(|| optimize::run(&args)),
-        Some(Commands::Reproduce(args)) => headless(|| reproduce::run(&args)),
-        Some(Commands::Figure(args)) => headless(|| figure::run(&args)),
-        Some(Commands::Fit(args)) => headless(|| fit::run(&args)),
-        Some(Commands::Shot(args)) => headless(|| shot::run(&args)),
+        Some(Commands::Presets(args)) => headless(Work::unlimited(), |_| presets::run(&args)),
+        Some(Commands::Sweep(args)) => headless(Work::unlimited(), |o| sweep::run(&args, o)),
+        Some(Commands::CriticalAngle(args)) => headless(Work::limited(COMMAND_WORK), |o| {
+            critical_angle::run(&args, o)
+        }),
+        Some(Commands::Optimize(args)) => headless(Work::unlimited(), |o| optimize::run(&args, o)),
+        Some(Commands::Reproduce(args)) => {
+            headless(Work::limited(COMMAND_WORK), |o| reproduce::run(&args, o))
+        }
+        Some(Commands::Figure(args)) => {
+            headless(Work::limited(COMMAND_WORK), |o| figure::run(&args, o))
+        }
+        Some(Commands::Fit(args)) => headless(Work::unlimited(), |_| fit::run(&args)),
+        Some(Commands::Shot(args)) => headless(Work::unlimited(), |_| shot::run(&args)),
         Some(Commands::Completions(args)) => completions::run(&args),
         Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),
@@ -111,11 +120,20 @@ pub fn run(cli: Cli) -> ExitCode {
     }
 }
 
-/// A command without the explorer, watched by [`progress::watch`]; interrupted, it fails with status
-/// 130 whatever it was doing.
-fn headless(command: impl FnOnce() -> Result<(), Failure>) -> Result<(), Failure> {
-    let result = progress::watch(command);
-    if crate::model::limits::interrupted() {
+/// A command without the explorer, watched by [`progress::watch`]: its solves share `work` (a limit
+/// for a command whose bounces the program fixes) and stop at the first Ctrl-C; interrupted, it fails
+/// with status 130 whatever it was doing.
+fn headless(
+    work: Work,
+    command: impl FnOnce(&SolveOptions) -> Result<(), Failure>,
+) -> Result<(), Failure> {
+    let cancelled = progress::interrupted;
+    let options = SolveOptions {
+        work: Some(&work),
+        ..SolveOptions::cancelled_by(&cancelled)
+    };
+    let result = progress::watch(&work, || command(&options));
+    if progress::interrupted() {
         return Err(Failure {
             message: "interrupted".into(),
             status: progress::INTERRUPTED,

@@ -9,8 +9,8 @@ use crate::analysis::optimize::{self, DEFAULT_SCAN, Objective};
 use crate::analysis::shots::{self, ShotObjective};
 use crate::analysis::{Span, span};
 use crate::export;
-use crate::model::Params;
 use crate::model::units;
+use crate::model::{Params, SolveOptions};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -59,7 +59,7 @@ pub struct OptimizeArgs {
     pub format: Format,
 }
 
-pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
+pub fn run(args: &OptimizeArgs, options: &SolveOptions) -> Result<(), Failure> {
     let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
     let scan = span::parse_count("--scan", &args.scan, 3).map_err(Failure::usage)?;
     if let Some(objective) = ShotObjective::named(&args.objective) {
@@ -77,9 +77,9 @@ pub fn run(args: &OptimizeArgs) -> Result<(), Failure> {
         .apply(Params::default())
         .map_err(Failure::usage)?;
     let objective = Objective::parse(&args.objective).map_err(Failure::usage)?;
-    let best =
-        optimize::optimize(&base, &span, objective, args.minimize, scan).map_err(Failure::usage)?;
-    crate::model::limits::reportable(&best.bounce).map_err(Failure::usage)?;
+    let best = optimize::optimize_with(&base, &span, objective, args.minimize, scan, options)
+        .map_err(Failure::usage)?;
+    crate::model::reportable::reportable(&best.bounce).map_err(Failure::usage)?;
     let spec = span.spec;
     let unit = spec.dimension.base_symbol();
     // What was solved: the scan points, or every whole number of the range.

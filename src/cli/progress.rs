@@ -3,13 +3,13 @@
 //! command ends cleanly with status 130. A second Ctrl-C ends the process at once.
 
 use std::sync::Arc;
-use std::sync::atomic::AtomicBool;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::mpsc;
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
-use crate::model::limits;
+use crate::model::Work;
 
 /// How long work runs before the progress line appears.
 const QUIET: Duration = Duration::from_secs(1);
@@ -19,37 +19,54 @@ const TICK: Duration = Duration::from_millis(100);
 /// The exit status of a command stopped by Ctrl-C (128 + SIGINT, as a shell reports it).
 pub const INTERRUPTED: u8 = 130;
 
-/// Runs `work` with Ctrl-C handled and, after a second, a progress line counting the bounces solved.
-pub fn watch<T>(work: impl FnOnce() -> T) -> T {
+/// Set by the first Ctrl-C: the process is a command that was told to stop. Its solves see it through
+/// the cancellation of their options; the core holds no such flag.
+static STOP: AtomicBool = AtomicBool::new(false);
+
+/// True once Ctrl-C was pressed.
+pub fn interrupted() -> bool {
+    STOP.load(Ordering::Relaxed)
+}
+
+/// The signal handler: one atomic store, async-signal-safe.
+fn interrupt() {
+    STOP.store(true, Ordering::Relaxed);
+}
+
+/// Runs `command` with Ctrl-C handled and, after a second, a progress line counting the bounces solved
+/// under `work`.
+pub fn watch<T>(work: &Work, command: impl FnOnce() -> T) -> T {
     handle_ctrl_c();
     let (done, finished) = mpsc::channel::<()>();
-    let shown = std::thread::spawn(move || {
-        if finished.recv_timeout(QUIET).is_ok() {
-            return;
-        }
-        let start = limits::solved();
-        let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
-        if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed} {msg}") {
-            bar.set_style(style);
-        }
-        loop {
-            let message = if limits::interrupted() {
-                "interrupted: stopping".to_string()
-            } else {
-                format!("{} bounces solved (Ctrl-C stops)", limits::solved() - start)
-            };
-            bar.set_message(message);
-            bar.tick();
-            if finished.recv_timeout(TICK).is_ok() {
-                break;
+    std::thread::scope(|scope| {
+        let shown = scope.spawn(move || {
+            if finished.recv_timeout(QUIET).is_ok() {
+                return;
             }
-        }
-        bar.finish_and_clear();
-    });
-    let result = work();
-    let _ = done.send(());
-    let _ = shown.join();
-    result
+            let start = work.solved();
+            let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
+            if let Ok(style) = ProgressStyle::with_template("{spinner} {elapsed} {msg}") {
+                bar.set_style(style);
+            }
+            loop {
+                let message = if interrupted() {
+                    "interrupted: stopping".to_string()
+                } else {
+                    format!("{} bounces solved (Ctrl-C stops)", work.solved() - start)
+                };
+                bar.set_message(message);
+                bar.tick();
+                if finished.recv_timeout(TICK).is_ok() {
+                    break;
+                }
+            }
+            bar.finish_and_clear();
+        });
+        let result = command();
+        let _ = done.send(());
+        let _ = shown.join();
+        result
+    })
 }
 
 /// The first Ctrl-C interrupts the solves; the second ends the process with [`INTERRUPTED`].
@@ -61,5 +78,5 @@ fn handle_ctrl_c() {
     let _ = signal_hook::flag::register_conditional_shutdown(int, INTERRUPTED.into(), once.clone());
     let _ = signal_hook::flag::register(int, once);
     // SAFETY: the handler only stores to an atomic, which is async-signal-safe.
-    let _ = unsafe { signal_hook::low_level::register(int, limits::interrupt) };
+    let _ = unsafe { signal_hook::low_level::register(int, interrupt) };
 }

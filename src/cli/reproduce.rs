@@ -6,7 +6,7 @@ use clap::{Args, ValueEnum};
 
 use super::{Failure, ParamArgs, emit};
 use crate::analysis::reproduce::{self, Report, Status};
-use crate::model::Params;
+use crate::model::{Params, SolveOptions};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -86,13 +86,12 @@ fn table(report: &Report) -> String {
     out
 }
 
-pub fn run(args: &ReproduceArgs) -> Result<(), Failure> {
-    crate::model::limits::limit_work(crate::model::limits::COMMAND_WORK);
+pub fn run(args: &ReproduceArgs, options: &SolveOptions) -> Result<(), Failure> {
     let base = args
         .params
         .apply(Params::default())
         .map_err(Failure::usage)?;
-    let report = reproduce::reproduce(&base).map_err(Failure::usage)?;
+    let report = reproduce::reproduce_with(&base, options).map_err(Failure::usage)?;
     let text = match args.format {
         Format::Table => table(&report),
         Format::Json => {

@@ -5,7 +5,8 @@ use clap::{Args, ValueEnum};
 use super::{Failure, ParamArgs, emit};
 use crate::analysis::uncertainty::{DEFAULT_SAMPLES, monte_carlo};
 use crate::export;
-use crate::model::{Params, limits, solve};
+use crate::model::reportable::reportable;
+use crate::model::{Params, SolveOptions, solve_with};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -52,13 +53,13 @@ impl Default for MonteCarloArgs {
     }
 }
 
-pub fn run(args: &SimulateArgs) -> Result<(), Failure> {
+pub fn run(args: &SimulateArgs, options: &SolveOptions) -> Result<(), Failure> {
     let (params, spreads) = args
         .params
         .apply_uncertain(Params::default())
         .map_err(Failure::usage)?;
-    let bounce = solve(&params).map_err(Failure::usage)?;
-    limits::reportable(&bounce).map_err(Failure::usage)?;
+    let bounce = solve_with(&params, options).map_err(Failure::usage)?;
+    reportable(&bounce).map_err(Failure::usage)?;
     if spreads.is_empty() {
         let text = match args.format {
             Format::Table => export::table::summary(&bounce),

@@ -11,7 +11,7 @@ use crate::analysis::sweep::{Layout, WriteError};
 use crate::analysis::uncertainty::{Spread, monte_carlo};
 use crate::analysis::{Span, shots, span, sweep};
 use crate::export;
-use crate::model::Params;
+use crate::model::{Params, SolveOptions};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -54,7 +54,7 @@ pub struct SweepArgs {
     pub monte_carlo: MonteCarloArgs,
 }
 
-pub fn run(args: &SweepArgs) -> Result<(), Failure> {
+pub fn run(args: &SweepArgs, options: &SolveOptions) -> Result<(), Failure> {
     let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
     let steps = span::parse_count("--steps", &args.steps, 2).map_err(Failure::usage)?;
     if args.shot {
@@ -72,7 +72,7 @@ pub fn run(args: &SweepArgs) -> Result<(), Failure> {
     };
     let written = if spreads.is_empty() {
         let mut out = BufWriter::with_capacity(1 << 20, std::io::stdout().lock());
-        sweep::write(&mut out, &base, &span, steps, layout)
+        sweep::write(&mut out, &base, &span, steps, layout, options)
             .and_then(|()| out.flush().map_err(WriteError::Io))
     } else {
         let mut out = std::io::stdout().lock();
@@ -80,7 +80,7 @@ pub fn run(args: &SweepArgs) -> Result<(), Failure> {
             spreads: &spreads,
             mc: &args.monte_carlo,
         };
-        write_with_bands(&mut out, &base, &span, steps, layout, &bands)
+        write_with_bands(&mut out, &base, &span, steps, layout, &bands, options)
     };
     match written {
         Err(WriteError::Analysis(e)) => Err(Failure::usage(e)),
@@ -112,8 +112,9 @@ fn write_with_bands(
     steps: usize,
     layout: Layout,
     bands: &Bands,
+    options: &SolveOptions,
 ) -> Result<(), WriteError> {
-    let rows = sweep::sweep(base, span, steps)?;
+    let rows = sweep::sweep_with(base, span, steps, options)?;
     let column = span.column();
     let mut digits = ryu::Buffer::new();
     for (i, row) in rows.iter().enumerate() {

@@ -3,6 +3,7 @@
 
 use serde::Serialize;
 
+use crate::analysis::timeline::{Travel, travel};
 use crate::model::{Bounce, Energy, Params};
 
 #[derive(Serialize)]
@@ -20,10 +21,13 @@ struct PhaseJson {
 
 #[derive(Serialize)]
 struct CartJson {
-    /// m
+    /// m, at release
     x: f64,
-    /// m/s
+    /// m/s, at release
     v: f64,
+    /// The largest |X| (m) and |V| (m/s) over the contact, and when (s).
+    #[serde(flatten)]
+    travel: Travel,
 }
 
 #[derive(Serialize)]
@@ -74,6 +78,7 @@ fn document(b: &Bounce) -> BounceJson<'_> {
         cart: CartJson {
             x: b.final_state.x,
             v: b.final_state.v,
+            travel: travel(b),
         },
         energy: b.energy(),
     }

@@ -2,6 +2,7 @@
 
 use std::fmt::Write;
 
+use crate::analysis::timeline;
 use crate::model::params::BOUNCE_PARAMS as PARAMS;
 use crate::model::units::{Dimension, show};
 use crate::model::{Bounce, Cart, PhaseKind};
@@ -36,17 +37,13 @@ pub fn summary(b: &Bounce) -> String {
     if let Some(ratio) = o.roll_ratio {
         let _ = writeln!(out, "  {:<24}{ratio:.4}", "r ω2 / v_x2");
     }
-    // On a chain the ball touches its first mass; the energy left behind is in all its masses and springs.
-    let chain = b.params.chain > 1.0;
-    let cart = b.params.touched();
-    let cart_energy = if chain {
-        "chain + springs"
-    } else {
-        "cart + spring"
-    };
+    // The model names what the ball touches (a chain's first mass) and where the energy left behind is.
+    let model = b.params.model();
+    let words = model.words();
+    let cart = words.touched;
     let _ = writeln!(out, "\nPhases ({})", b.phase_summary());
     // A compliant ball grips through its contact patch, and its force then follows its spring.
-    let compliant = b.params.ball_stiffness > 0.0;
+    let compliant = model.compliant();
     for p in &b.phases {
         let stuck;
         let slip = match (p.kind, p.slip_sign, p.cart) {
@@ -58,12 +55,14 @@ pub fn summary(b: &Bounce) -> String {
                 stuck = format!("rolling on the stuck {cart}");
                 &stuck
             }
-            (PhaseKind::Grip, _, _) if compliant && chain => {
-                "patch moves with the first mass, F = k_b e + c_b e'"
+            (PhaseKind::Grip, _, _) if compliant => {
+                stuck = format!("patch moves with the {cart}, F = k_b e + c_b e'");
+                &stuck
             }
-            (PhaseKind::Grip, _, _) if compliant => "patch moves with the cart, F = k_b e + c_b e'",
-            (PhaseKind::Grip, _, _) if chain => "contact point moves with the first mass",
-            (PhaseKind::Grip, _, _) => "contact point moves with the cart",
+            (PhaseKind::Grip, _, _) => {
+                stuck = format!("contact point moves with the {cart}");
+                &stuck
+            }
             (_, s, Cart::Stuck) => {
                 let way = if s > 0 {
                     "forward, F = +μN"
@@ -90,18 +89,27 @@ pub fn summary(b: &Bounce) -> String {
         show(b.final_state.x, Dimension::Length, "mm", 3),
         b.final_state.v
     );
+    let travel = timeline::travel(b);
+    let _ = writeln!(
+        out,
+        "  {cart} peak: |X| = {} at {:.3} ms, |V| = {:.3} m/s at {:.3} ms",
+        show(travel.peak_x, Dimension::Length, "mm", 3),
+        travel.peak_x_at * 1e3,
+        travel.peak_v,
+        travel.peak_v_at * 1e3
+    );
     let _ = writeln!(out, "\nEnergy");
     let share = |j: f64| 100.0 * j / e.initial;
     let mut rows = vec![
         ("incoming ball", e.initial),
         ("outgoing ball", e.final_ball),
-        (cart_energy, e.final_cart),
+        (words.surface_springs, e.final_cart),
         ("lost to friction", e.friction_loss),
         ("lost normally (e_y)", e.normal_loss),
         ("lost at the cart (F_c)", e.cart_friction_loss),
     ];
     // A compliant ball leaves energy in its spring and loses some in its dashpot.
-    if b.params.ball_stiffness > 0.0 {
+    if compliant {
         rows.push(("ball's spring (k_b)", e.ball_spring));
         rows.push(("lost in dashpot (c_b)", e.dashpot_loss));
     }

@@ -1,5 +1,6 @@
 //! What every contact model shares: the vocabulary of a phase (what the ball does, what the cart does,
-//! why a phase ended) and the [`Contact`] trait that the phase driver ([`super::driver`]) runs.
+//! why a phase ended), the [`Contact`] trait that the phase driver ([`super::driver`]) runs, and the
+//! [`PhaseMotion`] trait through which a solved phase answers every query about itself.
 
 use serde::Serialize;
 
@@ -79,7 +80,7 @@ pub struct Found<P> {
 pub trait Contact {
     /// Everything the model carries from one phase to the next.
     type State: Copy;
-    /// One phase's closed-form motion (one of [`super::phase::Motion`]'s closed forms).
+    /// One phase's closed-form motion (answering for itself through [`PhaseMotion`]).
     type Motion;
     /// What the event search last evaluated.
     type Probe: Copy;
@@ -111,4 +112,33 @@ pub trait Contact {
     ) -> Self::State;
     /// The mode after `cause` at `state` (which it may settle, e.g. a stopped cart's velocity to zero).
     fn next(&self, setup: &Setup, state: &mut Self::State, mode: Mode, cause: Cause) -> Mode;
+}
+
+/// What one phase's closed-form motion answers about itself: the state and friction at any time, the
+/// energy in the surface, the work of the sliding friction, and the ball's own energy terms. Each model
+/// implements it for its motion, so a solved bounce ([`super::phase`], [`super::energy`]) asks the model
+/// instead of deciding the physics itself.
+pub trait PhaseMotion {
+    /// The ball and the surface where the ball touches it at `t` (exact for `t` in the phase).
+    fn state_at(&self, setup: &Setup, t: f64) -> State;
+    /// The friction force on the ball, positive backward, at `state` (a state of this phase).
+    fn friction(&self, setup: &Setup, state: &State) -> f64;
+    /// The state at the start of the phase.
+    fn initial(&self) -> State;
+    /// The stretch e (m) of a compliant ball and the slip (m/s) of its contact patch on the surface at
+    /// `t`; `None` for a model without a contact patch.
+    fn patch_at(&self, setup: &Setup, t: f64) -> Option<(f64, f64)>;
+    /// Kinetic plus spring energy of the surface (the cart and its spring, or every mass and spring of a
+    /// chain) at the time of `at`, a state of this phase.
+    fn surface_energy(&self, setup: &Setup, at: &State) -> f64;
+    /// The energy the sliding friction takes over `[start, end]`, the integral of F times the slip it
+    /// works against (the ball's contact point's, or a compliant ball's patch's) on the exact solution.
+    fn friction_work(&self, setup: &Setup, start: f64, end: f64) -> f64;
+    /// The fastest angular frequency of the surface's motion in this phase (the cart's, or the chain's
+    /// fastest mode), rad/s.
+    fn fastest(&self, setup: &Setup) -> f64;
+    /// The energy held in the ball's own tangential spring at `t` (a compliant ball's k_b e²/2).
+    fn ball_spring_energy(&self, setup: &Setup, t: f64) -> f64;
+    /// The energy lost in the ball's own dashpot over `[start, end]` (a compliant ball's ∫ c_b e'² dt).
+    fn dashpot_loss(&self, setup: &Setup, start: f64, end: f64) -> f64;
 }

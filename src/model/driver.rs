@@ -1,19 +1,21 @@
 //! The phase driver: runs any [`Contact`] model phase by phase, from first contact to t = T.
 //!
 //! Each phase is the model's closed form; the driver asks for its first event, records the phase, and
-//! asks the model which phase follows. It enforces the phase limit and checks the caller's cancellation
-//! between phases. Generic over the model, so every model's loop is compiled for it (no dynamic calls).
+//! asks the model which phase follows. It enforces the caller's phase cap and checks its cancellation
+//! between phases ([`SolveOptions`]). Generic over the model, so every model's loop is compiled for it (no dynamic calls).
 
 use super::contact::{Ball, Cause, Contact, Found};
-use super::error::{MAX_TRANSITIONS, SolveError};
-use super::phase::{Motion, Phase, PhaseKind};
+use super::error::SolveError;
+use super::options::SolveOptions;
+use super::phase::{Phase, PhaseKind};
+use super::registry::Motion;
 use super::setup::{Setup, State};
 
 /// The phases of one bounce and the state of ball and surface as the ball leaves.
 pub fn run<C: Contact>(
     model: &C,
     setup: &Setup,
-    cancelled: &impl Fn() -> bool,
+    options: &SolveOptions,
 ) -> Result<(Vec<Phase>, State), SolveError>
 where
     C::Motion: Into<Motion>,
@@ -22,8 +24,8 @@ where
     let (mut state, mut mode) = model.start(setup);
     let mut cause = Cause::Start;
     let mut phases = Vec::with_capacity(8);
-    for _ in 0..MAX_TRANSITIONS {
-        if cancelled() {
+    for _ in 0..options.max_phases {
+        if (options.cancelled)() {
             return Err(SolveError::Cancelled);
         }
         let t0 = C::time(&state);
@@ -56,5 +58,8 @@ where
         cause = next_cause;
         mode = model.next(setup, &mut state, mode, cause);
     }
-    Err(SolveError::TooManyPhases { hint: "" })
+    Err(SolveError::TooManyPhases {
+        limit: options.max_phases,
+        hint: "",
+    })
 }

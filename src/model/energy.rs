@@ -4,11 +4,9 @@
 
 use serde::Serialize;
 
-use super::compliant::CompliantMotion;
 use super::contact::Cart;
 use super::params::Params;
-use super::phase::{Motion, Phase, PhaseKind};
-use super::quadrature::integrate;
+use super::phase::{Phase, PhaseKind};
 use super::setup::{Setup, State};
 
 /// Where the incoming energy went, J.
@@ -53,10 +51,10 @@ pub(super) fn energy_budget(
     let vy2 = params.ey * setup.vy1;
     let initial = setup.ball_tangential_energy(&first) + 0.5 * setup.m * setup.vy1 * setup.vy1;
     let final_ball = setup.ball_tangential_energy(last) + 0.5 * setup.m * vy2 * vy2;
-    let final_cart = match phases.last() {
-        Some(p) if p.on_chain() => p.cart_energy_at(setup, p.end),
-        _ => setup.cart_energy(last),
-    };
+    let final_cart = phases.last().map_or_else(
+        || setup.cart_energy(last),
+        |p| p.motion().surface_energy(setup, last),
+    );
     let normal_loss = 0.5 * setup.m * (setup.vy1 * setup.vy1 - vy2 * vy2);
     // The cart never reverses within a phase (its stopping ends the phase), so the distance it
     // travels in a phase is |X(end) - X(start)|.
@@ -69,46 +67,15 @@ pub(super) fn energy_budget(
     let friction_loss = phases
         .iter()
         .filter(|p| p.kind == PhaseKind::Slide)
-        .map(|p| match &p.motion {
-            Motion::Compliant(c) => {
-                c.integrate(setup, |t| p.friction_power(setup, t), p.start, p.end)
-            }
-            _ => {
-                let panel = 2.0 / p.fastest(setup).max(setup.w);
-                integrate(|t| p.friction_power(setup, t), p.start, p.end, panel)
-            }
-        })
+        .map(|p| p.motion().friction_work(setup, p.start, p.end))
         .fold(0.0, add);
-    fn compliant(p: &Phase) -> Option<&CompliantMotion> {
-        match &p.motion {
-            Motion::Compliant(c) => Some(c.as_ref()),
-            _ => None,
-        }
-    }
     let dashpot_loss = phases
         .iter()
-        .filter_map(|p| compliant(p).map(|c| (p, c)))
-        .filter(|(_, c)| c.spring().cb > 0.0)
-        .map(|(p, c)| {
-            let cb = c.spring().cb;
-            c.integrate(
-                setup,
-                |t| {
-                    let de = c.at(setup, t).de;
-                    cb * de * de
-                },
-                p.start,
-                p.end,
-            )
-        })
+        .map(|p| p.motion().dashpot_loss(setup, p.start, p.end))
         .fold(0.0, add);
     let ball_spring = phases
         .last()
-        .and_then(|p| compliant(p).map(|c| (p, c)))
-        .map_or(0.0, |(p, c)| {
-            let e = c.at(setup, p.end).e;
-            0.5 * c.spring().kb * e * e
-        });
+        .map_or(0.0, |p| p.motion().ball_spring_energy(setup, p.end));
     Energy {
         initial,
         final_ball,

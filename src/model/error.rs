@@ -1,13 +1,24 @@
 //! Why a bounce could not be solved, and the limits behind the refusals.
 
 use super::events::Stall;
-use super::limits::Unsolvable;
 use super::params::ParamError;
 
 /// The largest number of cart radians per contact the solver accepts (about 16 000 oscillations).
 pub const MAX_RADIANS: f64 = 1e5;
-/// The largest number of slide/grip transitions in one bounce.
+/// The largest number of slide/grip transitions in one bounce, unless the caller sets its own
+/// ([`super::options::SolveOptions::max_phases`]).
 pub const MAX_TRANSITIONS: usize = 10_000;
+
+/// A parameter value whose bounce f64 cannot resolve: the message names the flag, the range that can
+/// be solved and the value given.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+#[error("--{flag} must be in {range} to be solved ({why}); got {given}")]
+pub struct Unsolvable {
+    pub flag: &'static str,
+    pub range: String,
+    pub given: String,
+    pub why: &'static str,
+}
 
 /// Why a bounce could not be solved.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
@@ -19,10 +30,10 @@ pub enum SolveError {
          (lower the stiffness, raise the cart mass or shorten the impact)"
     )]
     TooFast { radians: f64 },
-    #[error(
-        "the bounce switched between sliding and gripping more than {MAX_TRANSITIONS} times{hint}"
-    )]
+    #[error("the bounce switched between sliding and gripping more than {limit} times{hint}")]
     TooManyPhases {
+        /// The phase cap the solve ran under.
+        limit: usize,
         /// What would calm it, where the model knows (empty otherwise).
         hint: &'static str,
     },

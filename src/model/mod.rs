@@ -6,6 +6,7 @@
 //! [`Bounce`] (results only).
 
 pub mod bounce;
+pub mod budget;
 pub mod cart;
 pub mod chain;
 pub mod compliant;
@@ -14,22 +15,28 @@ pub mod driver;
 pub mod energy;
 pub mod error;
 pub mod events;
-pub mod limits;
 pub mod memo;
+pub mod options;
 pub mod oscillator;
 pub mod params;
 pub mod phase;
 pub mod quadrature;
+pub mod registry;
+pub mod reportable;
 pub mod setup;
+pub mod solvable;
 pub mod solve;
 pub mod transition;
 pub mod units;
 
 pub use bounce::{Bounce, Outcome, Sample};
+pub use budget::Work;
 pub use contact::Cart;
 pub use energy::Energy;
-pub use error::SolveError;
+pub use error::{SolveError, Unsolvable};
+pub use options::SolveOptions;
 pub use params::{PARAMS, ParamError, ParamId, ParamSpec, Params};
 pub use phase::{BallPhase, Phase, PhaseKind};
+pub use registry::{BallKind, ModelKind, SupportKind, Words};
 pub use setup::{Setup, State};
-pub use solve::{solve, solve_cancellable};
+pub use solve::{solve, solve_cancellable, solve_with};

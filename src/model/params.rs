@@ -172,8 +172,26 @@ pub struct ParamSpec {
     pub default: f64,
     /// True for a count: only whole numbers in the range are allowed.
     pub integer: bool,
+    /// The magnitudes the solver can carry a bounce through (see [`Solvable`]); `None` where every
+    /// value in the range can be solved.
+    pub solvable: Option<Solvable>,
     pub help: &'static str,
 }
+
+/// The magnitudes a parameter can be solved with: zero where its range allows it, or between `smallest`
+/// and `largest`. Within these, every product the solver forms stays below 1e200 in size and above
+/// 1e-200 (beyond, the bounce's forces and rates leave what f64 resolves).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Solvable {
+    pub smallest: f64,
+    pub largest: f64,
+}
+
+/// The dimensional scales of the ball, the impact and the cart.
+const SCALE: Option<Solvable> = Some(Solvable {
+    smallest: 1e-15,
+    largest: 1e15,
+});
 
 impl ParamSpec {
     /// `--flag`.
@@ -390,6 +408,7 @@ parameters! {
         coarse: Step::Add(10.0),
         default: 60.0,
         integer: false,
+        solvable: None,
         help: "incidence angle theta1, measured from the surface (90 = normal incidence)",
     },
     /// Incident speed v1, m/s.
@@ -408,6 +427,7 @@ parameters! {
         coarse: Step::Add(5.0),
         default: 10.0,
         integer: false,
+        solvable: SCALE,
         help: "incident speed v1 of the ball's centre",
     },
     /// Incident spin omega1, rad/s; positive is the sense sliding friction drives (topspin), negative is backspin.
@@ -429,6 +449,7 @@ parameters! {
         coarse: Step::Add(100.0),
         default: -100.0,
         integer: false,
+        solvable: None,
         help: "incident spin omega1; positive = topspin (the sense sliding friction drives), negative = backspin",
     },
     /// Coefficient of sliding friction mu between ball and cart.
@@ -447,6 +468,10 @@ parameters! {
         coarse: Step::Add(0.1),
         default: 0.4,
         integer: false,
+        solvable: Some(Solvable {
+            smallest: 0.0,
+            largest: 1e6,
+        }),
         help: "coefficient of sliding friction mu between ball and surface",
     },
     /// Impact duration T, s.
@@ -465,6 +490,7 @@ parameters! {
         coarse: Step::Add(1e-3),
         default: 5e-3,
         integer: false,
+        solvable: SCALE,
         help: "impact duration T; the normal force is N0 sin(pi t / T)",
     },
     /// Normal coefficient of restitution e_y.
@@ -486,6 +512,7 @@ parameters! {
         coarse: Step::Add(0.1),
         default: 1.0,
         integer: false,
+        solvable: None,
         help: "normal coefficient of restitution e_y = v_y2 / v_y1",
     },
     /// Ball mass m, kg.
@@ -504,6 +531,7 @@ parameters! {
         coarse: Step::Times(1.25),
         default: 0.057,
         integer: false,
+        solvable: SCALE,
         help: "ball mass m",
     },
     /// Ball radius r, m.
@@ -522,6 +550,7 @@ parameters! {
         coarse: Step::Add(5e-3),
         default: 0.033,
         integer: false,
+        solvable: SCALE,
         help: "ball radius r",
     },
     /// I = alpha m r^2.
@@ -540,6 +569,10 @@ parameters! {
         coarse: Step::Add(0.05),
         default: 0.55,
         integer: false,
+        solvable: Some(Solvable {
+            smallest: 1e-6,
+            largest: 1e6,
+        }),
         help: "moment of inertia factor: I = alpha m r^2 (0.4 solid sphere, 2/3 thin shell, 0.55 tennis ball)",
     },
     /// Tangential stiffness k_b of the ball's contact region, N/m; 0 = a rigid ball (the paper's model).
@@ -559,6 +592,10 @@ parameters! {
         coarse: Step::Times(2.0),
         default: 0.0,
         integer: false,
+        solvable: Some(Solvable {
+            smallest: 0.0,
+            largest: 1e30,
+        }),
         help: "tangential stiffness k_b of the ball's contact region (a massless spring and dashpot between \
                the ball and its contact patch); 0 = a rigid ball, the paper's model. On the cart (with string \
                friction too) or a chain (without). A stiff undamped ball does not approach the rigid ball: its force keeps \
@@ -585,6 +622,7 @@ parameters! {
         coarse: Step::Add(0.5),
         default: 0.0,
         integer: false,
+        solvable: None,
         help: "damping ratio of the ball's contact spring, relative to sqrt(k_b/m_eff) (1 = critical); \
                ignored for a rigid ball. A stiff, critically damped ball approaches the rigid ball; an \
                undamped one chatters between grip and slide",
@@ -605,6 +643,7 @@ parameters! {
         coarse: Step::Times(2.0),
         default: 0.010,
         integer: false,
+        solvable: SCALE,
         help: "mass M of the surface that moves sideways (the cart; the moving part of the strings)",
     },
     /// Spring stiffness k, N/m.
@@ -623,6 +662,10 @@ parameters! {
         coarse: Step::Times(1.5),
         default: 15000.0,
         integer: false,
+        solvable: Some(Solvable {
+            smallest: 0.0,
+            largest: 1e30,
+        }),
         help: "stiffness k of the spring that pulls the cart back (0 = a free cart)",
     },
     /// Coulomb friction on the cart, N (string-on-string friction; 0 is the paper's model).
@@ -642,6 +685,10 @@ parameters! {
         coarse: Step::Add(10.0),
         default: 0.0,
         integer: false,
+        solvable: Some(Solvable {
+            smallest: 0.0,
+            largest: 1e30,
+        }),
         help: "Coulomb friction on the cart (string-on-string friction): the cart sticks while the spring \
                and the ball push it with less than this; 0 = the paper's model",
     },
@@ -666,6 +713,7 @@ parameters! {
         coarse: Step::Add(5.0),
         default: 1.0,
         integer: true,
+        solvable: None,
         help: "number N of equal masses the cart is split into: a chain of masses M/N joined by springs N k, \
                the last tied to the wall (static stiffness k at the ball); 1 = the paper's single cart",
     },
@@ -688,6 +736,7 @@ parameters! {
         coarse: Step::Add(0.5),
         default: 1.0,
         integer: false,
+        solvable: None,
         help: "height of the ball's centre above the court where the racquet meets it, over the hitter's baseline",
     },
     /// Speed of the incoming ball, m/s, travelling towards -x.
@@ -709,6 +758,7 @@ parameters! {
         coarse: Step::Add(5.0),
         default: 20.0,
         integer: false,
+        solvable: None,
         help: "speed of the incoming ball, travelling towards the hitter (0 = a ball at rest, as at the top of a serve toss)",
     },
     /// Angle of the incoming ball's path below the horizontal, degrees (negative: rising).
@@ -730,6 +780,7 @@ parameters! {
         coarse: Step::Add(5.0),
         default: 10.0,
         integer: false,
+        solvable: None,
         help: "angle of the incoming ball's path below the horizontal (negative = rising)",
     },
     /// Spin of the incoming ball, rad/s; topspin positive relative to its own direction of travel.
@@ -751,6 +802,7 @@ parameters! {
         coarse: Step::Add(1000.0 * std::f64::consts::PI / 30.0),
         default: 1000.0 * std::f64::consts::PI / 30.0,
         integer: false,
+        solvable: None,
         help: "spin of the incoming ball, topspin positive relative to its own direction of travel, negative = backspin",
     },
     /// Speed of the racquet (the strings where they meet the ball), m/s.
@@ -772,6 +824,7 @@ parameters! {
         coarse: Step::Add(5.0),
         default: 20.0,
         integer: false,
+        solvable: None,
         help: "speed of the racquet where it meets the ball, along the swing path",
     },
     /// Direction of the racquet's motion above the horizontal, towards +x, degrees (low to high positive).
@@ -793,6 +846,7 @@ parameters! {
         coarse: Step::Add(5.0),
         default: 25.0,
         integer: false,
+        solvable: None,
         help: "direction of the racquet's motion above the horizontal, towards the net (low to high = positive)",
     },
     /// Tilt of the string plane's normal below the horizontal, degrees (positive = closed face).
@@ -814,6 +868,7 @@ parameters! {
         coarse: Step::Add(5.0),
         default: 0.0,
         integer: false,
+        solvable: None,
         help: "tilt of the string plane's normal from the horizontal; positive = a closed face (normal tilted down)",
     },
     /// Coefficient of sliding friction between ball and court.
@@ -832,6 +887,7 @@ parameters! {
         coarse: Step::Add(0.1),
         default: 0.6,
         integer: false,
+        solvable: None,
         help: "coefficient of sliding friction mu between ball and court",
     },
     /// Normal coefficient of restitution on the court.
@@ -853,6 +909,7 @@ parameters! {
         coarse: Step::Add(0.1),
         default: 0.75,
         integer: false,
+        solvable: None,
         help: "normal coefficient of restitution e_y of the bounce on the court",
     },
     /// Duration of the bounce on the court, s.
@@ -871,6 +928,7 @@ parameters! {
         coarse: Step::Add(1e-3),
         default: 4e-3,
         integer: false,
+        solvable: None,
         help: "duration of the bounce on the court (the normal force is a half sine, as on the strings)",
     },
 }
@@ -886,12 +944,10 @@ const fn bounce_count() -> usize {
     n
 }
 
-/// The spec of one parameter.
+/// The spec of one parameter: its row of [`PARAMS`], which lists them in [`ParamId`]'s order.
+#[inline]
 pub fn spec(id: ParamId) -> &'static ParamSpec {
-    PARAMS
-        .iter()
-        .find(|s| s.id == id)
-        .expect("every ParamId has a row in PARAMS")
+    &PARAMS[id as usize]
 }
 
 /// The spec whose flag (`cart-mass`) or key (`cart_mass`) is `name`.
@@ -905,15 +961,6 @@ impl Params {
         spec(id).check_value(value)?;
         self.set(id, value);
         Ok(self)
-    }
-
-    /// What the ball touches, as the outputs name it: the cart, or a chain's first mass.
-    pub fn touched(&self) -> &'static str {
-        if self.chain > 1.0 {
-            "first mass"
-        } else {
-            "cart"
-        }
     }
 
     /// Checks every value against its range.
@@ -948,7 +995,8 @@ mod tests {
 
     #[test]
     fn every_id_has_one_row() {
-        for spec in PARAMS {
+        for (i, spec) in PARAMS.iter().enumerate() {
+            assert_eq!(spec.id as usize, i, "PARAMS is in ParamId's order");
             assert_eq!(PARAMS.iter().filter(|s| s.id == spec.id).count(), 1);
             assert_eq!(spec_named(spec.flag).map(|s| s.id), Some(spec.id));
             assert_eq!(spec_named(spec.key).map(|s| s.id), Some(spec.id));

@@ -1,50 +1,125 @@
-//! Solving a bounce: the parameters choose the contact model, and the phase driver runs it.
+//! Solving a bounce: the parameters choose the contact model ([`Params::model`]), the phase driver runs
+//! it within the caller's [`SolveOptions`], and the outcome is checked before it is returned.
 
 use super::bounce::{Bounce, finish};
+use super::budget::{budget, weight};
 use super::cart::SingleCart;
 use super::chain::ChainOfMasses;
 use super::compliant::CompliantBall;
 use super::driver::run;
 use super::error::SolveError;
-use super::limits;
+use super::events::{self, Stall};
+use super::options::SolveOptions;
 use super::params::Params;
+use super::registry::{BallKind, SupportKind};
+use super::reportable::finite;
 use super::setup::Setup;
+use super::solvable;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
-/// located by root finding on the exact expressions. Cancelled once the process is interrupted
-/// ([`limits::interrupt`]).
+/// located by root finding on the exact expressions. Under the default [`SolveOptions`]: never
+/// cancelled, the default phase cap, the solve's own work budget.
 pub fn solve(params: &Params) -> Result<Bounce, SolveError> {
-    solve_cancellable(params, &limits::interrupted)
+    solve_with(params, &SolveOptions::default())
 }
 
 /// [`solve`], abandoned with [`SolveError::Cancelled`] as soon as `cancelled` returns true: it is asked
-/// before every phase, so a caller (the explorer's worker, a headless command on Ctrl-C) can drop a solve
-/// that is no longer wanted.
+/// before every phase, so a caller (the explorer's worker) can drop a solve that is no longer wanted.
 pub fn solve_cancellable(
     params: &Params,
-    cancelled: &impl Fn() -> bool,
+    cancelled: &(dyn Fn() -> bool + Sync),
 ) -> Result<Bounce, SolveError> {
-    limits::bounded(params, || solve_model(params, cancelled))
+    solve_with(params, &SolveOptions::cancelled_by(cancelled))
 }
 
-/// The model for `params`, run by the driver (`limits::bounded` has validated them).
-fn solve_model(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Bounce, SolveError> {
-    if params.ball_stiffness > 0.0 {
-        let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
-        let (phases, last) = run(&model, &setup, cancelled).map_err(|e| match e {
-            SolveError::TooManyPhases { .. } => SolveError::TooManyPhases {
-                hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, or \
-                       lower --ball-stiffness)",
-            },
-            e => e,
-        })?;
-        return Ok(finish(params, setup, phases, last));
+/// [`solve`] on the caller's terms: its cancellation, phase cap and shared work ([`SolveOptions`]).
+pub fn solve_with(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
+    bounded(params, options, || solve_model(params, options))
+}
+
+/// Runs `solve` for `params` bounded: refused up front when a parameter is outside what can be solved
+/// ([`solvable::check`]), within its work budget and the caller's shared work, and refused when the
+/// outcome is not finite. Counted in the shared work's tally unless nested in another solve.
+fn bounded(
+    params: &Params,
+    options: &SolveOptions,
+    solve: impl FnOnce() -> Result<Bounce, SolveError>,
+) -> Result<Bounce, SolveError> {
+    let outermost = !events::metering();
+    let bounce = checked(params, options, solve);
+    if let (true, Some(work)) = (outermost, options.work) {
+        work.count();
     }
-    let setup = Setup::new(params);
-    let (phases, last) = if params.chain > 1.0 {
-        run(&ChainOfMasses::new(params, &setup)?, &setup, cancelled)?
-    } else {
-        run(&SingleCart::new(params, &setup)?, &setup, cancelled)?
+    bounce
+}
+
+fn checked(
+    params: &Params,
+    options: &SolveOptions,
+    solve: impl FnOnce() -> Result<Bounce, SolveError>,
+) -> Result<Bounce, SolveError> {
+    params.validate()?;
+    solvable::check(params)?;
+    let weight = weight(params);
+    let allowed = options.work.map_or(u64::MAX, |work| work.left()) / weight;
+    if allowed == 0 {
+        return Err(SolveError::CommandBudget);
+    }
+    let solved = events::metered(budget(params).min(allowed), solve);
+    if let Some(work) = options.work {
+        work.spend(events::spent().saturating_mul(weight));
+    }
+    let bounce = solved.map_err(|stall| match stall {
+        Stall::Budget { .. } if allowed < budget(params) => SolveError::CommandBudget,
+        stall => SolveError::Stalled {
+            stall,
+            hint: advice(params),
+        },
+    })??;
+    finite(&bounce)?;
+    Ok(bounce)
+}
+
+/// What helps a solve that ran out of work.
+fn advice(params: &Params) -> &'static str {
+    let kind = params.model();
+    match (kind.ball, kind.support) {
+        (BallKind::Compliant, _) if params.ball_damping < 0.1 => {
+            " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, or lower \
+             --ball-stiffness)"
+        }
+        (BallKind::Compliant, _) => " (a softer ball is solved with less work)",
+        (BallKind::Rigid, SupportKind::Chain) => " (fewer --chain masses solve faster)",
+        (BallKind::Rigid, SupportKind::Cart) => "",
+    }
+}
+
+/// The model for `params` ([`Params::model`]), run by the driver (`bounded` has validated them).
+fn solve_model(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
+    let kind = params.model();
+    let (setup, phases, last) = match (kind.ball, kind.support) {
+        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain) => {
+            let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
+            let (phases, last) = run(&model, &setup, options).map_err(|e| match e {
+                SolveError::TooManyPhases { limit, .. } => SolveError::TooManyPhases {
+                    limit,
+                    hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, \
+                           or lower --ball-stiffness)",
+                },
+                e => e,
+            })?;
+            (setup, phases, last)
+        }
+        (BallKind::Rigid, SupportKind::Chain) => {
+            let setup = Setup::new(params);
+            let (phases, last) = run(&ChainOfMasses::new(params, &setup)?, &setup, options)?;
+            (setup, phases, last)
+        }
+        (BallKind::Rigid, SupportKind::Cart) => {
+            let setup = Setup::new(params);
+            let (phases, last) = run(&SingleCart::new(params, &setup)?, &setup, options)?;
+            (setup, phases, last)
+        }
     };
     Ok(finish(params, setup, phases, last))
 }
@@ -52,16 +127,15 @@ fn solve_model(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Bounce,
 /// The rigid ball on a chain of `params.chain` masses, for any N including 1, where it reproduces the
 /// single cart to rounding (a compliant ball goes to its own model, as in [`solve`]).
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
-    limits::bounded(params, || solve_chain_model(params))
-}
-
-fn solve_chain_model(params: &Params) -> Result<Bounce, SolveError> {
-    if params.ball_stiffness > 0.0 {
-        return solve(params);
-    }
-    let setup = Setup::new(params);
-    let (phases, last) = run(&ChainOfMasses::new(params, &setup)?, &setup, &|| false)?;
-    Ok(finish(params, setup, phases, last))
+    let options = SolveOptions::default();
+    bounded(params, &options, || {
+        if params.model().compliant() {
+            return solve(params);
+        }
+        let setup = Setup::new(params);
+        let (phases, last) = run(&ChainOfMasses::new(params, &setup)?, &setup, &options)?;
+        Ok(finish(params, setup, phases, last))
+    })
 }
 
 /// The compliant ball on the single cart (the chain's length ignored) with every grip solved by the
@@ -71,25 +145,24 @@ pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
         chain: 1.0,
         ..*params
     };
-    limits::bounded(&params, || {
+    let options = SolveOptions::default();
+    bounded(&params, &options, || {
         let (model, setup) = CompliantBall::new(&params, false)?;
-        let (phases, last) = run(&model, &setup, &|| false)?;
+        let (phases, last) = run(&model, &setup, &options)?;
         Ok(finish(&params, setup, phases, last))
     })
 }
 
 #[cfg(test)]
 mod tests {
-    use std::cell::Cell;
+    use std::sync::atomic::{AtomicUsize, Ordering};
 
     use super::*;
+    use crate::model::budget::Work;
 
     /// A check that says "cancel" from its `n`th call on, counting the calls.
-    fn cancel_from(n: usize, calls: &Cell<usize>) -> impl Fn() -> bool + '_ {
-        move || {
-            calls.set(calls.get() + 1);
-            calls.get() >= n
-        }
+    fn cancel_from(n: usize, calls: &AtomicUsize) -> impl Fn() -> bool + Sync + '_ {
+        move || calls.fetch_add(1, Ordering::Relaxed) + 1 >= n
     }
 
     #[test]
@@ -110,14 +183,64 @@ mod tests {
         ] {
             let whole = solve(&params).unwrap();
             assert!(whole.phases.len() >= 3);
-            let calls = Cell::new(0);
+            let calls = AtomicUsize::new(0);
             let never = solve_cancellable(&params, &cancel_from(usize::MAX, &calls)).unwrap();
             assert_eq!(never.outcome, whole.outcome);
-            assert!(calls.get() >= whole.phases.len());
-            let calls = Cell::new(0);
+            assert!(calls.load(Ordering::Relaxed) >= whole.phases.len());
+            let calls = AtomicUsize::new(0);
             let cancelled = solve_cancellable(&params, &cancel_from(2, &calls));
             assert_eq!(cancelled.unwrap_err(), SolveError::Cancelled);
-            assert_eq!(calls.get(), 2, "stops at the first check that says so");
+            assert_eq!(
+                calls.load(Ordering::Relaxed),
+                2,
+                "stops at the first check that says so"
+            );
         }
+    }
+
+    #[test]
+    fn the_phase_cap_and_the_shared_work_are_the_callers() {
+        let params = Params {
+            cart_mass: 0.001,
+            stiffness: 9554.0,
+            ..Params::default()
+        };
+        let phases = solve(&params).unwrap().phases.len();
+        let capped = SolveOptions {
+            max_phases: phases - 1,
+            ..SolveOptions::default()
+        };
+        let err = solve_with(&params, &capped).unwrap_err();
+        assert_eq!(
+            err.to_string(),
+            format!(
+                "the bounce switched between sliding and gripping more than {} times",
+                phases - 1
+            )
+        );
+        let enough = SolveOptions {
+            max_phases: phases,
+            ..SolveOptions::default()
+        };
+        assert!(solve_with(&params, &enough).is_ok());
+        // Shared work: counted, spent, and once spent refused; a fresh solve is not affected.
+        let work = Work::limited(1_000_000);
+        let shared = SolveOptions {
+            work: Some(&work),
+            ..SolveOptions::default()
+        };
+        assert!(solve_with(&params, &shared).is_ok());
+        assert_eq!(work.solved(), 1);
+        assert!(work.left() < 1_000_000);
+        let spent = Work::limited(1);
+        let none_left = SolveOptions {
+            work: Some(&spent),
+            ..SolveOptions::default()
+        };
+        assert_eq!(
+            solve_with(&params, &none_left).unwrap_err(),
+            SolveError::CommandBudget
+        );
+        assert!(solve(&params).is_ok());
     }
 }

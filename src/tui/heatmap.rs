@@ -1,52 +1,19 @@
 //! The heatmap view's data: the rebound spin omega2 over a grid of cart masses and spring stiffnesses
-//! (log-spaced, [`MASSES`] x [`STIFFNESSES`] cells), every other parameter as it is now.
+//! (log-spaced, [`MASSES`] x [`STIFFNESSES`] cells of [`super::grid`]), every other parameter as it is now.
 //!
 //! The grid is solved on a worker thread ([`super::worker`]), a row of stiffness at a time, so the
 //! explorer keeps answering keys while it fills in. A request supersedes any older one still running (its
 //! solves are cancelled), and rows that arrive from an older request are dropped, so a map never mixes two
-//! sets of parameters.
+//! sets of parameters. A job that panics stops the map where it got to ([`Heatmap::failed`]).
 
 use std::time::Duration;
 
 use rayon::prelude::*;
 
+use super::grid::{MASSES, STIFFNESSES, mass, stiffness};
 use super::peak::{self, Peak};
-use super::worker::Worker;
+use super::worker::{Crash, Worker};
 use crate::model::{ParamId, Params, SolveError, solve_cancellable};
-
-/// Cells across: cart masses.
-pub const MASSES: usize = 60;
-/// Cells up: spring stiffnesses.
-pub const STIFFNESSES: usize = 30;
-/// Cart mass range, kg: 0.1 g to 100 g.
-pub const MASS_RANGE: [f64; 2] = [1e-4, 0.1];
-/// Stiffness range, N/m: 1 kN/m to 100 kN/m.
-pub const STIFFNESS_RANGE: [f64; 2] = [1e3, 1e5];
-
-/// The `i`-th of `n` values spaced evenly in log over `range`.
-fn log_grid(range: [f64; 2], i: usize, n: usize) -> f64 {
-    let [low, high] = range;
-    low * (high / low).powf(i as f64 / (n - 1) as f64)
-}
-
-/// The cart mass of column `i`, kg.
-pub fn mass(i: usize) -> f64 {
-    log_grid(MASS_RANGE, i, MASSES)
-}
-
-/// The stiffness of row `j` (0 is the softest), N/m.
-pub fn stiffness(j: usize) -> f64 {
-    log_grid(STIFFNESS_RANGE, j, STIFFNESSES)
-}
-
-/// Where `value` lies on a log axis over `range` with `n` cells: the nearest cell, or `None` outside.
-pub fn cell_of(value: f64, range: [f64; 2], n: usize) -> Option<usize> {
-    let [low, high] = range;
-    let f = (value / low).ln() / (high / low).ln();
-    (-0.5 / (n - 1) as f64..=1.0 + 0.5 / (n - 1) as f64)
-        .contains(&f)
-        .then(|| ((f * (n - 1) as f64).round() as usize).min(n - 1))
-}
 
 /// omega2 along row `j` (stiffness `stiffness(j)`), for every cart mass, `None` where the core refuses;
 /// `None` for the whole row once `cancelled` says so.
@@ -121,6 +88,10 @@ pub struct Heatmap {
     refining: Option<u64>,
     /// Started when the first map is complete.
     refiner: Option<PeakWorker>,
+    /// Why the map of the newest request stopped short: its job, or its peak's, panicked.
+    pub failed: Option<Crash>,
+    /// That crash, until the explorer has taken it for the status line.
+    unreported: Option<Crash>,
 }
 
 /// The worker that refines the best cell: a job is the parameters and the cell.
@@ -144,6 +115,8 @@ impl Heatmap {
         self.rows = vec![None; STIFFNESSES];
         self.peak = None;
         self.refining = None;
+        self.failed = None;
+        self.unreported = None;
         if let Some(refiner) = &self.refiner {
             refiner.cancel();
         }
@@ -162,11 +135,15 @@ impl Heatmap {
 
     /// Takes every row that has arrived; true if any was for the newest request.
     pub fn poll(&mut self) -> bool {
-        let arrived: Vec<Row> = match &self.worker {
-            Some(worker) => worker.try_iter().map(row).collect(),
+        // The crash first: the rows its job sent before it are then all in.
+        let (crash, arrived): (_, Vec<Row>) = match &self.worker {
+            Some(worker) => (worker.crash(), worker.try_iter().map(row).collect()),
             None => return false,
         };
-        let mut changed = false;
+        let mut changed = crash.is_some();
+        if let Some(crash) = crash {
+            self.fail(crash);
+        }
         for row in arrived {
             changed |= self.accept(row);
         }
@@ -178,7 +155,7 @@ impl Heatmap {
         let (Some(params), Some((i, j, _))) = (self.requested, self.best()) else {
             return false;
         };
-        if self.rows.iter().any(Option::is_none) {
+        if self.failed.is_some() || self.rows.iter().any(Option::is_none) {
             return false;
         }
         let refiner = self.refiner.get_or_insert_with(spawn_refiner);
@@ -188,6 +165,11 @@ impl Heatmap {
                 false
             }
             Some(generation) => {
+                if let Some(crash) = refiner.crash() {
+                    self.refining = None;
+                    self.fail(crash);
+                    return true;
+                }
                 let answer = refiner.try_iter().filter(|(g, _)| *g == generation).last();
                 match answer {
                     Some((_, peak)) => {
@@ -218,9 +200,22 @@ impl Heatmap {
         self.poll() || changed
     }
 
-    /// True while a requested map, or its peak, is not complete.
+    /// The newest request's job panicked: the map stays as far as it got.
+    fn fail(&mut self, crash: Crash) {
+        self.failed = Some(crash.clone());
+        self.unreported = Some(crash);
+    }
+
+    /// A crash not yet shown in the status line.
+    pub fn take_crash(&mut self) -> Option<Crash> {
+        self.unreported.take()
+    }
+
+    /// True while a requested map, or its peak, is not complete (and nothing has failed).
     pub fn pending(&self) -> bool {
-        self.requested.is_some() && (self.rows.iter().any(Option::is_none) || self.peak.is_none())
+        self.requested.is_some()
+            && self.failed.is_none()
+            && (self.rows.iter().any(Option::is_none) || self.peak.is_none())
     }
 
     /// How many rows are in.
@@ -269,18 +264,6 @@ fn row((generation, (index, omega2)): (u64, (usize, Vec<Option<f64>>))) -> Row {
 mod tests {
     use super::*;
     use std::time::{Duration, Instant};
-
-    #[test]
-    fn grids_span_the_ranges_in_log() {
-        assert_eq!(mass(0), 1e-4);
-        assert!((mass(MASSES - 1) - 0.1).abs() < 1e-15);
-        assert!((stiffness(STIFFNESSES - 1) - 1e5).abs() < 1e-9);
-        // The default 10 g cart and 15 kN/m spring are inside.
-        let i = cell_of(0.010, MASS_RANGE, MASSES).unwrap();
-        assert!((mass(i) / 0.010).ln().abs() < 0.07);
-        assert_eq!(cell_of(1.0, MASS_RANGE, MASSES), None);
-        assert_eq!(cell_of(1e-4, MASS_RANGE, MASSES), Some(0));
-    }
 
     #[test]
     fn stale_rows_are_dropped() {

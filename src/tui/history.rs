@@ -4,7 +4,7 @@
 use crate::model::Params;
 use crate::model::params::PARAMS;
 
-use super::ui::shown;
+use super::values::shown;
 
 /// The parameter changes that can be undone and redone.
 #[derive(Clone, Debug, Default, PartialEq)]

@@ -20,7 +20,7 @@ use signal_hook::consts::SIGWINCH;
 use signal_hook::iterator::Signals;
 
 use super::decode::Decoder;
-use super::{EventSource, Input};
+use super::events::{EventSource, Input};
 
 /// How long an unfinished escape sequence may wait for its end (a terminal sends a sequence in one
 /// write; a lone ESC is the Esc key after this).

@@ -3,7 +3,7 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-use super::app::{Action, Mode};
+use super::vocabulary::{Action, Mode};
 
 /// One key, with the modifiers that matter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -12,6 +12,8 @@ pub mod app;
 pub mod band;
 pub mod baseline;
 pub mod decode;
+pub mod events;
+pub mod grid;
 pub mod heatmap;
 pub mod history;
 pub mod input;
@@ -28,11 +30,13 @@ pub mod solved;
 pub mod solver;
 pub mod sweep;
 pub mod terminal;
+pub mod theme;
 pub mod travel;
 pub mod ui;
+pub mod values;
+pub mod vocabulary;
 pub mod worker;
 
-use std::collections::VecDeque;
 use std::io::{self, IsTerminal};
 use std::time::Duration;
 
@@ -42,78 +46,15 @@ use ratatui::backend::Backend;
 use ratatui::layout::{Position, Rect};
 use ratatui::symbols::Marker;
 
-pub use app::{Action, App, Mode, View};
+pub use app::App;
+pub use events::{EventSource, Input, Scripted};
 pub use input::TerminalEvents;
-pub use terminal::FrameSync;
-use ui::theme::Theme;
+pub use output::FrameSync;
+use theme::Theme;
+pub use vocabulary::{Action, Mode, View};
 
 use crate::analysis::fit::data::Dataset;
 use crate::model::{Params, SolveError};
-
-/// What the event loop reacts to: a terminal event, or wall time passing while the bounce plays.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub enum Input {
-    Event(Event),
-    /// Wall time elapsed since the previous tick (or since playback started).
-    Tick(Duration),
-}
-
-impl From<Event> for Input {
-    fn from(event: Event) -> Self {
-        Input::Event(event)
-    }
-}
-
-/// Where inputs come from: the terminal and a clock, or a script in tests.
-pub trait EventSource {
-    /// The next input. With `wait` set (while playing, or while an answer is awaited), a
-    /// [`Input::Tick`] comes at least every `wait` of wall time if no event comes first; with `None`,
-    /// wait for an event for as long as it takes: time passing alone brings nothing. `None` when there
-    /// will be no more inputs.
-    fn next_input(&mut self, wait: Option<Duration>) -> io::Result<Option<Input>>;
-
-    /// An event that has already arrived, without waiting: the loop takes them all before it draws, so a
-    /// burst of keys costs one frame.
-    fn ready_input(&mut self) -> io::Result<Option<Input>> {
-        Ok(None)
-    }
-
-    /// True when the loop should let the workers finish before each input, as scripted tests want: each
-    /// step then sees the answers to the one before.
-    fn settles(&self) -> bool {
-        false
-    }
-}
-
-/// Inputs given in advance; the loop ends when they run out. A tick scripted while the loop is not
-/// waking on a timer stands for time passing with nothing happening, as on the terminal: it is skipped.
-/// The workers finish before each input ([`EventSource::settles`]).
-pub struct Scripted(pub VecDeque<Input>);
-
-impl<I, T> From<I> for Scripted
-where
-    I: IntoIterator<Item = T>,
-    T: Into<Input>,
-{
-    fn from(inputs: I) -> Self {
-        Scripted(inputs.into_iter().map(Into::into).collect())
-    }
-}
-
-impl EventSource for Scripted {
-    fn next_input(&mut self, wait: Option<Duration>) -> io::Result<Option<Input>> {
-        while let Some(input) = self.0.pop_front() {
-            if wait.is_some() || !matches!(input, Input::Tick(_)) {
-                return Ok(Some(input));
-            }
-        }
-        Ok(None)
-    }
-
-    fn settles(&self) -> bool {
-        true
-    }
-}
 
 /// Draws one frame, bracketed so the terminal shows it whole.
 pub fn draw<B>(terminal: &mut Terminal<B>, app: &App) -> io::Result<()>

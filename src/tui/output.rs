@@ -12,13 +12,11 @@ use std::fmt::Write as _;
 use std::io::{self, Write};
 
 use crossterm::terminal;
-use ratatui::backend::{Backend, ClearType, WindowSize};
+use ratatui::backend::{Backend, ClearType, TestBackend, WindowSize};
 use ratatui::buffer::Cell;
 use ratatui::layout::{Position, Size};
 use ratatui::style::{Color, Modifier};
 use ratatui::text::Span;
-
-use super::terminal::FrameSync;
 
 /// How a cell is drawn: its colours and modifiers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -369,6 +367,23 @@ impl<W: Write> Backend for Output<W> {
             self.pending.clear();
         }
         self.writer.flush()
+    }
+}
+
+/// A backend that can bracket each frame so that a slow link never shows half of one.
+pub trait FrameSync {
+    fn begin_frame(&mut self) -> io::Result<()>;
+    fn end_frame(&mut self) -> io::Result<()>;
+}
+
+/// Frames in memory need no bracket.
+impl FrameSync for TestBackend {
+    fn begin_frame(&mut self) -> io::Result<()> {
+        Ok(())
+    }
+
+    fn end_frame(&mut self) -> io::Result<()> {
+        Ok(())
     }
 }
 

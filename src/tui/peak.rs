@@ -7,7 +7,7 @@ use std::cell::Cell;
 use crate::analysis::brent;
 use crate::model::{Params, SolveError, solve_cancellable};
 
-use super::heatmap::{MASSES, STIFFNESSES, mass, stiffness};
+use super::grid::{MASSES, STIFFNESSES, mass, stiffness};
 
 /// The best point found: cart mass (kg), stiffness (N/m) and omega2 (rad/s) there.
 #[derive(Clone, Copy, Debug, PartialEq)]

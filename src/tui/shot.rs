@@ -10,7 +10,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use super::solver::Recent;
-use super::worker::Worker;
+use super::worker::{Crash, Worker};
 use crate::model::Params;
 use crate::model::params::{ParamId, ParamSpec, spec};
 use crate::shot::{self, Shot, ShotError};
@@ -113,6 +113,8 @@ pub struct Shots {
     cache: Recent<Arc<Played>>,
     /// Started on the first request.
     worker: Option<ShotWorker>,
+    /// A crash of the worker's newest job, until the explorer has taken it for the status line.
+    unreported: Option<Crash>,
 }
 
 impl Shots {
@@ -149,13 +151,35 @@ impl Shots {
         !self.wanted.is_empty()
     }
 
-    /// Takes the shots that have arrived for `current`'s request; true if any did.
+    /// Takes the shots that have arrived for `current`'s request; true if any did. If the job panicked,
+    /// the shots it had not played are answered with the crash (and not asked for again).
     pub fn poll(&mut self, current: &Params) -> bool {
-        let arrived: Vec<_> = match &self.worker {
-            Some(worker) => worker.try_iter().collect(),
+        // The crash first: the results its job sent before it are then all in.
+        let (crash, arrived): (_, Vec<_>) = match &self.worker {
+            Some(worker) => (worker.crash(), worker.try_iter().collect()),
             None => return false,
         };
-        self.take(arrived, current)
+        let taken = self.take(arrived, current);
+        let Some(crash) = crash else {
+            return taken;
+        };
+        for k in std::mem::take(&mut self.wanted) {
+            let played = Arc::new(Played {
+                params: k,
+                shot: Err(crash.to_string()),
+            });
+            self.cache.put(k, Arc::clone(&played));
+            if k == key(current) {
+                self.shown = Some(played);
+            }
+        }
+        self.unreported = Some(crash);
+        true
+    }
+
+    /// A crash not yet shown in the status line.
+    pub fn take_crash(&mut self) -> Option<Crash> {
+        self.unreported.take()
     }
 
     /// Waits up to `timeout` for a shot, then as [`Shots::poll`] (for tests, which settle each step).

@@ -21,7 +21,10 @@ pub struct Solved {
 
 impl Solved {
     /// Solves `params` and derives the rest; [`SolveError::Cancelled`] once `cancelled` says so.
-    pub fn compute(params: &Params, cancelled: &impl Fn() -> bool) -> Result<Solved, SolveError> {
+    pub fn compute(
+        params: &Params,
+        cancelled: &(impl Fn() -> bool + Sync),
+    ) -> Result<Solved, SolveError> {
         let bounce = solve_cancellable(params, cancelled)?;
         Ok(Solved {
             params: *params,

@@ -1,14 +1,15 @@
 //! What the explorer asks of the core, off the UI thread: the bounce (with its series, travel and energy)
 //! on one worker, the two Fig. 2 sweeps on another, each newest request first (an older one still running
 //! is cancelled), and the answers kept by parameters, so that going back to parameters seen recently
-//! (undo, a step back) costs nothing.
+//! (undo, a step back) costs nothing. A job that panics answers with the [`Crash`]: the bounce as a
+//! refusal, the sweeps as an [`Arrival::Crash`]; neither is asked for again.
 
 use std::sync::Arc;
 use std::time::Duration;
 
 use super::solved::Solved;
 use super::sweep::Sweeps;
-use super::worker::Worker;
+use super::worker::{Crash, Worker};
 use crate::model::{Params, SolveError};
 
 /// A bounce, or why the core refused it.
@@ -54,6 +55,8 @@ pub enum Arrival {
     /// Boxed: the parameters are the largest part (clippy's large_enum_variant).
     Bounce(Box<Params>, Answer),
     Sweeps(Arc<Sweeps>),
+    /// The sweeps' job panicked.
+    Crash(Crash),
 }
 
 /// The workers and what they have answered.
@@ -66,6 +69,8 @@ pub struct Solver {
     /// The parameters of the bounce and of the sweeps asked for last, until answered.
     bounce_wanted: Option<Params>,
     sweeps_wanted: Option<Params>,
+    /// The sweeps whose job panicked: not asked for again.
+    sweeps_crashed: Option<Params>,
 }
 
 impl Default for Solver {
@@ -88,6 +93,7 @@ impl Default for Solver {
             sweep_cache: Recent::default(),
             bounce_wanted: None,
             sweeps_wanted: None,
+            sweeps_crashed: None,
         }
     }
 }
@@ -116,7 +122,7 @@ impl Solver {
             if self.sweeps_wanted.take().is_some() {
                 self.sweeps.cancel();
             }
-        } else if self.sweeps_wanted != Some(key) {
+        } else if self.sweeps_wanted != Some(key) && self.sweeps_crashed != Some(key) {
             self.sweeps_wanted = Some(key);
             self.sweeps.submit(key);
         }
@@ -161,6 +167,19 @@ impl Solver {
         sweeps: Vec<(u64, Arc<Sweeps>)>,
     ) -> Vec<Arrival> {
         let mut arrived = Vec::new();
+        if let Some(crash) = self.bounces.crash()
+            && let Some(params) = self.bounce_wanted.take()
+        {
+            let answer: Answer = Err(crash.to_string());
+            self.bounce_cache.put(params, answer.clone());
+            arrived.push(Arrival::Bounce(Box::new(params), answer));
+        }
+        if let Some(crash) = self.sweeps.crash()
+            && let Some(key) = self.sweeps_wanted.take()
+        {
+            self.sweeps_crashed = Some(key);
+            arrived.push(Arrival::Crash(crash));
+        }
         for (generation, (params, answer)) in bounces {
             if generation == self.bounces.latest() && self.bounce_wanted == Some(params) {
                 self.bounce_wanted = None;

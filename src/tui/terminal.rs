@@ -1,5 +1,6 @@
 //! The real terminal: raw mode and the alternate screen on the way in; on the way out, whether by quit,
-//! error, panic or signal, the terminal is given back as it was.
+//! error, a panic on the main thread or signal, the terminal is given back as it was (a worker's panic is
+//! the explorer's to report: it goes on running).
 //!
 //! SIGTERM, SIGQUIT and SIGINT (a `kill`, not Ctrl-C, which raw mode turns into a key) restore the
 //! terminal and exit with 128 + the signal's number; after SIGHUP the terminal is gone, so the explorer
@@ -19,26 +20,9 @@ use crossterm::terminal::{
     enable_raw_mode,
 };
 use ratatui::Terminal;
-use ratatui::backend::TestBackend;
 
 use super::output::Output;
-
-/// A backend that can bracket each frame so that a slow link never shows half of one.
-pub trait FrameSync {
-    fn begin_frame(&mut self) -> io::Result<()>;
-    fn end_frame(&mut self) -> io::Result<()>;
-}
-
-/// Frames in memory need no bracket.
-impl FrameSync for TestBackend {
-    fn begin_frame(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-
-    fn end_frame(&mut self) -> io::Result<()> {
-        Ok(())
-    }
-}
+use super::worker;
 
 /// Mouse reports of presses, releases and drags (not of every motion, which would flood a slow link),
 /// in the SGR encoding.
@@ -113,11 +97,19 @@ fn watch_signals() -> io::Result<()> {
     Ok(())
 }
 
-/// Restores the terminal before the default hook prints the panic, so the message is readable.
+/// A panic on the main thread ends the explorer: the terminal is restored before the default hook
+/// prints the panic, so the message is readable. A panic on any other thread leaves the terminal to the
+/// main thread, which goes on drawing: a worker's job reports it in the explorer ([`worker::Crash`]), so
+/// it is not printed over the screen, only where it happened noted for that report.
 fn install_panic_hook() {
+    let main = thread::current().id();
     let previous = std::panic::take_hook();
     std::panic::set_hook(Box::new(move |info| {
-        restore();
-        previous(info);
+        if thread::current().id() == main {
+            restore();
+            previous(info);
+        } else {
+            worker::remember_panic(info.location());
+        }
     }));
 }

@@ -6,12 +6,62 @@
 //! The UI thread never waits on a worker: it takes what has arrived ([`Worker::try_iter`]) and draws. A
 //! worker stuck in a long phase does not hold up quitting either: its thread is never joined, and it ends
 //! with the process (or on its own once the explorer has dropped its end of the channels).
+//!
+//! A job that panics does not take the worker with it: the panic is caught, and its message comes back
+//! as a [`Crash`] ([`Worker::crash`]), which the explorer shows in place of the answer; the next job runs
+//! as usual. For tests, the environment variable `SNAPBACK_PANIC_WORKER` set to a worker's name makes
+//! every job of that worker panic.
 
-use std::sync::Arc;
+use std::any::Any;
+use std::fmt;
+use std::panic::{self, AssertUnwindSafe, Location};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::mpsc::{self, Receiver, Sender};
+use std::sync::{Arc, Mutex};
 use std::thread;
 use std::time::Duration;
+
+/// The environment variable that makes the worker it names panic on every job (for tests).
+pub const PANIC_WORKER: &str = "SNAPBACK_PANIC_WORKER";
+
+/// A job that panicked: what the panic said, and where, if known.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Crash(pub String);
+
+impl fmt::Display for Crash {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "internal error in the solver: {} (please report)",
+            self.0
+        )
+    }
+}
+
+/// Where the last panic off the main thread happened, as the explorer's panic hook saw it: a job's own
+/// thread, or a thread of the pool a job fans out to, whose panic the job takes up.
+static PANICKED_AT: Mutex<Option<String>> = Mutex::new(None);
+
+/// Notes where a panic off the main thread happened, for the [`Crash`] its worker reports.
+pub fn remember_panic(location: Option<&Location<'_>>) {
+    let at = location.map(|l| format!("{}:{}", l.file(), l.line()));
+    if let Ok(mut last) = PANICKED_AT.lock() {
+        *last = at;
+    }
+}
+
+/// What a caught panic said: its message, and where it happened if the hook noted it.
+fn crash_of(payload: &(dyn Any + Send)) -> Crash {
+    let message = payload
+        .downcast_ref::<&str>()
+        .map(|s| s.to_string())
+        .or_else(|| payload.downcast_ref::<String>().cloned())
+        .unwrap_or_else(|| "a panic".to_string());
+    match PANICKED_AT.lock().ok().and_then(|mut last| last.take()) {
+        Some(at) => Crash(format!("{message} at {at}")),
+        None => Crash(message),
+    }
+}
 
 /// One job as the worker's function sees it: whether it is still wanted, and where its results go.
 pub struct Job<'a, R> {
@@ -37,6 +87,7 @@ impl<R> Job<'_, R> {
 pub struct Worker<J, R> {
     jobs: Sender<(u64, J)>,
     results: Receiver<(u64, R)>,
+    crashes: Receiver<(u64, Crash)>,
     latest: Arc<AtomicU64>,
 }
 
@@ -45,6 +96,8 @@ impl<J: Send + 'static, R: Send + 'static> Worker<J, R> {
     pub fn spawn(name: &str, work: impl Fn(J, &Job<R>) + Send + 'static) -> Self {
         let (jobs, job_rx) = mpsc::channel::<(u64, J)>();
         let (result_tx, results) = mpsc::channel();
+        let (crash_tx, crashes) = mpsc::channel();
+        let panic_asked = std::env::var_os(PANIC_WORKER).is_some_and(|w| w == name);
         let latest = Arc::new(AtomicU64::new(0));
         let seen = Arc::clone(&latest);
         let spawned = thread::Builder::new()
@@ -62,8 +115,17 @@ impl<J: Send + 'static, R: Send + 'static> Worker<J, R> {
                         latest: &seen,
                         results: &result_tx,
                     };
-                    if !handle.cancelled() {
-                        work(job, &handle);
+                    if handle.cancelled() {
+                        continue;
+                    }
+                    let run = panic::catch_unwind(AssertUnwindSafe(|| {
+                        if panic_asked {
+                            panic!("{PANIC_WORKER} asked this worker to panic");
+                        }
+                        work(job, &handle)
+                    }));
+                    if let Err(payload) = run {
+                        let _ = crash_tx.send((generation, crash_of(payload.as_ref())));
                     }
                 }
             });
@@ -72,6 +134,7 @@ impl<J: Send + 'static, R: Send + 'static> Worker<J, R> {
         Worker {
             jobs,
             results,
+            crashes,
             latest,
         }
     }
@@ -79,7 +142,7 @@ impl<J: Send + 'static, R: Send + 'static> Worker<J, R> {
     /// Gives the worker a job, cancelling any older one; its generation number.
     pub fn submit(&self, job: J) -> u64 {
         let generation = self.latest.fetch_add(1, Ordering::Relaxed) + 1;
-        // A worker that is gone (a panic in the core) answers nothing; the job then stays pending.
+        // A worker whose thread never started answers nothing; the job then stays pending.
         let _ = self.jobs.send((generation, job));
         generation
     }
@@ -97,6 +160,17 @@ impl<J: Send + 'static, R: Send + 'static> Worker<J, R> {
     /// The results that have arrived, without waiting.
     pub fn try_iter(&self) -> impl Iterator<Item = (u64, R)> + '_ {
         self.results.try_iter()
+    }
+
+    /// The crash of the newest job, if it panicked (older jobs' crashes are dropped, as their results
+    /// are).
+    pub fn crash(&self) -> Option<Crash> {
+        let latest = self.latest();
+        self.crashes
+            .try_iter()
+            .filter(|(generation, _)| *generation == latest)
+            .map(|(_, crash)| crash)
+            .last()
     }
 
     /// Waits up to `timeout` for one result (for tests and benchmarks, which settle before each step).
@@ -134,5 +208,56 @@ mod tests {
         let (generation, result) = worker.wait(Duration::from_secs(30)).unwrap();
         assert_eq!((generation, result), (second, 20));
         assert_eq!(worker.latest(), second);
+    }
+
+    #[test]
+    fn a_job_that_panics_is_a_crash_and_the_next_job_runs() {
+        let worker = Worker::spawn("test", |n: u32, job: &Job<u32>| {
+            if n == 0 {
+                let divisor = n;
+                panic!("dividing by {divisor}");
+            }
+            job.send(100 / n);
+        });
+        worker.submit(0);
+        let crash = loop {
+            if let Some(crash) = worker.crash() {
+                break crash;
+            }
+            thread::sleep(Duration::from_millis(1));
+        };
+        assert!(crash.0.starts_with("dividing by 0"), "{crash:?}");
+        assert_eq!(
+            crash.to_string(),
+            format!("internal error in the solver: {} (please report)", crash.0)
+        );
+        let next = worker.submit(4);
+        assert_eq!(worker.wait(Duration::from_secs(30)), Some((next, 25)));
+        assert_eq!(worker.crash(), None);
+    }
+
+    #[test]
+    fn an_older_jobs_crash_is_dropped() {
+        let started = Arc::new(AtomicBool::new(false));
+        let flag = Arc::clone(&started);
+        let (go_tx, go) = mpsc::channel::<()>();
+        let go = std::sync::Mutex::new(go);
+        let worker = Worker::spawn("test", move |n: u32, job: &Job<u32>| {
+            if n == 0 {
+                flag.store(true, Ordering::Relaxed);
+                go.lock().unwrap().recv().unwrap();
+                panic!("no zero");
+            }
+            job.send(n);
+        });
+        worker.submit(0);
+        while !started.load(Ordering::Relaxed) {
+            thread::sleep(Duration::from_millis(1));
+        }
+        // The job that will panic is running; a newer one is given before it does.
+        let newer = worker.submit(3);
+        go_tx.send(()).unwrap();
+        assert_eq!(worker.wait(Duration::from_secs(30)), Some((newer, 3)));
+        assert_eq!(worker.crash(), None);
     }
 }

@@ -2,16 +2,22 @@
 //! friction holds the cart (or a chain's first mass) still and lets a moving one turn only at an event.
 
 use proptest::prelude::*;
-use proptest::test_runner::TestCaseError;
+use proptest::test_runner::{FileFailurePersistence, TestCaseError};
 use snapback::model::{Bounce, Cart, Params};
 
 /// `default` cases, or as many as `PROPTEST_CASES` asks for (`PROPTEST_CASES=100000` searches deeper).
+/// Failures are kept beside the test's source (`chain.rs` -> `chain.proptest-regressions`).
 pub fn config(default: u32) -> ProptestConfig {
     let cases = std::env::var("PROPTEST_CASES")
         .ok()
         .and_then(|v| v.parse().ok())
         .unwrap_or(default);
-    ProptestConfig::with_cases(cases)
+    ProptestConfig {
+        failure_persistence: Some(Box::new(FileFailurePersistence::WithSource(
+            "proptest-regressions",
+        ))),
+        ..ProptestConfig::with_cases(cases)
+    }
 }
 
 /// Values spread evenly in log between `lo` and `hi` (both positive).

@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use portable_pty::{Child, CommandBuilder, ExitStatus, PtySize, native_pty_system};
 
-pub const BIN: &str = env!("CARGO_BIN_EXE_snapback");
+pub use super::bin::BIN;
 
 /// Generous: a loaded CI machine may be slow to start the binary, but a hung one must not hang the suite.
 pub const PATIENCE: Duration = Duration::from_secs(30);
@@ -33,7 +33,8 @@ pub struct Pty {
 
 impl Pty {
     /// Starts the explorer with `args` on a `cols` x `rows` terminal, `env` added to a plain
-    /// environment (TERM xterm-256color and a UTF-8 locale unless `env` says otherwise).
+    /// environment (TERM xterm-256color, a UTF-8 locale and an empty config folder unless `env` says
+    /// otherwise).
     pub fn spawn(args: &[&str], env: &[(&str, &str)], cols: u16, rows: u16) -> Pty {
         let pair = native_pty_system()
             .openpty(PtySize {
@@ -50,6 +51,7 @@ impl Pty {
         command.env("HOME", std::env::temp_dir());
         command.env("TERM", "xterm-256color");
         command.env("LANG", "C.UTF-8");
+        command.env("SNAPBACK_CONFIG_DIR", super::bin::empty_config());
         for (key, value) in env {
             command.env(key, value);
         }
@@ -104,6 +106,16 @@ impl Pty {
         self.output.lock().unwrap().screen.screen().contents()
     }
 
+    /// True while the program keeps the terminal in the alternate screen.
+    pub fn alternate_screen(&self) -> bool {
+        self.output
+            .lock()
+            .unwrap()
+            .screen
+            .screen()
+            .alternate_screen()
+    }
+
     /// How many bytes the program has written so far.
     pub fn written(&self) -> usize {
         self.output.lock().unwrap().bytes.len()
@@ -148,6 +160,30 @@ impl Pty {
             .status()
             .unwrap();
         assert!(sent.success());
+    }
+
+    /// The CPU time the program has used so far: its main thread (the explorer's UI) alone, or all its
+    /// threads.
+    pub fn cpu(&self, main_thread: bool) -> Duration {
+        let pid = self.child.process_id().expect("a running child");
+        super::cpu::process(pid, main_thread)
+            .expect("the program is running")
+            .0
+    }
+
+    /// Waits for the program to end (without reaping it: see [`Pty::exit`]) and returns the CPU time
+    /// it used in all.
+    pub fn cpu_at_exit(&self) -> Duration {
+        let pid = self.child.process_id().expect("a running child");
+        let start = Instant::now();
+        loop {
+            let (cpu, ended) = super::cpu::process(pid, false).expect("the program is not reaped");
+            if ended {
+                return cpu;
+            }
+            assert!(start.elapsed() < PATIENCE, "the program never ended");
+            thread::sleep(Duration::from_millis(2));
+        }
     }
 
     /// Waits for the program to end, up to `patience`; its exit status, or `None` if it is still running

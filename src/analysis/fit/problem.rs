@@ -3,8 +3,6 @@
 //! (`levenberg-marquardt`, built on nalgebra 0.34) sees them through [`Problem`], which may hold some
 //! coordinates still (a profile moves the others).
 
-use std::cell::Cell;
-
 use levenberg_marquardt::LeastSquaresProblem;
 use nalgebra_lm::{DMatrix, DVector, Dyn, U1, VecStorage};
 use rayon::prelude::*;
@@ -12,7 +10,8 @@ use rayon::prelude::*;
 use super::data::{Dataset, Row};
 use super::free::{Free, place_for};
 use super::watch::Tally;
-use crate::model::{Params, solve_cancellable};
+use crate::model::error::MAX_TRANSITIONS;
+use crate::model::{Params, SolveOptions, solve_with};
 
 /// The residual given to the optimiser where the model cannot be solved, so that it steps back.
 const UNSOLVABLE: f64 = 1e100;
@@ -48,13 +47,14 @@ impl Model<'_> {
         if self.swing_limit.is_some_and(|limit| swings(&params) > limit) {
             return None;
         }
-        let phases = Cell::new(0usize);
-        let over_limit = || {
-            phases.set(phases.get() + 1);
-            self.phase_limit.is_some_and(|limit| phases.get() > limit) || self.tally.cancelled()
+        let cancelled = || self.tally.cancelled();
+        let options = SolveOptions {
+            cancelled: &cancelled,
+            max_phases: self.phase_limit.unwrap_or(MAX_TRANSITIONS),
+            work: None,
         };
         self.tally.solved();
-        let bounce = solve_cancellable(&params, &over_limit).ok()?;
+        let bounce = solve_with(&params, &options).ok()?;
         row.measured
             .iter()
             .map(|m| m.quantity.of(&bounce))

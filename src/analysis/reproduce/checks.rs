@@ -5,14 +5,14 @@
 use rayon::prelude::*;
 
 use crate::model::params::{ParamId, spec};
-use crate::model::{Bounce, Params, SolveError, solve};
+use crate::model::{Bounce, Params, SolveError, SolveOptions, solve_with};
 
 use super::causes::rounded;
 use super::stepping;
 use super::{Num, Row};
 use crate::analysis::cases::{Cart, FIG3_ANGLE, HEAVY, LIGHT, SOFT};
 use crate::analysis::critical::{self, Critical};
-use crate::analysis::optimize::{Objective, optimize};
+use crate::analysis::optimize::{Objective, optimize_with};
 use crate::analysis::retune::{self, retune};
 use crate::analysis::{AnalysisError, Span, timeline};
 
@@ -23,16 +23,16 @@ const MILLI: f64 = 1e3;
 const BACKSPIN: f64 = -100.0;
 
 /// All rows, claim by claim in the order of `assets/claims.md`.
-pub fn all(base: &Params) -> Result<Vec<Row>, AnalysisError> {
+pub fn all(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
     let mut rows = Vec::new();
-    rows.extend(eq8(base)?);
-    rows.extend(critical_angles(base)?);
-    rows.extend(fig3a(base)?);
-    rows.extend(fig3b(base)?);
-    rows.extend(fig3c(base)?);
-    rows.extend(light_carts(base)?);
-    rows.extend(backspin_crossover(base)?);
-    rows.extend(heavy_normal(base)?);
+    rows.extend(eq8(base, options)?);
+    rows.extend(critical_angles(base, options)?);
+    rows.extend(fig3a(base, options)?);
+    rows.extend(fig3b(base, options)?);
+    rows.extend(fig3c(base, options)?);
+    rows.extend(light_carts(base, options)?);
+    rows.extend(backspin_crossover(base, options)?);
+    rows.extend(heavy_normal(base, options)?);
     Ok(rows)
 }
 
@@ -53,9 +53,14 @@ fn degrees(c: Critical) -> f64 {
     c.degrees().unwrap_or(f64::NAN)
 }
 
-fn full_critical(cart: &Cart, base: &Params, spin: f64) -> Result<f64, AnalysisError> {
+fn full_critical(
+    cart: &Cart,
+    base: &Params,
+    spin: f64,
+    options: &SolveOptions,
+) -> Result<f64, AnalysisError> {
     let p = cart.case(base, 45.0, spin);
-    critical::full_model(&p)
+    critical::full_model_with(&p, options)
         .map(degrees)
         .map_err(case_error(cart.name))
 }
@@ -65,14 +70,21 @@ fn angles(from: f64) -> Result<Span, AnalysisError> {
     Span::new(spec(ParamId::Angle), from, 90.0, false)
 }
 
-fn eq8(base: &Params) -> Result<Vec<Row>, AnalysisError> {
+fn eq8(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
     let coefficient = eq8_coefficient(base);
     let glancing: f64 = 15.0;
-    let b = HEAVY.solve(base, glancing, BACKSPIN)?;
+    let b = HEAVY.solve(base, glancing, BACKSPIN, options)?;
     let slope = (b.outcome.omega2 - BACKSPIN) / glancing.to_radians().sin();
     let at: f64 = 23.9;
     let heavy = HEAVY.case(base, 45.0, 0.0);
-    let best = optimize(&heavy, &angles(1.0)?, Objective::Omega2, false, 891)?;
+    let best = optimize_with(
+        &heavy,
+        &angles(1.0)?,
+        Objective::Omega2,
+        false,
+        891,
+        options,
+    )?;
     let eq7 = degrees(critical::eq7(&heavy));
     Ok(vec![
         Row::new(
@@ -125,7 +137,7 @@ fn eq8(base: &Params) -> Result<Vec<Row>, AnalysisError> {
     ])
 }
 
-fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
+fn critical_angles(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
     let no_spin = HEAVY.case(base, 45.0, 0.0);
     let backspin = HEAVY.case(base, 45.0, BACKSPIN);
     let eq7_backspin = degrees(critical::eq7(&backspin));
@@ -145,8 +157,8 @@ fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         Num(mu_for_printed),
         Num(with_v1)
     );
-    let soft_backspin = full_critical(&SOFT, base, BACKSPIN)?;
-    let heavy_backspin = full_critical(&HEAVY, base, BACKSPIN)?;
+    let soft_backspin = full_critical(&SOFT, base, BACKSPIN, options)?;
+    let heavy_backspin = full_critical(&HEAVY, base, BACKSPIN, options)?;
     let mut rows = vec![Row::new(
         "crit-heavy-w0",
         "Eq. (7), omega1 = 0: critical theta1",
@@ -154,7 +166,7 @@ fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         "deg",
         degrees(critical::eq7(&no_spin)),
     )];
-    let heavy_no_spin = full_critical(&HEAVY, base, 0.0)?;
+    let heavy_no_spin = full_critical(&HEAVY, base, 0.0, options)?;
     for cart in [HEAVY, LIGHT] {
         rows.push(
             Row::new(
@@ -162,7 +174,7 @@ fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
                 format!("full model, {}, omega1 = 0: critical theta1", cart.name),
                 "23.9",
                 "deg",
-                full_critical(&cart, base, 0.0)?,
+                full_critical(&cart, base, 0.0, options)?,
             )
             .note("largest theta1 below which the ball slides one way throughout, scan + bisection")
             .cause(|row| {
@@ -175,7 +187,7 @@ fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             }),
         );
     }
-    let soft = full_critical(&SOFT, base, 0.0)?;
+    let soft = full_critical(&SOFT, base, 0.0, options)?;
     rows.push(
         Row::new(
             "crit-soft-w0",
@@ -186,7 +198,9 @@ fn critical_angles(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         )
         .cause(|row| {
             rounded(&SOFT.case(base, 45.0, 0.0), row.paper, |p| {
-                critical::full_model(p).ok().and_then(Critical::degrees)
+                critical::full_model_with(p, options)
+                    .ok()
+                    .and_then(Critical::degrees)
             })
         }),
     );
@@ -222,8 +236,8 @@ fn grip_time(b: &Bounce) -> f64 {
     timeline::first_grip(b).map_or(f64::NAN, |i| b.phases[i].start)
 }
 
-fn fig3a(base: &Params) -> Result<Vec<Row>, AnalysisError> {
-    let b = HEAVY.solve(base, FIG3_ANGLE, BACKSPIN)?;
+fn fig3a(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
+    let b = HEAVY.solve(base, FIG3_ANGLE, BACKSPIN, options)?;
     let heavy = HEAVY.case(base, FIG3_ANGLE, BACKSPIN);
     let grip = grip_time(&b) * MILLI;
     Ok(vec![
@@ -250,7 +264,7 @@ fn fig3a(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         })
         .cause(|row| {
             rounded(&heavy, row.paper, |p| {
-                Some(grip_time(&solve(p).ok()?) * MILLI)
+                Some(grip_time(&solve_with(p, options).ok()?) * MILLI)
             })
         }),
         Row::new(
@@ -271,8 +285,8 @@ const FIG3B_AFTER: &str = "light cart: friction F just after the grip (F_s, Eq. 
 const FIG3B_MAX_X: &str = "light cart: maximum cart displacement X";
 const FIG3B_MAX_X_TIME: &str = "light cart: time of the maximum X";
 
-fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
-    let b = LIGHT.solve(base, FIG3_ANGLE, BACKSPIN)?;
+fn fig3b(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
+    let b = LIGHT.solve(base, FIG3_ANGLE, BACKSPIN, options)?;
     // A grip that follows a slide: one from first contact has no "before".
     let first = timeline::first_grip(&b);
     let Some(grip) = first.filter(|&i| i > 0) else {
@@ -322,7 +336,7 @@ fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             (ParamId::CartMass, 2e-3, 5e-2),
         ],
         |p| {
-            let b = solve(p).ok()?;
+            let b = solve_with(p, options).ok()?;
             let grip = timeline::first_grip(&b)?;
             Some(timeline::sides(&b, grip).0.v)
         },
@@ -371,7 +385,7 @@ fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         })
         .cause(|row| {
             rounded(&light, row.paper, |p| {
-                let b = solve(p).ok()?;
+                let b = solve_with(p, options).ok()?;
                 Some(timeline::sides(&b, timeline::first_grip(&b)?).0.friction)
             })
         }),
@@ -391,7 +405,7 @@ fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         })
         .cause(|row| {
             rounded(&light, row.paper, |p| {
-                let b = solve(p).ok()?;
+                let b = solve_with(p, options).ok()?;
                 Some(timeline::sides(&b, timeline::first_grip(&b)?).1.friction)
             })
         }),
@@ -409,7 +423,7 @@ fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         })
         .cause(|row| {
             rounded(&light, row.paper, |p| {
-                Some(timeline::peak(&solve(p).ok()?, |s| s.x).1 * MILLI)
+                Some(timeline::peak(&solve_with(p, options).ok()?, |s| s.x).1 * MILLI)
             })
         }),
         Row::new(
@@ -434,28 +448,29 @@ fn fig3b(base: &Params) -> Result<Vec<Row>, AnalysisError> {
     ])
 }
 
-fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
-    let b = SOFT.solve(base, FIG3_ANGLE, BACKSPIN)?;
+fn fig3c(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
+    let b = SOFT.solve(base, FIG3_ANGLE, BACKSPIN, options)?;
     let (t_fast, v_max) = timeline::peak(&b, |s| s.v);
     let (t_far, x_max) = timeline::peak(&b, |s| s.x);
     let soft = SOFT.case(base, FIG3_ANGLE, BACKSPIN);
     // Which spring prints 162.8 rad/s, and the most spin any spring gives the 10 g cart.
     let k_printed = retune(&soft, ParamId::Stiffness, 5e3, 5e4, 162.8, |p| {
-        solve(p).ok().map(|b| b.outcome.omega2)
+        solve_with(p, options).ok().map(|b| b.outcome.omega2)
     });
     let at_printed = k_printed
         .map(|k| {
             let mut p = soft;
             p.stiffness = k;
-            solve(&p).map_err(case_error("soft spring, re-tuned k"))
+            solve_with(&p, options).map_err(case_error("soft spring, re-tuned k"))
         })
         .transpose()?;
-    let best_k = optimize(
+    let best_k = optimize_with(
         &soft,
         &Span::new(spec(ParamId::Stiffness), 1e3, 1e5, true)?,
         Objective::Omega2,
         false,
         400,
+        options,
     )?;
     let spin_note = at_printed.as_ref().map_or_else(
         || "no k from 5 to 50 kN/m gives 162.8 rad/s".to_string(),
@@ -476,13 +491,13 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
     let back = t_far + std::f64::consts::FRAC_PI_2 / omega;
     let last = b.phases.last().expect("a bounce has phases");
     let k_back = retune(&soft, ParamId::Stiffness, 1e4, 4e4, 0.0, |p| {
-        solve(p).ok().map(|b| b.final_state.x)
+        solve_with(p, options).ok().map(|b| b.final_state.x)
     });
     let returning = k_back
         .map(|k| {
             let mut p = soft;
             p.stiffness = k;
-            solve(&p).map_err(case_error("soft spring, cart back at T"))
+            solve_with(&p, options).map_err(case_error("soft spring, cart back at T"))
         })
         .transpose()?;
     let return_reason = format!(
@@ -522,7 +537,7 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         })
         .cause(|row| {
             rounded(&soft, row.paper, |p| {
-                Some(timeline::peak(&solve(p).ok()?, |s| s.v).1)
+                Some(timeline::peak(&solve_with(p, options).ok()?, |s| s.v).1)
             })
         }),
         Row::new(
@@ -546,7 +561,7 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         })
         .cause(|row| {
             rounded(&soft, row.paper, |p| {
-                Some(timeline::peak(&solve(p).ok()?, |s| s.v).0 * MILLI)
+                Some(timeline::peak(&solve_with(p, options).ok()?, |s| s.v).0 * MILLI)
             })
         }),
         Row::new(
@@ -581,7 +596,7 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         .note(&spin_note)
         .cause(|row| {
             rounded(&soft, row.paper, |p| {
-                solve(p).ok().map(|b| b.outcome.omega2)
+                solve_with(p, options).ok().map(|b| b.outcome.omega2)
             })
         }),
         Row::new(
@@ -592,24 +607,33 @@ fn fig3c(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             b.outcome.ex.unwrap_or(f64::NAN),
         )
         .note(&spin_note)
-        .cause(|row| rounded(&soft, row.paper, |p| solve(p).ok()?.outcome.ex)),
+        .cause(|row| {
+            rounded(&soft, row.paper, |p| {
+                solve_with(p, options).ok()?.outcome.ex
+            })
+        }),
     ])
 }
 
 /// The stiffness that maximises the spin of a cart of `mass`, as the paper tunes it (Sec. III).
-fn tuned(base: &Params, mass: f64) -> Result<crate::analysis::optimize::Optimum, AnalysisError> {
+fn tuned(
+    base: &Params,
+    mass: f64,
+    options: &SolveOptions,
+) -> Result<crate::analysis::optimize::Optimum, AnalysisError> {
     let mut p = SOFT.case(base, FIG3_ANGLE, BACKSPIN);
     p.cart_mass = mass;
-    optimize(
+    optimize_with(
         &p,
         &Span::new(spec(ParamId::Stiffness), 100.0, 1e6, true)?,
         Objective::Omega2,
         false,
         400,
+        options,
     )
 }
 
-fn light_carts(base: &Params) -> Result<Vec<Row>, AnalysisError> {
+fn light_carts(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
     let describe = |o: &crate::analysis::optimize::Optimum| {
         let s = &o.bounce.setup;
         format!(
@@ -620,8 +644,8 @@ fn light_carts(base: &Params) -> Result<Vec<Row>, AnalysisError> {
             s.duration * MILLI
         )
     };
-    let one = tuned(base, 1e-3)?;
-    let tenth = tuned(base, 1e-4)?;
+    let one = tuned(base, 1e-3, options)?;
+    let tenth = tuned(base, 1e-4, options)?;
     Ok(vec![
         Row::new(
             "light-1g",
@@ -642,7 +666,7 @@ fn light_carts(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         .cause(|row| {
             // The tuned case: its k is the optimum, not a printed value, so only the ball's are tried.
             rounded(&tenth.bounce.params, row.paper, |p| {
-                tuned(p, 1e-4).ok().map(|o| o.objective_value)
+                tuned(p, 1e-4, options).ok().map(|o| o.objective_value)
             })
         }),
         Row::new(
@@ -659,29 +683,29 @@ fn light_carts(base: &Params) -> Result<Vec<Row>, AnalysisError> {
 const COMPARE_STEPS: usize = 360;
 
 /// omega2(omega1 = -100) - omega2(omega1 = 0) at `angle` for the cart of `p`.
-fn backspin_gain(p: &Params, angle: f64) -> Result<f64, SolveError> {
+fn backspin_gain(p: &Params, angle: f64, options: &SolveOptions) -> Result<f64, SolveError> {
     let spin = |omega1: f64| {
         let mut q = *p;
         q.angle_deg = angle;
         q.spin = omega1;
-        solve(&q).map(|b| b.outcome.omega2)
+        solve_with(&q, options).map(|b| b.outcome.omega2)
     };
     Ok(spin(BACKSPIN)? - spin(0.0)?)
 }
 
 /// The windows of theta1 (deg) where backspin gives more spin than no spin, each end bisected.
-fn backspin_windows(p: &Params) -> Result<Vec<(f64, f64)>, SolveError> {
+fn backspin_windows(p: &Params, options: &SolveOptions) -> Result<Vec<(f64, f64)>, SolveError> {
     let angle = |i: usize| 90.0 * (i + 1) as f64 / COMPARE_STEPS as f64;
     let gains: Vec<f64> = (0..COMPARE_STEPS)
         .into_par_iter()
-        .map(|i| backspin_gain(p, angle(i)))
+        .map(|i| backspin_gain(p, angle(i), options))
         .collect::<Result<_, _>>()?;
     let edge = |lo: f64, hi: f64| -> Result<f64, SolveError> {
         let (mut lo, mut hi) = (lo, hi);
-        let rising = backspin_gain(p, hi)? > 0.0;
+        let rising = backspin_gain(p, hi, options)? > 0.0;
         while hi - lo > 1e-9 {
             let mid = 0.5 * (lo + hi);
-            if (backspin_gain(p, mid)? > 0.0) == rising {
+            if (backspin_gain(p, mid, options)? > 0.0) == rising {
                 hi = mid;
             } else {
                 lo = mid;
@@ -720,9 +744,9 @@ fn show_windows(windows: &[(f64, f64)]) -> String {
         .join(", ")
 }
 
-fn backspin_crossover(base: &Params) -> Result<Vec<Row>, AnalysisError> {
+fn backspin_crossover(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
     let windows = |cart: &Cart| {
-        backspin_windows(&cart.case(base, FIG3_ANGLE, 0.0)).map_err(case_error(cart.name))
+        backspin_windows(&cart.case(base, FIG3_ANGLE, 0.0), options).map_err(case_error(cart.name))
     };
     let heavy = windows(&HEAVY)?;
     let light = windows(&LIGHT)?;
@@ -742,7 +766,7 @@ fn backspin_crossover(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         LIGHT.stiffness,
         60.0,
         |p| {
-            backspin_windows(p)
+            backspin_windows(p, options)
                 .ok()
                 .and_then(|w| w.first().map(|(a, _)| *a))
         },
@@ -758,7 +782,7 @@ fn backspin_crossover(base: &Params) -> Result<Vec<Row>, AnalysisError> {
         .note(evidence.clone())
         .cause(|row| {
             rounded(&SOFT.case(base, FIG3_ANGLE, 0.0), row.paper, |p| {
-                backspin_windows(p).ok()?.first().map(|(a, _)| *a)
+                backspin_windows(p, options).ok()?.first().map(|(a, _)| *a)
             })
         }),
         Row::new(
@@ -778,12 +802,12 @@ fn backspin_crossover(base: &Params) -> Result<Vec<Row>, AnalysisError> {
     ])
 }
 
-fn heavy_normal(base: &Params) -> Result<Vec<Row>, AnalysisError> {
+fn heavy_normal(base: &Params, options: &SolveOptions) -> Result<Vec<Row>, AnalysisError> {
     let p = HEAVY.case(base, 45.0, 0.0);
-    let start = full_critical(&HEAVY, base, 0.0)?;
+    let start = full_critical(&HEAVY, base, 0.0, options)?;
     let span = angles(start.min(89.0) + 1e-6)?;
     let steps = 500;
-    let spins: Vec<f64> = crate::analysis::sweep::sweep(&p, &span, steps)?
+    let spins: Vec<f64> = crate::analysis::sweep::sweep_with(&p, &span, steps, options)?
         .iter()
         .map(|r| r.omega2)
         .collect();

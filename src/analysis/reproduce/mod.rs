@@ -10,7 +10,7 @@ use std::fmt;
 
 use serde::Serialize;
 
-use crate::model::Params;
+use crate::model::{Params, SolveOptions};
 
 use super::AnalysisError;
 use super::claims::{self, Claim};
@@ -215,7 +215,15 @@ impl Report {
 /// Checks every claim. `base` supplies the ball, the speed, the friction and the impact (the paper's
 /// Sec. III values by default); each case then sets its own cart, angle and incident spin.
 pub fn reproduce(base: &Params) -> Result<Report, AnalysisError> {
-    let rows: Vec<Row> = checks::all(base)?.into_iter().map(Row::settle).collect();
+    reproduce_with(base, &SolveOptions::default())
+}
+
+/// [`reproduce`] with every bounce solved on the caller's terms.
+pub fn reproduce_with(base: &Params, options: &SolveOptions) -> Result<Report, AnalysisError> {
+    let rows: Vec<Row> = checks::all(base, options)?
+        .into_iter()
+        .map(Row::settle)
+        .collect();
     let missing = claims::all()
         .into_iter()
         .map(|Claim { id, .. }| id)

@@ -13,10 +13,11 @@ use std::cell::Cell;
 pub use grip::Grip;
 pub use slide::Slide;
 
-use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, ROLLING, ROUNDING};
+use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise;
 use super::params::Params;
+use super::quadrature::integrate;
 use super::setup::{Setup, State};
 use super::transition::{self, Touched};
 
@@ -51,6 +52,52 @@ impl CartMotion {
             CartMotion::Slide(slide) => slide.start,
             CartMotion::Grip(grip) => grip.start,
         }
+    }
+}
+
+impl PhaseMotion for CartMotion {
+    fn state_at(&self, setup: &Setup, t: f64) -> State {
+        self.at(setup, t)
+    }
+
+    fn friction(&self, setup: &Setup, state: &State) -> f64 {
+        CartMotion::friction(self, setup, state)
+    }
+
+    fn initial(&self) -> State {
+        CartMotion::initial(self)
+    }
+
+    /// A rigid ball has no contact patch.
+    fn patch_at(&self, _: &Setup, _: f64) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// The cart's kinetic energy and its spring's, M V²/2 + k X²/2.
+    fn surface_energy(&self, setup: &Setup, at: &State) -> f64 {
+        setup.cart_energy(at)
+    }
+
+    /// ∫ F (v_x - r omega - V) dt, on panels of the cart's or the normal force's time scale.
+    fn friction_work(&self, setup: &Setup, start: f64, end: f64) -> f64 {
+        let power = |t: f64| {
+            let s = self.at(setup, t);
+            CartMotion::friction(self, setup, &s) * setup.slip(&s)
+        };
+        integrate(power, start, end, 2.0 / setup.omega_slide.max(setup.w))
+    }
+
+    fn fastest(&self, setup: &Setup) -> f64 {
+        setup.omega_slide
+    }
+
+    /// A rigid ball holds no tangential energy.
+    fn ball_spring_energy(&self, _: &Setup, _: f64) -> f64 {
+        0.0
+    }
+
+    fn dashpot_loss(&self, _: &Setup, _: f64, _: f64) -> f64 {
+        0.0
     }
 }
 

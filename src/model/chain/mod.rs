@@ -23,11 +23,12 @@ mod string;
 use std::cell::RefCell;
 use std::sync::{Arc, OnceLock};
 
-use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, ROLLING, ROUNDING};
+use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise;
 use super::memo::{Slot, reuse};
 use super::params::Params;
+use super::quadrature::integrate;
 use super::setup::{Setup, State};
 use modes::{MAX, Modes};
 use motion::Motion;
@@ -167,6 +168,57 @@ impl ChainState {
 
 /// The phase motion of a chain bounce, shared by the phase and its copies.
 pub type ChainMotion = Arc<Motion>;
+
+impl PhaseMotion for Motion {
+    fn state_at(&self, setup: &Setup, t: f64) -> State {
+        self.contact(setup, t).state
+    }
+
+    fn friction(&self, setup: &Setup, state: &State) -> f64 {
+        self.contact(setup, state.t).friction
+    }
+
+    fn initial(&self) -> State {
+        self.start.contact()
+    }
+
+    /// A rigid ball has no contact patch.
+    fn patch_at(&self, _: &Setup, _: f64) -> Option<(f64, f64)> {
+        None
+    }
+
+    /// Every mass's kinetic energy and every spring's.
+    fn surface_energy(&self, setup: &Setup, at: &State) -> f64 {
+        self.chain().energy(&self.full(setup, at.t))
+    }
+
+    /// ∫ F (v_x - r omega - V_1) dt, on panels of the chain's fastest mode or the normal force.
+    fn friction_work(&self, setup: &Setup, start: f64, end: f64) -> f64 {
+        let power = |t: f64| {
+            let c = self.contact(setup, t);
+            c.friction * setup.slip(&c.state)
+        };
+        integrate(
+            power,
+            start,
+            end,
+            2.0 / self.chain().slide.fastest.max(setup.w),
+        )
+    }
+
+    fn fastest(&self, _: &Setup) -> f64 {
+        self.chain().slide.fastest
+    }
+
+    /// A rigid ball holds no tangential energy.
+    fn ball_spring_energy(&self, _: &Setup, _: f64) -> f64 {
+        0.0
+    }
+
+    fn dashpot_loss(&self, _: &Setup, _: f64, _: f64) -> f64 {
+        0.0
+    }
+}
 
 /// The rigid ball on a chain of `params.chain` masses, for any N including 1 (where it reproduces the
 /// single cart to rounding; [`super::solve`] sends N = 1 to the single cart's own model).

@@ -51,7 +51,7 @@ use std::cell::{Cell, RefCell};
 use super::cart::Slide;
 use super::chain::motion::Motion as ChainMotion;
 use super::chain::{Chain, ChainState};
-use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, ROLLING, ROUNDING};
+use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise_from_tangent;
 use super::memo::{Slot, reuse};
@@ -296,6 +296,64 @@ impl CompliantMotion {
             | CompliantMotion::HeldChainGrip(_) => {
                 integrate(&f, start, end, 2.0 / self.fastest(setup).max(w))
             }
+        }
+    }
+}
+
+impl PhaseMotion for CompliantMotion {
+    fn state_at(&self, setup: &Setup, t: f64) -> State {
+        self.at(setup, t).state
+    }
+
+    fn friction(&self, setup: &Setup, state: &State) -> f64 {
+        self.at(setup, state.t).friction
+    }
+
+    fn initial(&self) -> State {
+        CompliantMotion::initial(self)
+    }
+
+    fn patch_at(&self, setup: &Setup, t: f64) -> Option<(f64, f64)> {
+        Some(self.stretch_and_patch_slip(setup, t))
+    }
+
+    /// The whole chain's energy on a chain, the cart's and its spring's on the single cart.
+    fn surface_energy(&self, setup: &Setup, at: &State) -> f64 {
+        self.chain_energy(setup, at.t)
+            .unwrap_or_else(|| setup.cart_energy(at))
+    }
+
+    /// ∫ F (p' - V) dt: the friction works against the patch's slip on the surface, not the contact
+    /// point's (the stretch takes the rest, and gives it back or loses it in the dashpot).
+    fn friction_work(&self, setup: &Setup, start: f64, end: f64) -> f64 {
+        let power = |t: f64| {
+            let (_, slip) = self.stretch_and_patch_slip(setup, t);
+            self.at(setup, t).friction * slip
+        };
+        self.integrate(setup, power, start, end)
+    }
+
+    fn fastest(&self, setup: &Setup) -> f64 {
+        CompliantMotion::fastest(self, setup)
+    }
+
+    /// k_b e²/2.
+    fn ball_spring_energy(&self, setup: &Setup, t: f64) -> f64 {
+        let e = self.at(setup, t).e;
+        0.5 * self.spring().kb * e * e
+    }
+
+    /// ∫ c_b e'² dt (nothing without a dashpot).
+    fn dashpot_loss(&self, setup: &Setup, start: f64, end: f64) -> f64 {
+        let cb = self.spring().cb;
+        if cb > 0.0 {
+            let power = |t: f64| {
+                let de = self.at(setup, t).de;
+                cb * de * de
+            };
+            self.integrate(setup, power, start, end)
+        } else {
+            0.0
         }
     }
 }

@@ -5,7 +5,7 @@ use ratatui::style::Style;
 use ratatui::text::Span;
 
 use super::plot::Mark;
-use super::theme::Theme;
+use crate::tui::theme::Theme;
 
 /// The baseline's curve through `points` (sorted by x) in a plot about `columns` wide.
 pub fn curve(points: &[(f64, f64)], theme: &Theme, columns: u16) -> Vec<Mark> {

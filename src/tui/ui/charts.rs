@@ -20,7 +20,7 @@ use super::plot::{Band, FRAME_ROWS, Mark, Plot, Scale, Segment, tick_budget, y_e
 use crate::model::{Cart, Sample};
 use crate::tui::app::App;
 use crate::tui::solved::Solved;
-use crate::tui::ui::theme::Theme;
+use crate::tui::theme::Theme;
 
 /// Points of the dashed grip-limit envelope.
 const ENVELOPE_POINTS: usize = 200;

@@ -35,7 +35,7 @@ use crate::shot::Shot;
 use crate::shot::court::{BASELINE_X, NET_HEIGHT, NET_X, SERVICE_LINE_FROM_NET};
 use crate::tui::app::App;
 use crate::tui::baseline::signed;
-use crate::tui::ui::theme::Theme;
+use crate::tui::theme::Theme;
 
 /// The court's left end, m: a little behind the hitter's baseline.
 const LEFT: f64 = -1.0;

@@ -15,7 +15,7 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Borders, Paragraph};
 
 use crate::tui::app::App;
-use crate::tui::heatmap::{MASS_RANGE, MASSES, STIFFNESS_RANGE, STIFFNESSES, cell_of};
+use crate::tui::grid::{self, MASS_RANGE, MASSES, STIFFNESS_RANGE, STIFFNESSES, cell_of};
 use crate::tui::solved::Solved;
 
 /// The colour scale, low to high.
@@ -73,6 +73,12 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
     ]));
     let progress = if map.pending() {
         format!(" computing {}/{} ", map.done(), STIFFNESSES)
+    } else if map.failed.is_some() {
+        format!(
+            " stopped at {}/{}: internal error ",
+            map.done(),
+            STIFFNESSES
+        )
     } else {
         String::new()
     };
@@ -139,15 +145,9 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
         Some(peak) => cell_of(peak.mass, MASS_RANGE, MASSES)
             .zip(cell_of(peak.stiffness, STIFFNESS_RANGE, STIFFNESSES))
             .map(|(i, j)| (i, j, peak.omega2, peak.mass, peak.stiffness)),
-        None => map.best().map(|(i, j, w)| {
-            (
-                i,
-                j,
-                w,
-                crate::tui::heatmap::mass(i),
-                crate::tui::heatmap::stiffness(j),
-            )
-        }),
+        None => map
+            .best()
+            .map(|(i, j, w)| (i, j, w, grid::mass(i), grid::stiffness(j))),
     };
     if let Some((i, j, ..)) = best {
         place(buf, i, j, "*");

@@ -9,7 +9,7 @@ use super::overlay;
 use crate::tui::app::App;
 use crate::tui::keys::{self, Binding};
 use crate::tui::shot;
-use crate::tui::ui::theme::Theme;
+use crate::tui::theme::Theme;
 
 /// How the prompt takes an uncertainty.
 const UNCERTAINTY: &str = " 60±1 also sets an uncertainty: Fig. 2 then draws ω2's band; ±0 clears";

@@ -16,12 +16,12 @@ use ratatui::style::{Color, Style};
 use ratatui::text::{Line, Span};
 
 use super::plot::Mark;
-use super::theme::Theme;
 use crate::analysis::fit::data::{Quantity, Row};
 use crate::model::{ParamId, Params};
 use crate::tui::app::App;
 use crate::tui::lab::at_conditions;
 use crate::tui::sweep::Sweep;
+use crate::tui::theme::Theme;
 
 /// One measured omega2 where a chart draws it.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -39,7 +39,6 @@ pub mod schematic;
 mod stale;
 mod status;
 mod sweep;
-pub mod theme;
 
 use ratatui::Frame;
 use ratatui::layout::{Constraint, Layout, Rect};
@@ -47,9 +46,9 @@ use ratatui::text::Line;
 use ratatui::widgets::Paragraph;
 
 pub use charts::fixed;
-pub use params::shown;
 
-use super::app::{App, Mode, View};
+use super::app::App;
+use super::vocabulary::{Mode, View};
 
 /// The smallest terminal the layout is drawn in.
 pub const MIN_WIDTH: u16 = 80;

@@ -12,7 +12,7 @@ use crate::model::{BallPhase, Bounce};
 use crate::tui::app::App;
 use crate::tui::baseline::signed;
 use crate::tui::solved::Solved;
-use crate::tui::ui::theme::Theme;
+use crate::tui::theme::Theme;
 
 /// Phases listed before the rest are summarised as a count.
 const LISTED_PHASES: usize = 6;
@@ -223,7 +223,7 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
         }
     }
     if wide {
-        let chain = b.params.chain > 1.0;
+        let words = b.params.model().words();
         let share = |j: f64| format!("{:.1} %", 100.0 * j / e.initial);
         lines.push(Line::from(vec![
             label("", "rebound speed v2"),
@@ -236,14 +236,7 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
             ]));
         }
         lines.push(Line::from(vec![
-            label(
-                "",
-                if chain {
-                    "left in the chain"
-                } else {
-                    "left in the cart"
-                },
-            ),
+            label("", words.left_in),
             Span::raw(share(e.final_cart)),
         ]));
         lines.push(Line::from(vec![
@@ -252,14 +245,7 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
         ]));
         if b.params.cart_friction > 0.0 {
             lines.push(Line::from(vec![
-                label(
-                    "",
-                    if chain {
-                        "lost at mass 1"
-                    } else {
-                        "lost at the cart"
-                    },
-                ),
+                label("", words.lost_at),
                 Span::raw(share(e.cart_friction_loss)),
             ]));
         }

@@ -12,9 +12,10 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
 use crate::model::ParamSpec;
-use crate::model::units::{self, Shown};
+use crate::model::units;
 use crate::tui::app::App;
 use crate::tui::shot;
+use crate::tui::values::shown;
 
 /// The fewest rows the panel is given, borders included, however short the screen.
 pub const MIN_HEIGHT: u16 = 7;
@@ -113,21 +114,6 @@ fn with_spread(spec: &ParamSpec, value: f64, sigma: f64) -> String {
     let sigma = units::in_unit(sigma, spec.dimension, s.symbol);
     let text = format!("{:.d$}±{sigma:.d$} {}", s.value, s.symbol, d = s.decimals);
     text.trim_end().to_string()
-}
-
-/// `value` as the panel shows it: in the parameter's display unit, but a mass of 1 kg or more in kg.
-pub fn shown(spec: &ParamSpec, value: f64) -> Shown {
-    let shown = spec.show(value);
-    if shown.symbol == "g" && value >= 1.0 {
-        Shown {
-            value,
-            symbol: "kg",
-            decimals: 3,
-            ..shown
-        }
-    } else {
-        shown
-    }
 }
 
 /// The headings between groups of `specs`.

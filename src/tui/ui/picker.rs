@@ -7,8 +7,8 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 
 use super::overlay;
-use crate::tui::app::{App, Mode};
-use crate::tui::scenarios::FileKind;
+use crate::tui::app::App;
+use crate::tui::vocabulary::{FileKind, Mode};
 
 /// `text` cut to `width` characters, with `…` when cut.
 fn fit(text: &str, width: usize) -> String {

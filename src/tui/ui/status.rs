@@ -9,9 +9,10 @@ use ratatui::text::{Line, Span};
 use ratatui::widgets::{Paragraph, Wrap};
 
 use crate::model::units;
-use crate::tui::app::{App, Mode, Tone};
+use crate::tui::app::App;
 use crate::tui::keys;
 use crate::tui::ui::picker;
+use crate::tui::vocabulary::{Mode, Tone};
 
 /// What the prompt says about units: `cart mass M [kg; or e.g. 10g]`.
 pub fn prompt_label(app: &App) -> String {

@@ -1,3 +1,0 @@
-//! Shared by the integration tests: an independent numerical solution of the same model.
-
-pub mod integrator;
