@@ -308,7 +308,8 @@ fn twelve_digits(value: f64, error: f64) -> Option<f64> {
         } else if scaled < 99_999_999_999.5 {
             p += 1;
         } else {
-            if !(error < 0.125 * unit) {
+            // NaN refuses too.
+            if error.partial_cmp(&(0.125 * unit)) != Some(std::cmp::Ordering::Less) {
                 return None;
             }
             let n = scaled.round();
