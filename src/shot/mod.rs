@@ -16,8 +16,8 @@ pub mod racquet;
 
 use nalgebra::Vector2;
 
-use crate::model::{Bounce, Params, SolveError, solve};
 use crate::config;
+use crate::model::{Bounce, Params, SolveError, solve};
 use aero::{Air, Projectile};
 use court::{BASELINE_X, NET_HEIGHT, NET_X};
 use flight::{Hit, Point, Stop, TooLong, fly};
@@ -28,8 +28,9 @@ use racquet::{Hold, RacquetError};
 pub const BASE_PRESET: &str = "topspin-forehand";
 
 /// The parameters a shot starts from, wherever one is played (`snapback shot`, the explorer's shot
-/// mode): the defaults with the [`BASE_PRESET`] applied (the paper's e_y = 1 would be a racquet that
-/// returns every bit of the ball's normal speed).
+/// mode): the defaults with the [`BASE_PRESET`] applied (the ball's restitution on clamped strings and a
+/// real racquet in the hand, where the paper's e_y = 1 on the defaults' wall would return every bit of the
+/// ball's normal speed).
 pub fn base() -> Params {
     config::preset(BASE_PRESET)
         .expect("the base preset is compiled in")
@@ -162,12 +163,20 @@ pub fn incidence(p: &Params) -> Result<Incidence, ShotError> {
 /// The bounce on the strings: the frame change, the core (all of `p`'s ball and cart flags, with the
 /// incidence it sees, on the frame of `p`'s racquet), and back to the court frame.
 pub fn hit(p: &Params) -> Result<Contact, ShotError> {
+    hit_by(p, &Hold::of(p)?)
+}
+
+/// [`hit`] by `racquet`: the one place a shot's racquet becomes the frame the core's strings are tied to.
+fn hit_by(p: &Params, racquet: &Hold) -> Result<Contact, ShotError> {
     let strings = strings(p);
     let incidence = incidence(p)?;
+    let (frame_mass, frame_normal_mass) = racquet.frame_masses();
     let bounce = solve(&Params {
         angle_deg: incidence.theta1_deg,
         speed: incidence.speed,
         spin: incidence.spin,
+        frame_mass,
+        frame_normal_mass,
         ..*p
     })
     .map_err(ShotError::Strings)?;
@@ -194,7 +203,7 @@ pub fn play_in(p: &Params, air: Air, trajectory: bool) -> Result<Shot, ShotError
         });
     }
     let racquet = Hold::of(p)?;
-    let strings = hit(p)?;
+    let strings = hit_by(p, &racquet)?;
     let r = p.radius;
     let projectile = |m: &Motion| Projectile {
         mass: p.mass,

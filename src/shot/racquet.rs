@@ -13,6 +13,7 @@
 //! On a frame of normal mass M_n a ball of mass m leaves with the apparent restitution
 //! e_A = (e_y M_n - m)/(M_n + m), e_y being its restitution on a clamped frame.
 
+use crate::model::setup::apparent_restitution;
 use crate::model::{Bounce, Params};
 
 /// The axis the swing weight is quoted about, from the butt, m.
@@ -139,13 +140,18 @@ impl Hold {
         }
     }
 
+    /// The frame the core ties the strings to, as its parameters `(frame_mass, frame_normal_mass)`: M_t and
+    /// M_n, or 0 and 0 (the wall) when clamped.
+    pub fn frame_masses(&self) -> (f64, f64) {
+        self.effective_masses()
+            .map_or((0.0, 0.0), |(normal, tangential)| (tangential, normal))
+    }
+
     /// e_A = (e_y M_n - m)/(M_n + m) for a ball of mass `m` with restitution `ey` on clamped strings;
     /// `ey` itself when clamped.
     pub fn ey_apparent(&self, ey: f64, m: f64) -> f64 {
-        match self.effective_masses() {
-            None => ey,
-            Some((normal, _)) => (ey * normal - m) / (normal + m),
-        }
+        self.effective_masses()
+            .map_or(ey, |(normal, _)| apparent_restitution(ey, m, normal))
     }
 
     /// The racquet's velocity change at the impact point from the ball's impulse in `bounce` (solved in
