@@ -11,6 +11,7 @@ mod support {
     pub mod compliant_integrator;
     pub mod cpu;
     pub mod flight;
+    pub mod frame_integrator;
     pub mod integrator;
     pub mod prop;
     pub mod rng;

@@ -2,7 +2,11 @@
 //! their formulas, the clamped racquet as the shot was before it, and the command line.
 
 use crate::support::bin;
+use crate::support::flight as reference;
+use crate::support::frame_integrator::integrate_frame;
+use crate::support::rng::Rng;
 
+use snapback::config;
 use snapback::model::Params;
 use snapback::shot::racquet::{Hold, Racquet};
 use snapback::shot::{self, play};
@@ -215,4 +219,215 @@ fn the_swing_weight_takes_the_units_specifications_use() {
         bare["racquet"]["effective_mass_normal"],
         suffixed["racquet"]["effective_mass_normal"]
     );
+}
+
+fn preset(name: &str) -> Params {
+    config::preset(name).unwrap().apply(Params::default())
+}
+
+#[test]
+fn each_shot_preset_lands_where_its_description_says() {
+    let play_preset = |name| play(&preset(name), false).unwrap();
+    let (forehand, flat, slice, serve) = (
+        play_preset("topspin-forehand"),
+        play_preset("flat-drive"),
+        play_preset("slice"),
+        play_preset("kick-serve"),
+    );
+    for s in [&forehand, &flat, &slice, &serve] {
+        assert!(s.is_in(), "{s:?}");
+        // A real racquet, in the hand, on the ball's own restitution.
+        assert!(matches!(s.racquet, Hold::Hand(_)));
+        assert_eq!(s.strings.bounce.params.ey, 0.85);
+    }
+    let speed = |s: &snapback::shot::Shot| s.strings.leaving.speed();
+    let topspin = |s: &snapback::shot::Shot| s.strings.leaving.topspin();
+    // The forehand: topspin, with room over the net.
+    assert!(topspin(&forehand) > 2500.0 * RPM);
+    assert!(forehand.net_clearance.unwrap() > 0.3);
+    // The flat drive: the fastest groundstroke, low over the net, with the least topspin.
+    assert!(speed(&flat) > speed(&forehand) && speed(&flat) > speed(&slice));
+    assert!(flat.net_clearance.unwrap() < 0.3);
+    assert!(topspin(&flat) > 0.0 && topspin(&flat) < topspin(&forehand));
+    // The slice: backspin.
+    assert!(topspin(&slice) < 0.0);
+    // The kick serve: inside the service box (6.40 m beyond the net), kicking highest.
+    let landing = serve.landing_x.unwrap() - snapback::shot::court::NET_X;
+    assert!(landing > 0.0 && landing < 6.40, "{landing}");
+    for other in [&forehand, &flat, &slice] {
+        assert!(serve.kick_height.unwrap() > other.kick_height.unwrap());
+    }
+}
+
+#[test]
+fn a_hand_held_racquet_recoils_and_returns_less_than_a_clamped_one() {
+    for name in ["topspin-forehand", "flat-drive", "slice", "kick-serve"] {
+        let held = preset(name);
+        let clamped = Params {
+            racquet_mass: 0.0,
+            ..held
+        };
+        let (h, c) = (play(&held, false).unwrap(), play(&clamped, false).unwrap());
+        // The same stroke meets the ball the same way...
+        assert_eq!(h.strings.incidence, c.strings.incidence);
+        // ...and sends it off slower: the racquet takes some of the energy away in its recoil.
+        let (hb, cb) = (&h.strings.bounce, &c.strings.bounce);
+        assert!(
+            h.strings.leaving.speed() < c.strings.leaving.speed(),
+            "{name}"
+        );
+        // Normal to the strings the ball leaves with e_A (the core's e_y on a clamped frame).
+        let e_a = h.racquet.ey_apparent(held.ey, held.mass);
+        assert!((hb.outcome.vy2 - e_a * hb.setup.vy1).abs() < 1e-12 * hb.setup.vy1);
+        assert_eq!(cb.outcome.vy2, held.ey * cb.setup.vy1);
+        assert!(e_a < 0.5 * held.ey, "{name}: e_A {e_a}");
+        // Along the strings the frame is carried off the way the ball pushed it.
+        let recoil = h.racquet.recoil(hb);
+        assert!(recoil.normal > 0.0 && recoil.tangential > 0.0, "{recoil:?}");
+        assert!(hb.frame_velocity() > 0.0);
+        assert_eq!(cb.frame_velocity(), 0.0);
+        assert_eq!(c.racquet.recoil(cb).speed(), 0.0);
+    }
+}
+
+#[test]
+fn a_racquet_of_a_thousand_tonnes_approaches_the_clamped_one() {
+    for name in ["topspin-forehand", "flat-drive", "slice", "kick-serve"] {
+        let clamped = Params {
+            racquet_mass: 0.0,
+            ..preset(name)
+        };
+        // 1e6 kg with its moments of inertia scaled alike (I_cm stays above 0).
+        let heavy = Params {
+            racquet_mass: 1e6,
+            swing_weight: 1e6 * 0.1,
+            twist_weight: 1e6 * 0.005,
+            ..clamped
+        };
+        let (h, c) = (play(&heavy, false).unwrap(), play(&clamped, false).unwrap());
+        let (lh, lc) = (h.strings.leaving, c.strings.leaving);
+        let dv = (lh.velocity - lc.velocity).norm();
+        assert!(dv < 1e-5 * lc.speed(), "{name}: {dv}");
+        assert!(
+            (lh.omega_z - lc.omega_z).abs() < 1e-5 * lc.omega_z.abs(),
+            "{name}"
+        );
+        assert!(
+            (h.landing_x.unwrap() - c.landing_x.unwrap()).abs() < 1e-4,
+            "{name}"
+        );
+        assert!(h.racquet.recoil(&h.strings.bounce).speed() < 1e-5);
+    }
+}
+
+/// The launch of `p` by independent means: the change to the strings' frame written out here, the
+/// racquet's effective masses from the formulas, the bounce by the RK4 integration of the ball
+/// on a free frame. Velocity and spin about z in the court frame.
+fn independent_launch(p: &Params) -> ([f64; 2], f64) {
+    let (sin_s, cos_s) = p.swing_path_deg.to_radians().sin_cos();
+    let (sin_f, cos_f) = p.face_angle_deg.to_radians().sin_cos();
+    let (sin_d, cos_d) = p.ball_descent_deg.to_radians().sin_cos();
+    let strings = [p.racquet_speed * cos_s, p.racquet_speed * sin_s];
+    let relative = [
+        -p.ball_speed * cos_d - strings[0],
+        -p.ball_speed * sin_d - strings[1],
+    ];
+    let normal = [cos_f, -sin_f];
+    let towards = -(relative[0] * normal[0] + relative[1] * normal[1]);
+    let across = [normal[1], -normal[0]];
+    let a = relative[0] * across[0] + relative[1] * across[1];
+    let tangent = if a >= 0.0 {
+        across
+    } else {
+        [-across[0], -across[1]]
+    };
+    let vx1 = a.abs();
+    let sense = normal[0] * tangent[1] - normal[1] * tangent[0];
+    // The racquet: I_cm = SW - M (balance - 0.1)^2, b = impact - balance.
+    let (mr, i_cm) = (
+        p.racquet_mass,
+        p.swing_weight - p.racquet_mass * (p.balance - 0.1).powi(2),
+    );
+    let b2 = (p.impact - p.balance).powi(2);
+    let mn = 1.0 / (1.0 / mr + b2 / i_cm);
+    let mt = 1.0 / (1.0 / mr + b2 / (i_cm + p.twist_weight));
+    let e_a = (p.ey * mn - p.mass) / (mn + p.mass);
+    let on_strings = Params {
+        angle_deg: towards.atan2(vx1).to_degrees(),
+        speed: towards.hypot(vx1),
+        spin: sense * p.ball_topspin,
+        frame_mass: mt,
+        frame_normal_mass: mn,
+        ..*p
+    };
+    let step = (p.duration / 40_000.0)
+        .min(0.002 * (p.cart_mass * mt / (p.cart_mass + mt) / p.stiffness).sqrt());
+    let bounce = integrate_frame(&on_strings, step);
+    let vy2 = e_a * towards;
+    (
+        [
+            tangent[0] * bounce.vx2 + normal[0] * vy2 + strings[0],
+            tangent[1] * bounce.vx2 + normal[1] * vy2 + strings[1],
+        ],
+        sense * bounce.omega2,
+    )
+}
+
+#[test]
+fn a_hand_held_shot_agrees_with_an_independent_solution_end_to_end() {
+    let mut rng = Rng(0x4acc_e7_2023);
+    let mut cases: Vec<Params> = ["topspin-forehand", "flat-drive", "slice", "kick-serve"]
+        .iter()
+        .map(|n| preset(n))
+        .collect();
+    cases.extend((0..16).map(|_| Params {
+        height: rng.uniform(0.6, 2.7),
+        ball_speed: rng.uniform(0.0, 30.0),
+        ball_descent_deg: rng.uniform(-10.0, 30.0),
+        ball_topspin: rng.uniform(-3000.0, 3000.0) * RPM,
+        racquet_speed: rng.uniform(15.0, 38.0),
+        swing_path_deg: rng.uniform(-25.0, 30.0),
+        face_angle_deg: rng.uniform(-15.0, 20.0),
+        racquet_mass: rng.uniform(0.25, 0.40),
+        balance: rng.uniform(0.30, 0.36),
+        swing_weight: rng.uniform(280e-4, 360e-4),
+        twist_weight: rng.uniform(12e-4, 18e-4),
+        impact: rng.uniform(0.40, 0.64),
+        ..preset("topspin-forehand")
+    }));
+    let (mut launch, mut court, mut compared) = (0.0f64, 0.0f64, 0);
+    for p in &cases {
+        let Ok(s) = play(p, false) else { continue };
+        let (v, omega_z) = independent_launch(p);
+        let l = s.strings.leaving;
+        let dv = (l.velocity.x - v[0]).hypot(l.velocity.y - v[1]);
+        let dw = (l.omega_z - omega_z).abs();
+        assert!(
+            dv < 1e-6 && dw < 1e-6 * omega_z.abs().max(1.0),
+            "{p:?}: {dv} m/s, {dw} rad/s"
+        );
+        launch = launch.max(dv);
+        let ball = reference::Ball {
+            mass: p.mass,
+            radius: p.radius,
+            alpha: p.alpha,
+        };
+        let r = reference::shot(&ball, p.height, v[0], v[1], omega_z, p.court_mu, p.court_ey);
+        for (mine, theirs) in [
+            (s.net_clearance, r.clearance),
+            (s.landing_x, r.landing),
+            (s.kick_height, r.kick),
+        ] {
+            let d = match (mine, theirs) {
+                (Some(a), Some(b)) => (a - b).abs(),
+                (None, None) => 0.0,
+                _ => f64::INFINITY,
+            };
+            assert!(d < 1e-3, "{p:?}: {mine:?} against {theirs:?}");
+            court = court.max(d);
+        }
+        compared += 1;
+    }
+    eprintln!("worst: launch {launch:.1e} m/s, court {court:.1e} m over {compared} shots");
+    assert!(compared >= 15, "{compared}");
 }
