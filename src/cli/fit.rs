@@ -8,6 +8,7 @@ use serde_json::{Map, Value, json};
 
 use super::{Failure, ParamArgs, emit};
 use crate::analysis::fit::{self, Fit, Fitted, Options, Verdict, data, free, shown};
+use crate::config;
 use crate::input;
 use crate::model::params::{Bound, ParamId, spec};
 use crate::model::{Params, units};
@@ -129,7 +130,7 @@ fn source(args: &ParamArgs, id: ParamId) -> String {
         return format!("from the scenario {}", path.display());
     }
     if let Some(name) = &args.preset
-        && crate::config::preset(name).is_ok_and(|s| s.values.contains_key(key))
+        && config::preset(name).is_ok_and(|s| s.values.contains_key(key))
     {
         return format!("from the preset {name}");
     }
