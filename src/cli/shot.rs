@@ -32,23 +32,28 @@ pub struct ShotArgs {
 
 pub use crate::shot::base;
 
-/// Refuses the flags (and a varied parameter) that the frame change sets on the strings, naming the
-/// shot's own.
+/// Refuses the flags (and a varied parameter) that the frame change and the racquet set on the strings,
+/// naming the shot's own.
 pub fn refuse_bounce_incidence(
     given: &[(ParamId, String)],
     varied: Option<&ParamSpec>,
 ) -> Result<(), Failure> {
     let set = [ParamId::Speed, ParamId::Angle, ParamId::Spin];
-    let flag = given
-        .iter()
-        .map(|(id, _)| *id)
-        .chain(varied.map(|s| s.id))
-        .find(|id| set.contains(id));
-    match flag {
-        Some(id) => Err(Failure::usage(format!(
+    let frame = [ParamId::FrameMass, ParamId::FrameNormalMass];
+    let ids = || given.iter().map(|(id, _)| *id).chain(varied.map(|s| s.id));
+    if let Some(id) = ids().find(|id| set.contains(id)) {
+        return Err(Failure::usage(format!(
             "{} is what the strings see, set by the frame change in a shot: give the incoming ball \
              with --ball-speed, --ball-descent, --ball-topspin and the racquet with --racquet-speed, \
              --swing-path, --face-angle",
+            spec(id).long_flag()
+        )));
+    }
+    match ids().find(|id| frame.contains(id)) {
+        Some(id) => Err(Failure::usage(format!(
+            "{} is the racquet's effective mass at the impact point in a shot: give the racquet with \
+             --racquet-mass (clamped for an immovable one), --balance, --swing-weight, --twist-weight, \
+             --impact",
             spec(id).long_flag()
         ))),
         None => Ok(()),

@@ -19,7 +19,8 @@ pub const SERVICE_LINE_FROM_NET: f64 = 6.40;
 pub const COURT_MASS: f64 = 1e6;
 
 /// The bounce on the court of a ball arriving at `incidence`: the ball of `p` (its mass, radius,
-/// inertia and compliance), the court's friction, restitution and contact time, a heavy free cart.
+/// inertia and compliance), the court's friction, restitution and contact time, a heavy free cart on no
+/// frame (the racquet's is the strings').
 pub fn bounce(p: &Params, incidence: &Incidence) -> Result<Bounce, SolveError> {
     solve(&Params {
         angle_deg: incidence.theta1_deg,
@@ -32,6 +33,8 @@ pub fn bounce(p: &Params, incidence: &Incidence) -> Result<Bounce, SolveError> {
         stiffness: 0.0,
         cart_friction: 0.0,
         chain: 1.0,
+        frame_mass: 0.0,
+        frame_normal_mass: 0.0,
         ..*p
     })
 }

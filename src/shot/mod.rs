@@ -166,12 +166,17 @@ pub fn hit(p: &Params) -> Result<Contact, ShotError> {
     hit_by(p, &Hold::of(p)?)
 }
 
-/// [`hit`] by `racquet`: the one place a shot's racquet becomes the frame the core's strings are tied to.
-fn hit_by(p: &Params, racquet: &Hold) -> Result<Contact, ShotError> {
-    let strings = strings(p);
+/// The bounce the strings see, as the core's parameters: `p` with the incidence of the frame change and
+/// the frame of `p`'s racquet (its effective masses; the wall when clamped). The one place a shot's
+/// racquet becomes the frame the strings are tied to; the explorer's shot mode shows this bounce.
+pub fn strings_params(p: &Params) -> Result<Params, ShotError> {
+    on_strings(p, &Hold::of(p)?)
+}
+
+fn on_strings(p: &Params, racquet: &Hold) -> Result<Params, ShotError> {
     let incidence = incidence(p)?;
     let (frame_mass, frame_normal_mass) = racquet.frame_masses();
-    let bounce = solve(&Params {
+    Ok(Params {
         angle_deg: incidence.theta1_deg,
         speed: incidence.speed,
         spin: incidence.spin,
@@ -179,7 +184,13 @@ fn hit_by(p: &Params, racquet: &Hold) -> Result<Contact, ShotError> {
         frame_normal_mass,
         ..*p
     })
-    .map_err(ShotError::Strings)?;
+}
+
+/// [`hit`] by `racquet`.
+fn hit_by(p: &Params, racquet: &Hold) -> Result<Contact, ShotError> {
+    let strings = strings(p);
+    let incidence = incidence(p)?;
+    let bounce = solve(&on_strings(p, racquet)?).map_err(ShotError::Strings)?;
     let o = &bounce.outcome;
     let (velocity, omega_z) = strings.rebound(&incidence, o.vx2, o.vy2, o.omega2);
     Ok(Contact {

@@ -17,7 +17,7 @@ use crate::model::params::{Group, PARAMS, ParamId, ParamSpec, spec};
 use crate::shot::{self, Shot, ShotError};
 
 /// What the status line says when shot mode comes on (the shot view, or m).
-pub const MODE_ON: &str = "shot mode (m leaves it): θ1, v1 and ω1 now follow from the racquet and the \
+pub const MODE_ON: &str = "shot mode (m leaves it): θ1, v1, ω1 and the frame (M_t, M_n) now follow from the racquet and the \
                            incoming ball, and the contact view shows the bounce on the strings";
 
 /// What the status line says when shot mode comes on from a bounce and the shot's start changed
@@ -74,23 +74,25 @@ pub fn starting(params: &Params) -> (Params, Vec<ParamId>) {
     (start, filled)
 }
 
-/// The parameters the frame change sets in a shot.
-pub const DERIVED: [ParamId; 3] = [ParamId::Angle, ParamId::Speed, ParamId::Spin];
+/// The parameters the frame change sets in a shot: the incidence, and the frame the racquet in the hand
+/// is to the strings.
+pub const DERIVED: [ParamId; 5] = [
+    ParamId::Angle,
+    ParamId::Speed,
+    ParamId::Spin,
+    ParamId::FrameMass,
+    ParamId::FrameNormalMass,
+];
 
 /// True for a parameter the frame change sets in a shot.
 pub fn derived(id: ParamId) -> bool {
     DERIVED.contains(&id)
 }
 
-/// `params` with the incidence the strings see; an error when the racquet never meets the ball.
+/// `params` with the incidence the strings see and the frame of the racquet
+/// ([`crate::shot::strings_params`]); an error when the racquet never meets the ball.
 pub fn strings_params(params: &Params) -> Result<Params, ShotError> {
-    let incidence = shot::incidence(params)?;
-    Ok(Params {
-        angle_deg: incidence.theta1_deg,
-        speed: incidence.speed,
-        spin: incidence.spin,
-        ..*params
-    })
+    shot::strings_params(params)
 }
 
 /// Why `spec`, set by the frame change, cannot be changed in a shot; it names the shot's own
@@ -100,6 +102,19 @@ pub fn refusal(param: &ParamSpec) -> String {
         let s = spec(id);
         format!("{} {}", s.label, s.symbol)
     };
+    if matches!(param.id, ParamId::FrameMass | ParamId::FrameNormalMass) {
+        return format!(
+            "{} {} is the racquet's effective mass at the impact point in a shot: change the racquet \
+             ({}, {}, {}, {}, {})",
+            param.label,
+            param.symbol,
+            name(ParamId::RacquetMass),
+            name(ParamId::Balance),
+            name(ParamId::SwingWeight),
+            name(ParamId::TwistWeight),
+            name(ParamId::Impact),
+        );
+    }
     format!(
         "{} {} is what the strings see, set by the frame change in a shot: change the incoming ball \
          ({}, {}, {}) or the racquet ({}, {}, {})",
@@ -291,10 +306,14 @@ mod tests {
                 angle_deg: p.angle_deg,
                 speed: p.speed,
                 spin: p.spin,
+                frame_mass: p.frame_mass,
+                frame_normal_mass: p.frame_normal_mass,
                 ..derived
             },
             p
         );
+        // The strings are tied to the racquet's frame.
+        assert_eq!(derived, hit.bounce.params);
     }
 
     #[test]
@@ -342,7 +361,7 @@ mod tests {
         assert!(message.contains("m leaves it"), "{message}");
         assert_eq!(
             mode_off(&DERIVED),
-            "shot mode off: the bounce's own θ1, v1 and ω1 are back (Tab to the shot view or m turns it on again)"
+            "shot mode off: the bounce's own θ1, v1, ω1, M_t and M_n are back (Tab to the shot view or m turns it on again)"
         );
     }
 }
