@@ -43,7 +43,8 @@ use ratatui::widgets::canvas::{Canvas, Circle, Context, Line as Segment};
 use ratatui::widgets::{Block, Widget};
 
 use super::charts::fixed;
-use crate::model::PhaseKind;
+use crate::model::quadrature::integrate;
+use crate::model::{Bounce, PhaseKind};
 use crate::tui::app::App;
 use crate::tui::solved::Solved;
 
@@ -88,8 +89,10 @@ pub struct Scene {
     /// The cart's left and right edges and its height (its top is y = 0).
     pub cart: (f64, f64),
     pub cart_height: f64,
-    /// The wall the spring is fixed to.
+    /// The wall the spring is fixed to, or the free frame (the racquet in the hand), moved as the cart is.
     pub wall: f64,
+    /// True when the spring's end is a free frame: drawn moving, without the wall's hatching.
+    pub frame_free: bool,
     /// With a chain of N > 1 masses, masses 2 to N (left and right edges, at rest), from the one next to
     /// the cart to the one next to the wall; empty for the single cart.
     pub links: Vec<(f64, f64)>,
@@ -105,6 +108,25 @@ pub struct Scene {
     /// The region the picture needs, before it is widened to the panel's shape.
     pub x_bounds: [f64; 2],
     pub y_bounds: [f64; 2],
+}
+
+/// How far the free frame has moved along the surface by `t`, m: the integral of its velocity over the
+/// phases (0 on a clamped frame).
+fn frame_travel(bounce: &Bounce, t: f64) -> f64 {
+    if bounce.setup.frame_mass.is_none() {
+        return 0.0;
+    }
+    bounce
+        .phases
+        .iter()
+        .filter(|p| p.start < t)
+        .map(|p| {
+            // Panels a radian of the phase's fastest swing wide, at most a tenth of the phase.
+            let panel = (1.0 / p.fastest(&bounce.setup)).min(0.1 * p.duration());
+            let velocity = |s: f64| p.motion().frame_velocity(&bounce.setup, s);
+            integrate(velocity, p.start, p.end.min(t), panel)
+        })
+        .sum()
 }
 
 /// The 1-2-5 values: ..., 0.5, 1, 2, 5, 10, ...
@@ -160,7 +182,10 @@ impl Scene {
 
         let centre = (travel * 1e3, r);
         let mark = (centre.0 + r * angle.sin(), centre.1 + r * angle.cos());
-        let shift = x_scale * sample.x * 1e3;
+        // A free frame carries the spring's end, and the cart with it (its x is the stretch).
+        let frame_shift = x_scale * frame_travel(bounce, app.cursor) * 1e3;
+        let frame_reach = x_scale * frame_travel(bounce, bounce.setup.duration).max(0.0) * 1e3;
+        let shift = frame_shift + x_scale * sample.x * 1e3;
         let rest_left = travel_min * 1e3 - CART_OVERHANG * r;
         let rest_right = travel_max * 1e3 + CART_OVERHANG * r;
         // The room the cart's spring needs beside its shortest length as drawn, so that it keeps that
@@ -193,7 +218,8 @@ impl Scene {
             mark,
             cart: (rest_left + shift, rest_right + shift),
             cart_height: CART_HEIGHT * r,
-            wall,
+            wall: wall + frame_shift,
+            frame_free: bounce.setup.frame_mass.is_some(),
             links,
             x_scale,
             force: sample.friction,
@@ -202,7 +228,7 @@ impl Scene {
             kind: sample.kind,
             x_bounds: [
                 wall - 0.25 * r,
-                rest_right + x_scale * x_high.max(0.0) * 1e3 + 0.1 * r,
+                rest_right + x_scale * x_high.max(0.0) * 1e3 + frame_reach + 0.1 * r,
             ],
             y_bounds: [-(CART_HEIGHT + 0.15) * r, 2.1 * r],
         }
@@ -285,7 +311,7 @@ fn paint(ctx: &mut Context, scene: &Scene, app: &App, x_bounds: [f64; 2], dot: (
     ctx.draw(&Segment::new(scene.wall, -h, scene.wall, wall_top, guide));
     let hatch = 0.2 * r;
     let mut y = -h;
-    while y + hatch <= wall_top {
+    while !scene.frame_free && y + hatch <= wall_top {
         ctx.draw(&Segment::new(
             scene.wall,
             y + hatch,
@@ -458,6 +484,23 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::{Params, solve};
+
+    #[test]
+    fn the_free_frame_travels_at_its_velocity_and_a_clamped_one_stays() {
+        let free = solve(&Params {
+            frame_mass: 0.188,
+            frame_normal_mass: 0.181,
+            ..Params::default()
+        })
+        .unwrap();
+        let t = free.setup.duration;
+        let h = 1e-7;
+        let rate = (frame_travel(&free, t) - frame_travel(&free, t - h)) / h;
+        assert!((rate - free.frame_velocity()).abs() < 1e-4 * free.frame_velocity().abs());
+        assert!(frame_travel(&free, t) > 0.0);
+        assert_eq!(frame_travel(&solve(&Params::default()).unwrap(), t), 0.0);
+    }
 
     #[test]
     fn nice_values() {
