@@ -86,7 +86,7 @@ fn bench(c: &mut Criterion) {
     let table = include_str!("../assets/data/twu-string-movement-and-spin.csv");
     let strings = data::parse_with(table, "twu", &layout).unwrap();
     let grouped = free::parse_lists("", "cart-friction", &strings.conditions, 3).unwrap();
-    let polyester = snapback::scenario::preset("polyester-strings")
+    let polyester = snapback::config::preset("polyester-strings")
         .unwrap()
         .apply(Params::default());
     group.bench_function("strings_grouped_by_material", |b| {
