@@ -102,7 +102,7 @@ pub fn row(
     })
 }
 
-/// How [`write`] lays the rows out.
+/// How [`write()`] lays the rows out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Layout {
     /// A header line, then one line per row; an undefined `ex` is an empty field.
@@ -128,7 +128,7 @@ const BLOCK: usize = 1 << 16;
 /// Rows formatted per chunk on all cores.
 const CHUNK: usize = 4096;
 
-/// Solves the sweep and writes it as CSV with a header; see [`write`].
+/// Solves the sweep and writes it as CSV with a header; see [`write()`].
 pub fn write_csv(
     out: &mut impl Write,
     base: &Params,

@@ -16,7 +16,7 @@ pub mod frame;
 use nalgebra::Vector2;
 
 use crate::model::{Bounce, Params, SolveError, solve};
-use crate::scenario;
+use crate::config;
 use aero::{Air, Projectile};
 use court::{BASELINE_X, NET_HEIGHT, NET_X};
 use flight::{Hit, Point, Stop, TooLong, fly};
@@ -29,7 +29,7 @@ pub const BASE_PRESET: &str = "topspin-forehand";
 /// mode): the defaults with the [`BASE_PRESET`] applied (the paper's e_y = 1 would be a racquet that
 /// returns every bit of the ball's normal speed).
 pub fn base() -> Params {
-    scenario::preset(BASE_PRESET)
+    config::preset(BASE_PRESET)
         .expect("the base preset is compiled in")
         .apply(Params::default())
 }

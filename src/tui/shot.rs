@@ -280,11 +280,11 @@ impl Shots {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario;
+    use crate::config;
 
     #[test]
     fn the_strings_see_what_snapback_shot_says() {
-        let p = scenario::preset("topspin-forehand")
+        let p = config::preset("topspin-forehand")
             .unwrap()
             .apply(Params::default());
         let derived = strings_params(&p).unwrap();

@@ -6,8 +6,9 @@ use std::path::{Path, PathBuf};
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
 use ratatui::Terminal;
 use ratatui::backend::TestBackend;
+use snapback::config::preset;
 use snapback::model::{ParamId, Params, solve};
-use snapback::scenario::{PRESETS, Scenario, preset};
+use snapback::scenario::{PRESETS, Scenario};
 use snapback::tui::app::Tone;
 use snapback::tui::theme::Theme;
 use snapback::tui::{App, Mode, Scripted, keys, run};
@@ -410,7 +411,7 @@ fn reset_goes_back_to_where_the_explorer_started() {
     );
     assert_eq!(app.params, light);
     // r resets the selected parameter to its starting value, too.
-    let mut events = vec![char('k'); 5]; // from the speed, round to the cart mass
+    let mut events = vec![char('k'); 7]; // from the speed, round past the frame and the chain to the cart mass
     events.extend([char('L'), char('r')]);
     drive(&mut app, 80, 24, events);
     assert_eq!(app.selected_spec().id, ParamId::CartMass);

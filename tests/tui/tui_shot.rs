@@ -34,7 +34,9 @@ fn tabs(n: usize) -> Vec<Event> {
 
 /// The parameters of a preset, as the explorer's picker and `--preset` give them.
 fn preset(name: &str) -> Params {
-    scenario::preset(name).unwrap().apply(Params::default())
+    snapback::config::preset(name)
+        .unwrap()
+        .apply(Params::default())
 }
 
 /// `app` after `events` on a `width` x `height` screen, and the terminal.
@@ -497,7 +499,11 @@ fn a_file_listing_the_shot_keys_at_their_defaults_is_a_bounce() {
     };
     let every_key = scenario::Scenario::from_params("old", "saved before shot mode", &p);
     assert!(!every_key.is_shot());
-    assert!(scenario::preset("topspin-forehand").unwrap().is_shot());
+    assert!(
+        snapback::config::preset("topspin-forehand")
+            .unwrap()
+            .is_shot()
+    );
     let dir = std::env::temp_dir().join(format!("snapback-tui-shot-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("old.toml");
