@@ -559,7 +559,10 @@ fn tab_from_the_default_bounce_plays_the_shot_snapback_shot_plays() {
     }
     // The hint line names m, and offers play (the flight) but not the contact's time keys.
     let hints = screen.lines().last().unwrap();
-    assert!(hints.contains("m shot off") && hints.contains("␣ play"), "{hints}");
+    assert!(
+        hints.contains("m shot off") && hints.contains("␣ play"),
+        "{hints}"
+    );
     for absent in ["[] time", "{} phase", "+- speed"] {
         assert!(!hints.contains(absent), "{absent} in {hints}");
     }

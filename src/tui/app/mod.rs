@@ -570,6 +570,16 @@ impl App {
                 let mut params = self.params;
                 params.set(spec.id, value);
                 self.try_apply(params);
+                // A bare number far outside the usual range gets the command line's note, unless
+                // the value was refused.
+                if self.message.is_none()
+                    && let Some(note) = spec.bare_note(spec.label, &text)
+                {
+                    self.message = Some(Message {
+                        text: format!("note: {note}"),
+                        tone: Tone::Info,
+                    });
+                }
             }
             // The core names the command-line flag; the panel's name is what the user sees here.
             Err(e) => self.refuse(e.to_string().replace(
