@@ -2,13 +2,15 @@
 //! for a free cart (Ω = 0) and at resonance with the normal force (Ω = π/T), where the textbook formulas
 //! divide by zero.
 
+use super::trig::{sin, sin_cos};
+
 /// sin(x)/x, with its Taylor series near 0.
 #[inline]
 pub fn sinc(x: f64) -> f64 {
     if x.abs() < 1e-4 {
         1.0 - x * x / 6.0
     } else {
-        x.sin() / x
+        sin(x) / x
     }
 }
 
@@ -16,7 +18,7 @@ pub fn sinc(x: f64) -> f64 {
 /// `X = X0 + V0 τ`).
 #[inline]
 pub fn free(x0: f64, v0: f64, omega: f64, tau: f64) -> (f64, f64) {
-    let (s, c) = (omega * tau).sin_cos();
+    let (s, c) = sin_cos(omega * tau);
     free_given(x0, v0, omega, tau, s, c)
 }
 
@@ -80,9 +82,9 @@ pub fn sin_over(sin_omega_tau: f64, omega: f64, tau: f64) -> f64 {
 pub fn forced(omega: f64, w: f64, sin_wt0: f64, cos_wt0: f64, tau: f64) -> (f64, f64) {
     let sum = w + omega;
     let half = 0.5 * sum * tau;
-    let (sin_half, cos_half) = half.sin_cos();
+    let (sin_half, cos_half) = sin_cos(half);
     let beat = sinc(0.5 * (w - omega) * tau);
-    let sin_omega_tau = (omega * tau).sin();
+    let sin_omega_tau = sin(omega * tau);
     let g =
         tau / sum * (sin_wt0 * sin_half * beat + cos_wt0 * (sinc(omega * tau) - cos_half * beat));
     let dg = (w * cos_wt0 * tau * sin_half * beat

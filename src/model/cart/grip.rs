@@ -3,6 +3,7 @@
 use super::super::contact::Cart;
 use super::super::oscillator::{free, step};
 use super::super::setup::{Setup, State};
+use super::super::trig::sin_cos;
 
 /// A grip phase from `start`.
 #[derive(Clone, Copy, Debug)]
@@ -42,7 +43,7 @@ impl Grip {
         let (mut x, mut v) = free(s0.x, s0.v, omega, tau);
         let push = self.push(setup);
         if push != 0.0 {
-            let (s, c) = (omega * tau).sin_cos();
+            let (s, c) = sin_cos(omega * tau);
             let (x_push, v_push) = step(s, c, omega, tau);
             x += push * x_push;
             v += push * v_push;

@@ -3,6 +3,7 @@
 use super::super::contact::Cart;
 use super::super::oscillator::{detuned, forced, free, free_given, step};
 use super::super::setup::{Setup, State};
+use super::super::trig::sin_cos;
 
 /// A sliding phase from `start`, with the slip's sign `dir` (+1: the contact point moves forward
 /// relative to the cart and the friction on the ball, F = dir mu N, acts backward).
@@ -35,7 +36,7 @@ const DETUNED_GAIN: f64 = 16.0;
 
 impl Slide {
     pub fn new(setup: &Setup, start: State, dir: f64, cart: Cart) -> Self {
-        let (sin_wt0, cos_wt0) = (setup.w * start.t).sin_cos();
+        let (sin_wt0, cos_wt0) = sin_cos(setup.w * start.t);
         let (w, omega) = (setup.w, setup.omega_slide);
         let amplitude = dir * setup.peak_friction() / (setup.cart_mass * (omega * omega - w * w));
         let speeds = start.vx.abs() + setup.r * start.omega.abs() + start.v.abs();
@@ -77,7 +78,7 @@ impl Slide {
         let tau = t - s0.t;
         let (w, omega) = (setup.w, setup.omega_slide);
         let force_amplitude = self.dir * setup.peak_friction();
-        let (sin_w_tau, cos_w_tau) = (w * tau).sin_cos();
+        let (sin_w_tau, cos_w_tau) = sin_cos(w * tau);
         let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
         // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
         let impulse =
@@ -85,7 +86,7 @@ impl Slide {
         let (x, v) = match self.response {
             CartResponse::Detuned { amplitude } => {
                 // Free response from the start state, plus A (sin w t - its free continuation from t0).
-                let (s, c) = (omega * tau).sin_cos();
+                let (s, c) = sin_cos(omega * tau);
                 let (x_free, v_free) = free_given(s0.x, s0.v, omega, tau, s, c);
                 let phase0 = (self.sin_wt0, self.cos_wt0);
                 let (x_forced, v_forced) =
@@ -103,7 +104,7 @@ impl Slide {
                 let (s, c) = if self.push == 0.0 {
                     (0.0, 1.0)
                 } else {
-                    (omega * tau).sin_cos()
+                    sin_cos(omega * tau)
                 };
                 let (x_push, v_push) = self.push_response(s, c, omega, tau);
                 (x_free + drive * g + x_push, v_free + drive * dg + v_push)

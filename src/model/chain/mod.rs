@@ -218,6 +218,11 @@ impl PhaseMotion for Motion {
     fn dashpot_loss(&self, _: &Setup, _: f64, _: f64) -> f64 {
         0.0
     }
+
+    /// The strings are tied to a clamped frame.
+    fn frame_velocity(&self, _: &Setup, _: f64) -> f64 {
+        0.0
+    }
 }
 
 /// The rigid ball on a chain of `params.chain` masses, for any N including 1 (where it reproduces the

@@ -9,6 +9,7 @@ use std::sync::Arc;
 use super::super::contact::Cart;
 use super::super::oscillator::{detuned, forced, free, free_given, step};
 use super::super::setup::{Setup, State};
+use super::super::trig::sin_cos;
 use super::modes::{MAX, Modes};
 use super::{Chain, ChainState};
 
@@ -70,7 +71,7 @@ impl Motion {
         dir: f64,
         cart: Cart,
     ) -> Motion {
-        let (sin_wt0, cos_wt0) = (setup.w * start.t).sin_cos();
+        let (sin_wt0, cos_wt0) = sin_cos(setup.w * start.t);
         if cart == Cart::Stuck {
             return Motion::held(chain, start, dir, (sin_wt0, cos_wt0));
         }
@@ -169,7 +170,7 @@ impl Motion {
         let (sin_w_tau, cos_w_tau) = if self.is_grip() {
             (0.0, 1.0)
         } else {
-            (w * tau).sin_cos()
+            sin_cos(w * tau)
         };
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         for j in 0..modes.n {
@@ -178,7 +179,7 @@ impl Motion {
             (q[j], dq[j]) = match self.response[j] {
                 Response::Free => free(x0, v0, omega, tau),
                 Response::Detuned { amplitude } => {
-                    let (s, c) = (omega * tau).sin_cos();
+                    let (s, c) = sin_cos(omega * tau);
                     let (x_free, v_free) = free_given(x0, v0, omega, tau, s, c);
                     let phase0 = (self.sin_wt0, self.cos_wt0);
                     let (x_forced, v_forced) =
@@ -196,7 +197,7 @@ impl Motion {
             // The string friction switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω².
             for j in 0..modes.n {
                 let omega = modes.omega[j];
-                let (s, c) = (omega * tau).sin_cos();
+                let (s, c) = sin_cos(omega * tau);
                 let (x_step, v_step) = step(s, c, omega, tau);
                 let drive = modes.shape[0][j] * self.push;
                 q[j] += drive * x_step;
@@ -275,7 +276,7 @@ impl Motion {
         let (impulse, friction) = if self.is_grip() {
             (0.0, 0.0)
         } else {
-            let (sin_w_tau, cos_w_tau) = (setup.w * (t - s0.t)).sin_cos();
+            let (sin_w_tau, cos_w_tau) = sin_cos(setup.w * (t - s0.t));
             self.sliding(setup, sin_w_tau, cos_w_tau)
         };
         Contact {

@@ -11,6 +11,7 @@
 
 use nalgebra::{Complex, Matrix4, Matrix5, RowVector4, Vector4, Vector5};
 
+use super::super::trig::sin_cos;
 use super::Point;
 use crate::model::contact::Cart;
 use crate::model::params::Params;
@@ -261,7 +262,7 @@ impl Free {
         let (a, d2) = (self.a, self.d2);
         let (psi, phi) = if d2 < 0.0 {
             let w = (-d2).sqrt();
-            let (s, c) = (w * tau).sin_cos();
+            let (s, c) = sin_cos(w * tau);
             let decay = (-a * tau).exp();
             (decay * c, decay * s / w)
         } else {
@@ -399,7 +400,7 @@ enum Drive {
 /// Re(e^x - 1) = (e^a - 1) cos b - (1 - cos b), with 1 - cos b = sin² b / (1 + cos b) where cos b > 0.
 #[inline]
 pub(super) fn exp_and_m1(x: Complex<f64>) -> (Complex<f64>, Complex<f64>) {
-    let (sin, cos) = x.im.sin_cos();
+    let (sin, cos) = sin_cos(x.im);
     let size = x.re.exp();
     let versine = if cos > 0.0 {
         sin * sin / (1.0 + cos)

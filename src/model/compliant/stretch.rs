@@ -1,5 +1,6 @@
 //! The stretch of the compliant ball's spring while it slides, in closed form.
 
+use super::super::trig::sin_cos;
 use super::BallSpring;
 use crate::model::setup::Setup;
 
@@ -30,7 +31,7 @@ impl Stretch {
             let lambda = c.kb / c.cb;
             let w = setup.w;
             let amplitude = force / (c.cb * (lambda * lambda + w * w));
-            let (s, co) = (w * t0).sin_cos();
+            let (s, co) = sin_cos(w * t0);
             let p0 = amplitude * (lambda * s - w * co);
             Stretch {
                 t0,
@@ -53,7 +54,7 @@ impl Stretch {
     /// (e, e', e'') at `t`.
     #[inline]
     pub(super) fn at(&self, w: f64, t: f64) -> (f64, f64, f64) {
-        let (s, co) = (w * t).sin_cos();
+        let (s, co) = sin_cos(w * t);
         if self.damped {
             let l = self.lambda;
             let decay = self.transient * (-l * (t - self.t0)).exp();

@@ -34,6 +34,7 @@
 
 use std::sync::{Arc, Mutex, OnceLock};
 
+use super::super::trig::sin_cos;
 use nalgebra::{Cholesky, Complex, DMatrix, DVector};
 
 mod coefficients;
@@ -409,7 +410,7 @@ impl ChainGrip {
 /// e^z, with one `sin_cos` (num_complex calls `sin` and `cos` apart).
 #[inline]
 fn exp(z: C64) -> C64 {
-    let (sin, cos) = z.im.sin_cos();
+    let (sin, cos) = sin_cos(z.im);
     let size = z.re.exp();
     C64::new(size * cos, size * sin)
 }
