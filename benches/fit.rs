@@ -26,6 +26,7 @@ fn data() -> Dataset {
         for i in 0..20 {
             let mut row = Row {
                 line: rows.len() + 2,
+                group: None,
                 conditions: vec![
                     (ParamId::Angle, 10.0 + 4.0 * f64::from(i)),
                     (ParamId::Spin, spin),
@@ -46,6 +47,7 @@ fn data() -> Dataset {
         rows,
         conditions: vec![ParamId::Angle, ParamId::Spin],
         absolute_sigma: true,
+        groups: Vec::new(),
     }
 }
 

@@ -35,6 +35,7 @@ fn synthetic(seed: u64, with_sigma: bool) -> Dataset {
             let conditions = vec![(ParamId::Angle, angle), (ParamId::Spin, spin)];
             let row = Row {
                 line: rows.len() + 2,
+                group: None,
                 conditions,
                 measured: Vec::new(),
             };
@@ -54,6 +55,7 @@ fn synthetic(seed: u64, with_sigma: bool) -> Dataset {
         rows,
         conditions: vec![ParamId::Angle, ParamId::Spin],
         absolute_sigma: with_sigma,
+        groups: Vec::new(),
     }
 }
 
