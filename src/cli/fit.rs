@@ -8,7 +8,6 @@ use serde_json::{Map, Value, json};
 
 use super::{Failure, ParamArgs, emit};
 use crate::analysis::fit::{self, Fit, Fitted, Options, Verdict, data, free, shown};
-use crate::config;
 use crate::input;
 use crate::model::params::{Bound, ParamId, spec};
 use crate::model::{Params, units};
@@ -125,12 +124,13 @@ fn source(args: &ParamArgs, id: ParamId) -> String {
         return format!("from --{}", spec(id).flag);
     }
     if let Some(path) = &args.scenario
-        && (input::is_stdin(path) || Scenario::load(path).is_ok_and(|s| s.values.contains_key(key)))
+        && (input::is_stdin(path)
+            || Scenario::load(path).is_ok_and(|s| s.values.contains_key(key)))
     {
         return format!("from the scenario {}", path.display());
     }
     if let Some(name) = &args.preset
-        && config::preset(name).is_ok_and(|s| s.values.contains_key(key))
+        && crate::config::preset(name).is_ok_and(|s| s.values.contains_key(key))
     {
         return format!("from the preset {name}");
     }
@@ -333,7 +333,12 @@ fn differ(f: &Fitted) -> bool {
 }
 
 /// The fit as text in the explorer's units.
-pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Intervals) -> String {
+pub fn table(
+    fit: &Fit,
+    data: &data::Dataset,
+    sources: &[String],
+    intervals: Intervals,
+) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -411,11 +416,7 @@ pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Int
             );
         }
     }
-    if fit
-        .free
-        .iter()
-        .any(|f| f.poorly_determined() && f.stderr.is_some())
-    {
+    if fit.free.iter().any(|f| f.poorly_determined() && f.stderr.is_some()) {
         let _ = writeln!(
             out,
             "  poorly determined: the data allow the parameter to reach an end of its range (open)"
@@ -471,17 +472,10 @@ pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Int
             .zip(&rival.values)
             .map(|(f, &v)| {
                 let s = spec(f.id);
-                let group = f
-                    .group
-                    .map_or(String::new(), |g| format!("[{}]", fit.groups[g]));
-                format!(
-                    "{}{group} {} {}",
-                    s.symbol,
-                    shown(f.id, v, f.stderr),
-                    s.display_unit
-                )
-                .trim_end()
-                .to_string()
+                let group = f.group.map_or(String::new(), |g| format!("[{}]", fit.groups[g]));
+                format!("{}{group} {} {}", s.symbol, shown(f.id, v, f.stderr), s.display_unit)
+                    .trim_end()
+                    .to_string()
             })
             .collect();
         let _ = writeln!(
