@@ -192,7 +192,13 @@ fn blessed(text: &str, blocks: &[Vec<Capture>], stale: &[(usize, Vec<String>, St
         let first = capture.line; // the line after the command, 0-based
         let shown: Vec<String> = actual
             .iter()
-            .map(|l| format!("{}{l}", capture.indent).trim_end().to_string())
+            .map(|l| {
+                if l.is_empty() {
+                    String::new()
+                } else {
+                    format!("{}{l}", capture.indent)
+                }
+            })
             .collect();
         lines.splice(first..first + capture.expected.len(), shown);
     }
