@@ -11,6 +11,7 @@ mod support {
     pub mod compliant_integrator;
     pub mod cpu;
     pub mod flight;
+    pub mod frame_integrator;
     pub mod integrator;
     pub mod prop;
     pub mod rng;
@@ -24,6 +25,7 @@ mod chain_string;
 mod compliant;
 mod compliant_string;
 mod critical;
+mod frame;
 mod golden;
 mod numerical;
 mod paper;
