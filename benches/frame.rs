@@ -14,7 +14,6 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use snapback::model::Params;
 use snapback::model::params::{PARAMS, ParamId};
-use snapback::scenario;
 use snapback::tui::theme::Theme;
 use snapback::tui::{Action, App, View, draw, keys, playback};
 
@@ -76,7 +75,7 @@ fn shot_keystroke_to_frame(c: &mut Criterion) {
     let right = KeyEvent::new(KeyCode::Right, KeyModifiers::NONE);
     let left = KeyEvent::new(KeyCode::Left, KeyModifiers::NONE);
     let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
-    let params = scenario::preset("topspin-forehand")
+    let params = snapback::config::preset("topspin-forehand")
         .unwrap()
         .apply(Params::default());
     let mut app = App::new(params, Theme::default()).unwrap();

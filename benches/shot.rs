@@ -6,13 +6,12 @@ use std::hint::black_box;
 
 use criterion::{Criterion, criterion_group, criterion_main};
 use snapback::model::Params;
-use snapback::scenario;
 use snapback::shot::play;
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("shot");
     for name in ["topspin-forehand", "flat-drive", "slice", "kick-serve"] {
-        let params = scenario::preset(name)
+        let params = snapback::config::preset(name)
             .expect("shot preset")
             .apply(Params::default());
         let shot = play(&params, false).expect("the preset plays");

@@ -136,6 +136,25 @@ pub fn parse(text: &str, origin: &str) -> Result<Config, ScenarioError> {
     })
 }
 
+/// The preset called `name`: a built-in one, or one of the user's (see [`user_presets`]). A user's
+/// file that takes a built-in name is refused, naming the file.
+pub fn preset(name: &str) -> Result<Scenario, ScenarioError> {
+    let user = user_preset(name)?;
+    if let Some(builtin) = PRESETS.iter().find(|p| p.name == name) {
+        return Ok(builtin.scenario());
+    }
+    user.ok_or_else(|| {
+        let mut known: Vec<String> = PRESETS.iter().map(|p| p.name.to_string()).collect();
+        if let Ok(users) = user_presets() {
+            known.extend(users.into_iter().map(|u| u.scenario.name));
+        }
+        ScenarioError::UnknownPreset {
+            name: name.to_string(),
+            known: known.join(", "),
+        }
+    })
+}
+
 /// A preset from the user's folder.
 #[derive(Clone, Debug)]
 pub struct UserPreset {

@@ -12,11 +12,14 @@ fn main() -> ExitCode {
             ExitCode::SUCCESS
         }
         Err(e) => {
-            let _ = writeln!(
-                std::io::stderr(),
-                "{} (see --help)",
-                one_line(&e.render().to_string())
-            );
+            let args: Vec<String> = std::env::args_os()
+                .map(|a| a.to_string_lossy().into_owned())
+                .collect();
+            let message = match snapback::cli::spaced_unit(&args) {
+                Some(remedy) => format!("error: {remedy}"),
+                None => format!("{} (see --help)", one_line(&e.render().to_string())),
+            };
+            let _ = writeln!(std::io::stderr(), "{message}");
             ExitCode::from(2)
         }
     }

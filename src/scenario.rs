@@ -79,25 +79,6 @@ impl Preset {
     }
 }
 
-/// The preset called `name`: a built-in one, or one of the user's (see [`crate::config`]). A user's
-/// file that takes a built-in name is refused, naming the file.
-pub fn preset(name: &str) -> Result<Scenario, ScenarioError> {
-    let user = crate::config::user_preset(name)?;
-    if let Some(builtin) = PRESETS.iter().find(|p| p.name == name) {
-        return Ok(builtin.scenario());
-    }
-    user.ok_or_else(|| {
-        let mut known: Vec<String> = PRESETS.iter().map(|p| p.name.to_string()).collect();
-        if let Ok(users) = crate::config::user_presets() {
-            known.extend(users.into_iter().map(|u| u.scenario.name));
-        }
-        ScenarioError::UnknownPreset {
-            name: name.to_string(),
-            known: known.join(", "),
-        }
-    })
-}
-
 /// Why a scenario cannot be used. Errors in a file name the file, the line and the key.
 #[derive(Debug, thiserror::Error)]
 pub enum ScenarioError {
@@ -149,6 +130,36 @@ pub(crate) fn key_at(text: &str, offset: usize) -> Option<&str> {
     (!key.is_empty() && key.len() <= 64).then_some(key)
 }
 
+/// The parameter key a misspelt `name` most likely means: the nearest key or flag, at most two edits
+/// away (or one for a name of four letters or fewer), case and `-`/`_` aside.
+fn nearest_key(name: &str) -> Option<&'static str> {
+    let wanted = name.to_lowercase().replace('-', "_");
+    let limit = if wanted.chars().count() <= 4 { 1 } else { 2 };
+    PARAMS
+        .iter()
+        .map(|s| (edits(&wanted, s.key), s.key))
+        .filter(|&(d, _)| d <= limit)
+        .min_by_key(|&(d, _)| d)
+        .map(|(_, key)| key)
+}
+
+/// The Levenshtein distance between `a` and `b`: the fewest insertions, deletions and substitutions of
+/// one character that turn one into the other.
+fn edits(a: &str, b: &str) -> usize {
+    let b: Vec<char> = b.chars().collect();
+    let mut row: Vec<usize> = (0..=b.len()).collect();
+    for (i, ca) in a.chars().enumerate() {
+        let mut diagonal = row[0];
+        row[0] = i + 1;
+        for (j, &cb) in b.iter().enumerate() {
+            let substitution = diagonal + usize::from(ca != cb);
+            diagonal = row[j + 1];
+            row[j + 1] = substitution.min(row[j] + 1).min(diagonal + 1);
+        }
+    }
+    row[b.len()]
+}
+
 /// 1-based line of byte `offset` in `text`.
 pub(crate) fn line_of(text: &str, offset: usize) -> usize {
     1 + text[..offset.min(text.len())]
@@ -177,14 +188,30 @@ impl Scenario {
         let mut values = BTreeMap::new();
         for (key, value) in &raw.params {
             let name = key.get_ref().as_str();
-            let spec = spec_named(name).filter(|s| s.key == name).ok_or_else(|| {
+            // The key (`cart_mass`) or the flag's spelling (`cart-mass`), as in a data file's header.
+            let spec = spec_named(name).ok_or_else(|| {
                 let known: Vec<&str> = PARAMS.iter().map(|s| s.key).collect();
+                let hint =
+                    nearest_key(name).map_or(String::new(), |k| format!("; did you mean '{k}'?"));
                 invalid(
                     key.span().start,
                     Some(name),
-                    format!("unknown parameter '{name}' (known: {})", known.join(", ")),
+                    format!(
+                        "unknown parameter '{name}'{hint} (known: {})",
+                        known.join(", ")
+                    ),
                 )
             })?;
+            if values.contains_key(spec.key) {
+                return Err(invalid(
+                    key.span().start,
+                    Some(name),
+                    format!(
+                        "{name}: {} is given twice (as {} and {})",
+                        spec.key, spec.key, spec.flag
+                    ),
+                ));
+            }
             let text_value = match value.get_ref() {
                 toml::Value::String(s) => s.clone(),
                 toml::Value::Integer(i) => i.to_string(),
@@ -339,6 +366,30 @@ mod tests {
                 p.name
             );
         }
+    }
+
+    #[test]
+    fn a_key_takes_the_flag_spelling_and_a_near_miss_gets_a_suggestion() {
+        let both = Scenario::parse(
+            "[params]\ncart-mass = \"1 g\"\nball_stiffness = 1e6\n",
+            "s.toml",
+        );
+        let both = both.unwrap();
+        assert_eq!(both.values.get("cart_mass"), Some(&1e-3));
+        assert_eq!(both.values.get("ball_stiffness"), Some(&1e6));
+        let near = |text: &str| Scenario::parse(text, "s.toml").unwrap_err().to_string();
+        let e = near("[params]\ncart_mas = 1\n");
+        assert!(
+            e.starts_with(
+                "s.toml:2: unknown parameter 'cart_mas'; did you mean 'cart_mass'? (known: "
+            ),
+            "{e}"
+        );
+        assert!(near("[params]\nAngel = 1\n").contains("did you mean 'angle'?"));
+        assert!(near("[params]\nball-stifness = 1\n").contains("did you mean 'ball_stiffness'?"));
+        assert!(!near("[params]\nfriction = 1\n").contains("did you mean"));
+        let e = near("[params]\ncart-mass = 1\ncart_mass = 2\n");
+        assert!(e.contains("cart_mass is given twice"), "{e}");
     }
 
     #[test]

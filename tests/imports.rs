@@ -288,8 +288,6 @@ fn the_core_and_the_analysis_have_no_import_circle() {
 }
 
 #[test]
-#[ignore = "until the explorer's circles (src/tui) and config.rs <-> scenario.rs are broken (issue 24 \
-            item 2, in progress on other branches)"]
 fn no_file_under_src_is_in_an_import_circle() {
     let found = circles_among(|_| true);
     assert!(found.is_empty(), "import circles: {found:?}");

@@ -102,7 +102,7 @@ pub fn row(
     })
 }
 
-/// How [`write`] lays the rows out.
+/// How [`write()`] lays the rows out.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Layout {
     /// A header line, then one line per row; an undefined `ex` is an empty field.
@@ -131,7 +131,7 @@ const CHUNK: usize = 256;
 /// The usual length of a CSV line, for the chunk's first allocation.
 const LINE: usize = 128;
 
-/// Solves the sweep and writes it as CSV with a header; see [`write`].
+/// Solves the sweep and writes it as CSV with a header; see [`write()`].
 pub fn write_csv(
     out: &mut impl Write,
     base: &Params,

@@ -12,8 +12,8 @@ use super::brent;
 /// Samples of the dense scan that [`peak`] refines.
 const SCAN: usize = 2001;
 
-/// Scan points per period of the surface's fastest swing in [`travel`]: a sinusoid's sampled maximum is
-/// then within 1 - cos(pi/16) = 2% of its true one, inside the margin [`NEAR`] keeps for refinement.
+/// Scan points per period of a phase's fastest swing in [`travel`]: a sinusoid's sampled maximum is then
+/// within 1 - cos(pi/16) = 2% of its true one, inside the margin [`NEAR`] keeps for refinement.
 const PER_PERIOD: f64 = 16.0;
 
 /// Scanned local maxima at least this fraction of the best so far are refined.
@@ -39,7 +39,7 @@ pub struct Travel {
 }
 
 /// The cart's largest |X| and |V| over the contact, from the phases' closed forms: extrema to rounding
-/// (see [`largest`]), not the largest of a set of samples.
+/// (see `largest`), not the largest of a set of samples.
 pub fn travel(b: &Bounce) -> Travel {
     let (peak_x_at, peak_x) = largest(b, |s| s.x.abs());
     let (peak_v_at, peak_v) = largest(b, |s| s.v.abs());
@@ -53,9 +53,10 @@ pub fn travel(b: &Bounce) -> Travel {
 
 /// The largest value of `f` of the state over the contact and when, `(t, value)`. `f` need only be
 /// continuous within each phase. Each phase is scanned at [`PER_PERIOD`] points per period of the
-/// fastest swing in that phase, as its model answers ([`crate::model::Phase::fastest`]); its ends are candidates, and every scanned local maximum
-/// (an end too) within [`NEAR`] of the best so far is refined by Brent's method between its scanned
-/// neighbours to a relative 1e-12 in time, which puts the value at the maximum to rounding.
+/// fastest swing in that phase, as its model answers ([`crate::model::Phase::fastest`]), or of the normal
+/// force if faster; its ends are candidates, and every scanned local maximum (an end too) within [`NEAR`]
+/// of the best so far is refined by Brent's method between its scanned neighbours to a relative 1e-12 in
+/// time, which puts the value at the maximum to rounding.
 fn largest(b: &Bounce, f: impl Fn(&State) -> f64) -> (f64, f64) {
     let setup = &b.setup;
     let mut best = (0.0, f64::NEG_INFINITY);

@@ -50,6 +50,16 @@ fn describe_grip(c: Critical) -> String {
 }
 
 pub fn run(args: &CriticalAngleArgs, options: &SolveOptions) -> Result<(), Failure> {
+    if args
+        .params
+        .given
+        .iter()
+        .any(|(id, _)| *id == ParamId::Angle)
+    {
+        return Err(Failure::usage(
+            "--angle is what critical-angle finds: give the other parameters, not the incidence angle",
+        ));
+    }
     let params = args
         .params
         .apply(Params::default())

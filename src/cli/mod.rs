@@ -23,7 +23,7 @@ use clap::{Parser, Subcommand};
 use crate::model::budget::COMMAND_WORK;
 use crate::model::{SolveOptions, Work};
 
-pub use params_args::{InputError, ParamArgs, ShotParamArgs};
+pub use params_args::{InputError, ParamArgs, ShotParamArgs, spaced_unit};
 
 /// Explore a ball bouncing obliquely off a surface that can move sideways (Cross, Am. J. Phys. 78, 2010).
 #[derive(Debug, Parser)]
@@ -88,8 +88,26 @@ impl Failure {
     }
 }
 
+/// The notes on the parameter values given (a bare number far outside its usual range), for stderr.
+fn notes(cli: &Cli) -> Vec<String> {
+    match &cli.command {
+        Some(Commands::Simulate(args)) => args.params.notes(),
+        Some(Commands::Tui(args)) => args.params.notes(),
+        Some(Commands::Sweep(args)) => args.params.notes(),
+        Some(Commands::CriticalAngle(args)) => args.params.notes(),
+        Some(Commands::Optimize(args)) => args.params.notes(),
+        Some(Commands::Reproduce(args)) => args.params.notes(),
+        Some(Commands::Figure(args)) => args.params.notes(),
+        Some(Commands::Fit(args)) => args.params.notes(),
+        Some(Commands::Shot(args)) => args.params.notes(),
+        Some(Commands::Presets(_) | Commands::Completions(_) | Commands::Man(_)) => Vec::new(),
+        None => cli.explorer.params.notes(),
+    }
+}
+
 /// Runs the parsed command line.
 pub fn run(cli: Cli) -> ExitCode {
+    let notes = notes(&cli);
     let result = match cli.command {
         Some(Commands::Simulate(args)) => headless(Work::unlimited(), |o| simulate::run(&args, o)),
         Some(Commands::Tui(args)) => tui::run(&args),
@@ -112,7 +130,13 @@ pub fn run(cli: Cli) -> ExitCode {
         None => tui::run(&cli.explorer),
     };
     match result {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => {
+            // After the output, and only when the command ran: bad input stays one line on stderr.
+            for note in notes {
+                let _ = writeln!(std::io::stderr(), "note: {note}");
+            }
+            ExitCode::SUCCESS
+        }
         Err(failure) => {
             let _ = writeln!(std::io::stderr(), "error: {}", failure.message);
             ExitCode::from(failure.status)

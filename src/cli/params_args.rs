@@ -9,9 +9,10 @@ use std::path::PathBuf;
 use clap::{Arg, ArgMatches, Args, Command, FromArgMatches};
 
 use crate::analysis::uncertainty::{Spread, UncertainError, parse_uncertain, split_uncertainty};
+use crate::config;
 use crate::model::params::{BOUNCE_PARAMS, PARAMS, ParamError, ParamId, ParamSpec, Params, spec};
 use crate::model::units;
-use crate::scenario::{self, Scenario, ScenarioError};
+use crate::scenario::{Scenario, ScenarioError};
 
 /// Which rows of the parameter table a command takes as flags.
 pub trait FlagSet: Clone + Debug + Default + Send + Sync + 'static {
@@ -78,13 +79,25 @@ impl<F: FlagSet> FlagArgs<F> {
         Ok(self.apply_uncertain(base)?.0)
     }
 
+    /// A note for each value given as a bare number far outside its parameter's usual range
+    /// ([`ParamSpec::bare_note`]): `--cart-mass 10 is read as 10 kg; write 10g for grams`.
+    pub fn notes(&self) -> Vec<String> {
+        self.given
+            .iter()
+            .filter_map(|(id, text)| {
+                let spec = spec(*id);
+                spec.bare_note(&spec.long_flag(), text)
+            })
+            .collect()
+    }
+
     /// [`ParamArgs::apply`] where a value may carry a standard uncertainty, `50±1` or `50+-1`
     /// (`-3820rpm±200`: a bare uncertainty is in the value's unit); returns the uncertain parameters with
     /// their uncertainties in the base unit.
     pub fn apply_uncertain(&self, mut base: Params) -> Result<(Params, Vec<Spread>), InputError> {
         let mut spreads = Vec::new();
         if let Some(name) = &self.preset {
-            base = scenario::preset(name)?.apply(base);
+            base = config::preset(name)?.apply(base);
         }
         if let Some(path) = &self.scenario {
             base = Scenario::load(path)?.apply(base);
@@ -180,4 +193,15 @@ impl<F: FlagSet> FromArgMatches for FlagArgs<F> {
         }
         Ok(())
     }
+}
+
+/// The remedy when a command line fails to parse because a parameter's unit was typed after a space
+/// (`--cart-mass 10 g`): `--cart-mass 10 g: write 10g, without a space`.
+pub fn spaced_unit(args: &[String]) -> Option<String> {
+    args.windows(3).find_map(|w| {
+        let flag = w[0].strip_prefix("--")?;
+        let spec = PARAMS.iter().find(|s| s.flag == flag)?;
+        let remedy = units::spaced_unit(&w[1], &w[2], spec.dimension)?;
+        Some(format!("{} {} {}: {remedy}", w[0], w[1], w[2]))
+    })
 }

@@ -75,11 +75,13 @@ pub fn run(args: &PresetsArgs) -> Result<(), Failure> {
                 let spin = if scenario.is_shot() {
                     crate::shot::play(&params, false).map_or("does not play".to_string(), |s| {
                         let l = &s.strings.leaving;
+                        let rpm = l.topspin() * 30.0 / std::f64::consts::PI;
                         format!(
-                            "shot: launch {:.1} m/s at {:.1} deg, {:.0} rpm topspin, {}",
+                            "shot: launch {:.1} m/s at {:.1} deg, {:.0} rpm {}, {}",
                             l.speed(),
                             l.angle_deg(),
-                            l.topspin() * 30.0 / std::f64::consts::PI,
+                            rpm.abs(),
+                            if rpm < 0.0 { "backspin" } else { "topspin" },
                             if s.is_in() { "in" } else { "out" }
                         )
                     })

@@ -4,9 +4,8 @@ use clap::{Args, ValueEnum};
 
 use super::{Failure, ShotParamArgs, emit};
 use crate::export;
+use crate::model::ParamId;
 use crate::model::params::{Group, ParamSpec, spec};
-use crate::model::{ParamId, Params};
-use crate::scenario;
 use crate::shot;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -31,16 +30,7 @@ pub struct ShotArgs {
     pub trajectory: bool,
 }
 
-/// The preset a shot starts from, before any preset, scenario or flag given.
-pub const BASE_PRESET: &str = "topspin-forehand";
-
-/// The parameters a shot starts from: the defaults with the [`BASE_PRESET`] applied (the paper's e_y = 1
-/// would be a racquet that returns every bit of the ball's normal speed).
-pub fn base() -> Params {
-    scenario::preset(BASE_PRESET)
-        .expect("the base preset is compiled in")
-        .apply(Params::default())
-}
+pub use crate::shot::base;
 
 /// Refuses the flags (and a varied parameter) that the frame change sets on the strings, naming the
 /// shot's own.

@@ -13,7 +13,7 @@ pub use crate::config::Theme as ThemeArg;
 use crate::config::{self, Charset};
 use crate::model::Params;
 use crate::model::params::{Group, spec};
-use crate::scenario::{self, Scenario};
+use crate::scenario::Scenario;
 use crate::tui::{self, OpenError, Options, playback};
 
 /// How the charts draw their curves.
@@ -85,7 +85,7 @@ fn start(args: &ShotParamArgs) -> Result<(Params, bool), Failure> {
         || args
             .preset
             .as_deref()
-            .is_some_and(|name| scenario::preset(name).is_ok_and(|s| s.is_shot()))
+            .is_some_and(|name| config::preset(name).is_ok_and(|s| s.is_shot()))
         || args
             .scenario
             .as_deref()

@@ -31,6 +31,12 @@ struct CartJson {
 }
 
 #[derive(Serialize)]
+struct FrameJson {
+    /// The frame's velocity along the surface at release, m/s (0 on a clamped frame).
+    v: f64,
+}
+
+#[derive(Serialize)]
 struct BounceJson<'a> {
     params: &'a Params,
     omega2: f64,
@@ -41,11 +47,14 @@ struct BounceJson<'a> {
     theta2_deg: f64,
     ex: Option<f64>,
     ey: f64,
+    /// The apparent restitution e_A on the frame (e_y on a clamped frame).
+    ey_apparent: f64,
     roll_ratio: Option<f64>,
     slides_throughout: bool,
     phase_summary: String,
     phases: Vec<PhaseJson>,
     cart: CartJson,
+    frame: FrameJson,
     energy: Energy,
 }
 
@@ -61,6 +70,7 @@ fn document(b: &Bounce) -> BounceJson<'_> {
         theta2_deg: o.theta2_deg,
         ex: o.ex,
         ey: o.ey,
+        ey_apparent: b.setup.ey_apparent,
         roll_ratio: o.roll_ratio,
         slides_throughout: b.slides_throughout(),
         phase_summary: b.phase_summary(),
@@ -79,6 +89,9 @@ fn document(b: &Bounce) -> BounceJson<'_> {
             x: b.final_state.x,
             v: b.final_state.v,
             travel: travel(b),
+        },
+        frame: FrameJson {
+            v: b.frame_velocity(),
         },
         energy: b.energy(),
     }

@@ -5,7 +5,7 @@ use std::fmt::Write;
 use crate::analysis::timeline;
 use crate::model::params::BOUNCE_PARAMS as PARAMS;
 use crate::model::units::{Dimension, show};
-use crate::model::{Bounce, Cart, PhaseKind};
+use crate::model::{Bounce, Cart, FrameKind, PhaseKind};
 
 /// Parameters, outcome, phases in ms and the energy budget, as aligned text.
 pub fn summary(b: &Bounce) -> String {
@@ -34,6 +34,9 @@ pub fn summary(b: &Bounce) -> String {
         });
     let _ = writeln!(out, "  {:<24}{ex}", "e_x");
     let _ = writeln!(out, "  {:<24}{:.2}", "e_y", o.ey);
+    if b.setup.frame_normal_mass.is_some() {
+        let _ = writeln!(out, "  {:<24}{:.4}", "apparent e_A", b.setup.ey_apparent);
+    }
     if let Some(ratio) = o.roll_ratio {
         let _ = writeln!(out, "  {:<24}{ratio:.4}", "r ω2 / v_x2");
     }
@@ -89,6 +92,13 @@ pub fn summary(b: &Bounce) -> String {
         show(b.final_state.x, Dimension::Length, "mm", 3),
         b.final_state.v
     );
+    if model.frame == FrameKind::Free {
+        let _ = writeln!(
+            out,
+            "  frame at release: V = {:.3} m/s (X above is the strings' stretch from it)",
+            b.frame_velocity()
+        );
+    }
     let travel = timeline::travel(b);
     let _ = writeln!(
         out,
@@ -112,6 +122,10 @@ pub fn summary(b: &Bounce) -> String {
     if compliant {
         rows.push(("ball's spring (k_b)", e.ball_spring));
         rows.push(("lost in dashpot (c_b)", e.dashpot_loss));
+    }
+    // A frame that is not clamped leaves moving, normal to the surface and along it.
+    if b.setup.frame_normal_mass.is_some() {
+        rows.push(("frame (kinetic)", e.frame));
     }
     for (name, joules) in rows {
         let _ = writeln!(

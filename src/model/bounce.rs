@@ -1,5 +1,5 @@
 //! A solved bounce: the phases in order, the outcome, and queries of the exact solution (samples, the
-//! time series, the ball's phases, the energy budget). Results only: the solving is [`super::solve`]'s.
+//! time series, the ball's phases, the energy budget). Results only: the solving is [`super::solve()`]'s.
 
 use serde::Serialize;
 
@@ -72,7 +72,7 @@ pub struct Bounce {
 }
 
 pub(super) fn finish(params: &Params, setup: Setup, phases: Vec<Phase>, last: State) -> Bounce {
-    let vy2 = params.ey * setup.vy1;
+    let vy2 = setup.vy2();
     let r = setup.r;
     let incoming_slip = setup.vx1 - r * params.spin;
     let scale = setup.vx1.abs() + r * params.spin.abs();
@@ -212,6 +212,14 @@ impl Bounce {
                 previous = ball;
             }
         }
+    }
+
+    /// The velocity along the surface of the frame the strings are tied to, as the ball leaves (0 on a
+    /// clamped frame).
+    pub fn frame_velocity(&self) -> f64 {
+        self.phases
+            .last()
+            .map_or(0.0, |p| p.motion().frame_velocity(&self.setup, p.end))
     }
 
     /// True when string friction holds the cart still at some time in the contact.

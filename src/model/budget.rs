@@ -11,7 +11,7 @@ use super::params::Params;
 /// seconds of work.
 const BUDGET: u64 = 12_000_000;
 
-/// The work budget of one solve: [`BUDGET`] evaluations on the single cart, fewer on a chain of N
+/// The work budget of one solve: `BUDGET` evaluations on the single cart, fewer on a chain of N
 /// masses, whose evaluations cost about (N + 1)/2 times as much.
 pub fn budget(params: &Params) -> u64 {
     let links = params.chain.clamp(1.0, 16.0) as u64;
@@ -28,7 +28,7 @@ pub(super) fn weight(params: &Params) -> u64 {
 /// `reproduce` takes 14 million units, on a chain of 4 masses 110 million).
 pub const COMMAND_WORK: u64 = 300_000_000;
 
-/// The work left to a command's solves, in evaluations weighted by their cost ([`weight`]), and the
+/// The work left to a command's solves, in evaluations weighted by their cost (`weight`), and the
 /// bounces they solved (or refused). Shared by reference between threads.
 #[derive(Debug)]
 pub struct Work {

@@ -141,4 +141,6 @@ pub trait PhaseMotion {
     fn ball_spring_energy(&self, setup: &Setup, t: f64) -> f64;
     /// The energy lost in the ball's own dashpot over `[start, end]` (a compliant ball's ∫ c_b e'² dt).
     fn dashpot_loss(&self, setup: &Setup, start: f64, end: f64) -> f64;
+    /// The velocity along the surface of the frame the strings are tied to, at `t` (0 when clamped).
+    fn frame_velocity(&self, setup: &Setup, t: f64) -> f64;
 }

@@ -21,7 +21,9 @@ pub struct Energy {
     pub final_cart: f64,
     /// ∫ F · slip dt, integrated over the sliding phases of the exact solution.
     pub friction_loss: f64,
-    /// Lost in the normal direction, m v_y1^2 (1 - e_y^2)/2.
+    /// Lost in the normal direction, m v_y1^2 (1 - e_y^2)/2 on a clamped frame; on a frame of normal mass
+    /// M_n, what the ball loses less the frame's normal kinetic energy, mu_n v_y1^2 (1 - e_y^2)/2 with
+    /// mu_n = m M_n/(m + M_n).
     pub normal_loss: f64,
     /// Work against the string friction on the cart: F_c times the distance the cart (on a chain, its
     /// first mass) travelled.
@@ -30,8 +32,11 @@ pub struct Energy {
     pub ball_spring: f64,
     /// Lost in the compliant ball's dashpot, ∫ c_b e'² dt over the contact (0 for a rigid ball).
     pub dashpot_loss: f64,
+    /// The frame's kinetic energy after the impact, normal and along the surface (0 on a clamped
+    /// frame).
+    pub frame: f64,
     /// (initial - final_ball - final_cart - friction_loss - normal_loss - cart_friction_loss - ball_spring
-    /// - dashpot_loss) / initial.
+    /// - dashpot_loss - frame) / initial.
     pub residual: f64,
 }
 
@@ -48,14 +53,25 @@ pub(super) fn energy_budget(
     last: &State,
 ) -> Energy {
     let first = setup.initial(params.spin);
-    let vy2 = params.ey * setup.vy1;
+    let vy2 = setup.vy2();
     let initial = setup.ball_tangential_energy(&first) + 0.5 * setup.m * setup.vy1 * setup.vy1;
     let final_ball = setup.ball_tangential_energy(last) + 0.5 * setup.m * vy2 * vy2;
     let final_cart = phases.last().map_or_else(
         || setup.cart_energy(last),
         |p| p.motion().surface_energy(setup, last),
     );
-    let normal_loss = 0.5 * setup.m * (setup.vy1 * setup.vy1 - vy2 * vy2);
+    let frame = setup.frame_energy(
+        phases
+            .last()
+            .map_or(0.0, |p| p.motion().frame_velocity(setup, p.end)),
+    );
+    let normal_loss = match setup.frame_normal_mass {
+        None => 0.5 * setup.m * (setup.vy1 * setup.vy1 - vy2 * vy2),
+        Some(mn) => {
+            let reduced = setup.m * mn / (setup.m + mn);
+            0.5 * reduced * (1.0 - params.ey * params.ey) * setup.vy1 * setup.vy1
+        }
+    };
     // The cart never reverses within a phase (its stopping ends the phase), so the distance it
     // travels in a phase is |X(end) - X(start)|.
     let cart_friction_loss = setup.cart_friction
@@ -85,6 +101,7 @@ pub(super) fn energy_budget(
         cart_friction_loss,
         ball_spring,
         dashpot_loss,
+        frame,
         residual: (initial
             - final_ball
             - final_cart
@@ -92,7 +109,8 @@ pub(super) fn energy_budget(
             - normal_loss
             - cart_friction_loss
             - ball_spring
-            - dashpot_loss)
+            - dashpot_loss
+            - frame)
             / initial,
     }
 }

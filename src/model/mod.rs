@@ -1,5 +1,5 @@
 //! The simulation core: the ball-on-cart model of Cross (2010), solved exactly phase by phase.
-//! No terminal, no files, no printing: everything else calls [`solve`] and reads the [`Bounce`].
+//! No terminal, no files, no printing: everything else calls [`solve()`] and reads the [`Bounce`].
 //!
 //! The way through: [`Params`] -> [`Setup`] (everything derived once) -> a contact model ([`cart`],
 //! [`chain`], [`compliant`]), each implementing [`contact::Contact`] -> the phase [`driver`] ->
@@ -15,6 +15,7 @@ pub mod driver;
 pub mod energy;
 pub mod error;
 pub mod events;
+pub mod frame;
 pub mod memo;
 pub mod options;
 pub mod oscillator;
@@ -38,6 +39,6 @@ pub use error::{SolveError, Unsolvable};
 pub use options::SolveOptions;
 pub use params::{PARAMS, ParamError, ParamId, ParamSpec, Params};
 pub use phase::{BallPhase, Phase, PhaseKind};
-pub use registry::{BallKind, ModelKind, SupportKind, Words};
+pub use registry::{BallKind, FrameKind, ModelKind, SupportKind, Words};
 pub use setup::{Setup, State};
 pub use solve::{solve, solve_cancellable, solve_with};

@@ -256,12 +256,18 @@ impl ParamSpec {
     pub fn zero_means(&self) -> Option<&'static str> {
         match self.id {
             ParamId::BallStiffness => Some("rigid"),
+            ParamId::FrameMass => Some("clamped"),
+            ParamId::FrameNormalMass => Some("frame mass"),
             _ => None,
         }
     }
 
-    /// Parses user text (with an optional unit suffix) and checks the range.
+    /// Parses user text (with an optional unit suffix, or the word a zero stands for, e.g. `clamped`)
+    /// and checks the range.
     pub fn parse(&self, text: &str) -> Result<f64, ParamError> {
+        if self.zero_means().is_some_and(|word| word == text.trim()) {
+            return Ok(0.0);
+        }
         let bare = self
             .dimension
             .find(self.bare_symbol())
@@ -275,6 +281,37 @@ impl ParamSpec {
         })?;
         self.check(value, &units::echo(text.trim()))?;
         Ok(value)
+    }
+
+    /// Where a bare number for this parameter usually lies ([`units::Usual`]); `None` where any value
+    /// of its range is as likely as another, or no other unit could be meant.
+    pub fn usual(&self) -> Option<units::Usual> {
+        let (low, high) = match self.id {
+            ParamId::Mass | ParamId::CartMass => (0.0, 1.0),
+            ParamId::Radius => (0.0, 0.5),
+            ParamId::Duration | ParamId::CourtDuration => (0.0, 0.05),
+            ParamId::Stiffness | ParamId::BallStiffness => (10.0, f64::INFINITY),
+            ParamId::Speed | ParamId::BallSpeed | ParamId::RacquetSpeed => (0.0, 75.0),
+            ParamId::Spin => (0.0, 1000.0),
+            _ => return None,
+        };
+        Some(units::Usual {
+            low,
+            high,
+            typical: self.default,
+        })
+    }
+
+    /// A note for a bare number far outside this parameter's usual range, as `name` shows it:
+    /// `--cart-mass 10 is read as 10 kg; write 10g for grams` ([`units::bare_note`]).
+    pub fn bare_note(&self, name: &str, text: &str) -> Option<String> {
+        units::bare_note(
+            name,
+            text,
+            self.dimension,
+            self.bare_symbol(),
+            self.usual()?,
+        )
     }
 
     /// True when `value` is in the range (and whole, for a count).
@@ -716,6 +753,51 @@ parameters! {
         solvable: None,
         help: "number N of equal masses the cart is split into: a chain of masses M/N joined by springs N k, \
                the last tied to the wall (static stiffness k at the ball); 1 = the paper's single cart",
+    },
+    /// Mass M_t of the frame the strings are tied to, along the surface, kg; 0 = clamped (an immovable
+    /// wall, the paper's model). Also its effective mass normal to the surface unless
+    /// `frame_normal_mass` is given.
+    #[serde(default)]
+    frame_mass: FrameMass {
+        group: Group::Surface,
+        flag: "frame-mass",
+        key: "frame_mass",
+        symbol: "M_t",
+        label: "frame mass",
+        dimension: Dimension::Mass,
+        bare_unit: None,
+        display_unit: "g",
+        decimals: 1,
+        range: NON_NEGATIVE,
+        fine: Step::Times(1.1),
+        coarse: Step::Times(2.0),
+        default: 0.0,
+        integer: false,
+        solvable: SCALE,
+        help: "mass M_t of the frame the spring (a chain's last spring) is tied to, free along the surface; \
+               also its effective mass normal to the surface unless --frame-normal-mass is given; \
+               clamped (0, the default) = an immovable wall, the paper's model",
+    },
+    /// Effective mass M_n of the frame normal to the surface, kg; 0 = the frame mass M_t.
+    #[serde(default)]
+    frame_normal_mass: FrameNormalMass {
+        group: Group::Surface,
+        flag: "frame-normal-mass",
+        key: "frame_normal_mass",
+        symbol: "M_n",
+        label: "frame normal mass",
+        dimension: Dimension::Mass,
+        bare_unit: None,
+        display_unit: "g",
+        decimals: 1,
+        range: NON_NEGATIVE,
+        fine: Step::Times(1.1),
+        coarse: Step::Times(2.0),
+        default: 0.0,
+        integer: false,
+        solvable: SCALE,
+        help: "effective mass M_n of the frame normal to the surface: the ball leaves with the apparent \
+               restitution e_A = (e_y M_n - m)/(M_n + m); 0 (the default) = the frame mass M_t",
     },
     /// Height of the ball's centre where the racquet meets it, m (court frame: y up).
     height: Height {

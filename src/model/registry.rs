@@ -6,6 +6,7 @@ use super::cart::CartMotion;
 use super::chain::ChainMotion;
 use super::compliant::CompliantMotion;
 use super::contact::PhaseMotion;
+use super::frame::FrameMotion;
 use super::params::Params;
 
 /// The ball: rigid (the paper's) or tangentially compliant (a spring and dashpot to its contact patch).
@@ -22,11 +23,20 @@ pub enum SupportKind {
     Chain,
 }
 
+/// What the support's spring (a chain's last spring) is tied to: the paper's wall, or a frame free
+/// along the surface (issue 23).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum FrameKind {
+    Clamped,
+    Free,
+}
+
 /// The contact model of one set of parameters.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct ModelKind {
     pub ball: BallKind,
     pub support: SupportKind,
+    pub frame: FrameKind,
 }
 
 /// The words a view uses for the surface of a model.
@@ -40,6 +50,16 @@ pub struct Words {
     pub left_in: &'static str,
     /// The string friction's loss: `lost at the cart`, `lost at mass 1`.
     pub lost_at: &'static str,
+}
+
+impl FrameKind {
+    /// What the support is tied to, as a view names it: `wall`, `frame`.
+    pub fn word(self) -> &'static str {
+        match self {
+            FrameKind::Clamped => "wall",
+            FrameKind::Free => "frame",
+        }
+    }
 }
 
 impl SupportKind {
@@ -75,7 +95,7 @@ impl ModelKind {
 
 impl Params {
     /// The contact model these parameters describe: a compliant ball when `ball_stiffness` > 0, on a
-    /// chain when `chain` > 1. The one place that decides; the solver, the limits and the views ask it.
+    /// chain when `chain` > 1, tied to a free frame when `frame_mass` > 0. The one place that decides; the solver, the limits and the views ask it.
     pub fn model(&self) -> ModelKind {
         ModelKind {
             ball: if self.ball_stiffness > 0.0 {
@@ -87,6 +107,11 @@ impl Params {
                 SupportKind::Chain
             } else {
                 SupportKind::Cart
+            },
+            frame: if self.frame_mass > 0.0 {
+                FrameKind::Free
+            } else {
+                FrameKind::Clamped
             },
         }
     }
@@ -106,6 +131,8 @@ pub enum Motion {
     Chain(ChainMotion),
     /// A compliant ball, on the single cart or on a chain.
     Compliant(Box<CompliantMotion>),
+    /// The rigid ball on the single cart tied to a free frame.
+    Frame(FrameMotion),
 }
 
 impl Motion {
@@ -116,6 +143,7 @@ impl Motion {
             Motion::Cart(m) => m,
             Motion::Chain(m) => m.as_ref(),
             Motion::Compliant(m) => m.as_ref(),
+            Motion::Frame(m) => m,
         }
     }
 }
@@ -135,5 +163,11 @@ impl From<ChainMotion> for Motion {
 impl From<CompliantMotion> for Motion {
     fn from(motion: CompliantMotion) -> Self {
         Motion::Compliant(Box::new(motion))
+    }
+}
+
+impl From<FrameMotion> for Motion {
+    fn from(motion: FrameMotion) -> Self {
+        Motion::Frame(motion)
     }
 }

@@ -19,6 +19,13 @@ pub struct State {
     pub v: f64,
 }
 
+/// The ball's apparent restitution on a frame of normal effective mass `frame`: the ball and the frame
+/// part with relative speed e_y v_y1 and the frame takes the impulse, so
+/// e_A = (e_y M_n - m)/(M_n + m) (issue 23).
+pub fn apparent_restitution(ey: f64, m: f64, frame: f64) -> f64 {
+    (ey * frame - m) / (frame + m)
+}
+
 /// Constants of the model for one set of parameters.
 #[derive(Clone, Copy, Debug)]
 pub struct Setup {
@@ -46,6 +53,13 @@ pub struct Setup {
     pub grip_gain: f64,
     pub vx1: f64,
     pub vy1: f64,
+    /// The frame's mass M_t along the surface, kg; `None` when clamped (the wall).
+    pub frame_mass: Option<f64>,
+    /// The frame's effective mass M_n normal to the surface, kg (M_t unless given); `None` when clamped.
+    pub frame_normal_mass: Option<f64>,
+    /// The ball's apparent restitution on the frame, e_A = (e_y M_n - m)/(M_n + m) (issue 23); e_y on a
+    /// clamped frame.
+    pub ey_apparent: f64,
 }
 
 impl Setup {
@@ -56,6 +70,14 @@ impl Setup {
         // cos and sin through the complement, so 90 degrees gives exactly vx1 = 0.
         let vx1 = p.speed * ((90.0 - p.angle_deg).to_radians()).sin();
         let vy1 = p.speed * ((90.0 - p.angle_deg).to_radians()).cos();
+        let frame_mass = (p.frame_mass > 0.0).then_some(p.frame_mass);
+        let frame_normal_mass = if p.frame_normal_mass > 0.0 {
+            Some(p.frame_normal_mass)
+        } else {
+            frame_mass
+        };
+        let ey_apparent =
+            frame_normal_mass.map_or(p.ey, |mn| apparent_restitution(p.ey, p.mass, mn));
         Setup {
             m: p.mass,
             r: p.radius,
@@ -67,13 +89,38 @@ impl Setup {
             cart_friction: p.cart_friction,
             duration: p.duration,
             w,
-            n0: (1.0 + p.ey) * PI * p.mass * vy1 / (2.0 * p.duration),
+            // The normal impulse m (1 + e_A) v_y1 = 2 N0 T / pi.
+            n0: (1.0 + ey_apparent) * PI * p.mass * vy1 / (2.0 * p.duration),
             omega_slide: (p.stiffness / p.cart_mass).sqrt(),
             omega_grip: (p.stiffness / (p.cart_mass + m_eff)).sqrt(),
             grip_gain: p.stiffness * m_eff / (p.cart_mass + m_eff),
             vx1,
             vy1,
+            frame_mass,
+            frame_normal_mass,
+            ey_apparent,
         }
+    }
+
+    /// The ball's velocity away from the surface as it leaves, e_A v_y1.
+    pub fn vy2(&self) -> f64 {
+        self.ey_apparent * self.vy1
+    }
+
+    /// The frame's velocity normal to the surface after the impact, m (1 + e_A) v_y1 / M_n (0 clamped).
+    pub fn frame_normal_velocity(&self) -> f64 {
+        self.frame_normal_mass
+            .map_or(0.0, |mn| self.m * (1.0 + self.ey_apparent) * self.vy1 / mn)
+    }
+
+    /// The frame's kinetic energy at tangential velocity `v` (and its normal velocity after the impact);
+    /// 0 when clamped.
+    pub fn frame_energy(&self, v: f64) -> f64 {
+        let normal = self
+            .frame_normal_mass
+            .map_or(0.0, |mn| 0.5 * mn * self.frame_normal_velocity().powi(2));
+        let along = self.frame_mass.map_or(0.0, |mt| 0.5 * mt * v * v);
+        normal + along
     }
 
     /// N(t) = N0 sin(pi t / T) during contact: the normal-force law, written here once. The phases' closed

@@ -9,9 +9,10 @@ use super::compliant::CompliantBall;
 use super::driver::run;
 use super::error::SolveError;
 use super::events::{self, Stall};
+use super::frame::FramedCart;
 use super::options::SolveOptions;
 use super::params::Params;
-use super::registry::{BallKind, SupportKind};
+use super::registry::{BallKind, FrameKind, SupportKind};
 use super::reportable::finite;
 use super::setup::Setup;
 use super::solvable;
@@ -97,8 +98,8 @@ fn advice(params: &Params) -> &'static str {
 /// The model for `params` ([`Params::model`]), run by the driver (`bounded` has validated them).
 fn solve_model(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
     let kind = params.model();
-    let (setup, phases, last) = match (kind.ball, kind.support) {
-        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain) => {
+    let (setup, phases, last) = match (kind.ball, kind.support, kind.frame) {
+        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Clamped) => {
             let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
             let (phases, last) = run(&model, &setup, options).map_err(|e| match e {
                 SolveError::TooManyPhases { limit, .. } => SolveError::TooManyPhases {
@@ -110,15 +111,31 @@ fn solve_model(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveE
             })?;
             (setup, phases, last)
         }
-        (BallKind::Rigid, SupportKind::Chain) => {
+        (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped) => {
             let setup = Setup::new(params);
             let (phases, last) = run(&ChainOfMasses::new(params, &setup)?, &setup, options)?;
             (setup, phases, last)
         }
-        (BallKind::Rigid, SupportKind::Cart) => {
+        (BallKind::Rigid, SupportKind::Cart, FrameKind::Clamped) => {
             let setup = Setup::new(params);
             let (phases, last) = run(&SingleCart::new(params, &setup)?, &setup, options)?;
             (setup, phases, last)
+        }
+        (BallKind::Rigid, SupportKind::Cart, FrameKind::Free) => {
+            let setup = Setup::new(params);
+            let model = FramedCart::new(params, &setup, params.frame_mass)?;
+            let (phases, last) = run(&model, &setup, options)?;
+            (setup, phases, last)
+        }
+        (BallKind::Rigid, SupportKind::Chain, FrameKind::Free) => {
+            return Err(SolveError::FreeFrame {
+                what: "a chain (--chain)",
+            });
+        }
+        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Free) => {
+            return Err(SolveError::FreeFrame {
+                what: "a compliant ball (--ball-stiffness)",
+            });
         }
     };
     Ok(finish(params, setup, phases, last))

@@ -184,7 +184,7 @@ fn split_number(text: &str) -> (&str, &str) {
 /// The longest text a message echoes whole.
 const ECHO: usize = 40;
 
-/// User text as a message echoes it: whole up to [`ECHO`] characters, else its start and its length, so
+/// User text as a message echoes it: whole up to `ECHO` characters, else its start and its length, so
 /// that a value 100 000 digits long does not flood the terminal.
 pub fn echo(text: &str) -> String {
     let length = text.chars().count();
@@ -312,6 +312,109 @@ pub fn brief(value: f64, significant: usize) -> String {
     }
 }
 
+/// Where a bare number for a quantity usually lies, in the base unit: one outside `[low, high]` (in
+/// size; zero never counts, it is a free cart or a rigid ball) is more likely a slip of unit than meant.
+/// `typical` picks the unit a slip most likely meant: the one that brings the number nearest it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Usual {
+    pub low: f64,
+    pub high: f64,
+    pub typical: f64,
+}
+
+/// A note for a bare number far outside the usual range of its quantity, saying how it is read and what
+/// to write for the unit it likely meant: `--cart-mass 10 is read as 10 kg; write 10g for grams`.
+/// `name` names the value as the caller shows it (`--cart-mass` on the command line, `cart mass` in the
+/// explorer), `text` is the value as typed and `bare` the symbol a bare number is read in. A value with
+/// a unit, or one that does not parse, gets no note; an uncertainty (`10±1`) is left aside.
+pub fn bare_note(
+    name: &str,
+    text: &str,
+    dimension: Dimension,
+    bare: &str,
+    usual: Usual,
+) -> Option<String> {
+    let value_text = text.split('±').next()?.split("+-").next()?.trim();
+    let (number, suffix) = split_number(value_text);
+    if !suffix.is_empty() || number != value_text {
+        return None;
+    }
+    let value: f64 = number.parse().ok()?;
+    let bare_unit = dimension.find(bare)?;
+    let usual_size = |v: f64| v == 0.0 || (usual.low..=usual.high).contains(&v.abs());
+    if !value.is_finite() || usual_size(value * bare_unit.to_base) {
+        return None;
+    }
+    let read = format!("{name} {number} is read as {number} {bare}");
+    let distance = |unit: &Unit| {
+        let v = (value * unit.to_base).abs();
+        if usual.typical == 0.0 {
+            0.0
+        } else {
+            (v / usual.typical.abs()).ln().abs()
+        }
+    };
+    let meant = dimension
+        .units()
+        .iter()
+        .filter(|u| u.symbol() != bare_unit.symbol() && usual_size(value * u.to_base))
+        .min_by(|a, b| distance(a).total_cmp(&distance(b)));
+    Some(match meant {
+        Some(unit) => format!(
+            "{read}; write {number}{} for {}",
+            unit.symbol(),
+            unit_words(unit.symbol())
+        ),
+        None if value.abs() * bare_unit.to_base > usual.high => {
+            let high = usual.high / bare_unit.to_base;
+            format!("{read}, more than the usual {} {bare}", brief(high, 3))
+        }
+        None => {
+            let low = usual.low / bare_unit.to_base;
+            format!("{read}, less than the usual {} {bare}", brief(low, 3))
+        }
+    })
+}
+
+/// A unit's name in words, for a note: `g` is grams.
+fn unit_words(symbol: &str) -> &str {
+    match symbol {
+        "kg" => "kilograms",
+        "g" => "grams",
+        "mg" => "milligrams",
+        "m" => "metres",
+        "cm" => "centimetres",
+        "mm" => "millimetres",
+        "m/s" => "metres per second",
+        "km/h" => "kilometres per hour",
+        "mph" => "miles per hour",
+        "s" => "seconds",
+        "ms" => "milliseconds",
+        "us" | "µs" => "microseconds",
+        "N/m" => "newtons per metre",
+        "kN/m" => "kilonewtons per metre",
+        "N/mm" => "newtons per millimetre",
+        "MN/m" => "meganewtons per metre",
+        "deg" | "°" => "degrees",
+        "rad" => "radians",
+        "rad/s" => "radians per second",
+        "rpm" => "revolutions per minute",
+        "rps" | "rev/s" => "revolutions per second",
+        "N" => "newtons",
+        "kN" => "kilonewtons",
+        other => other,
+    }
+}
+
+/// The remedy for a value whose unit was typed after a space (`--cart-mass 10 g`, which a shell passes
+/// as two words): `write 10g`, when `number` is a bare number and `word` one of the dimension's units.
+pub fn spaced_unit(number: &str, word: &str, dimension: Dimension) -> Option<String> {
+    let (digits, suffix) = split_number(number.trim());
+    let parses = suffix.is_empty() && digits.parse::<f64>().is_ok_and(f64::is_finite);
+    (parses && dimension.find(word).is_some())
+        .then(|| format!("write {digits}{word}, without a space"))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -394,5 +497,63 @@ mod tests {
         assert_eq!(brief(0.057, 4), "0.057");
         assert_eq!(brief(-100.0, 4), "-100");
         assert_eq!(brief(1e-5, 3), "1.00e-5");
+    }
+
+    #[test]
+    fn a_bare_number_far_outside_its_usual_range_gets_a_note() {
+        let mass = Usual {
+            low: 0.0,
+            high: 1.0,
+            typical: 0.01,
+        };
+        let note = |text: &str| bare_note("--cart-mass", text, Dimension::Mass, "kg", mass);
+        assert_eq!(
+            note("10").as_deref(),
+            Some("--cart-mass 10 is read as 10 kg; write 10g for grams")
+        );
+        assert_eq!(note("10±1").as_deref(), note("10").as_deref());
+        assert_eq!(note("0.5"), None);
+        assert_eq!(note("10kg"), None);
+        assert_eq!(note("10 g"), None);
+        assert_eq!(note("ten"), None);
+        let radius = Usual {
+            low: 0.0,
+            high: 0.5,
+            typical: 0.033,
+        };
+        assert_eq!(
+            bare_note("--radius", "33", Dimension::Length, "m", radius).as_deref(),
+            Some("--radius 33 is read as 33 m; write 33mm for millimetres")
+        );
+        let stiffness = Usual {
+            low: 10.0,
+            high: f64::INFINITY,
+            typical: 15e3,
+        };
+        let k = |text: &str| bare_note("--stiffness", text, Dimension::Stiffness, "N/m", stiffness);
+        assert_eq!(
+            k("5").as_deref(),
+            Some("--stiffness 5 is read as 5 N/m; write 5kN/m for kilonewtons per metre")
+        );
+        assert_eq!(k("0"), None);
+        let time = Usual {
+            low: 0.0,
+            high: 0.05,
+            typical: 0.005,
+        };
+        assert_eq!(
+            bare_note("duration", "1e6", Dimension::Time, "s", time).as_deref(),
+            Some("duration 1e6 is read as 1e6 s, more than the usual 0.05 s")
+        );
+    }
+
+    #[test]
+    fn a_unit_after_a_space_is_named() {
+        assert_eq!(
+            spaced_unit("10", "g", Dimension::Mass).as_deref(),
+            Some("write 10g, without a space")
+        );
+        assert_eq!(spaced_unit("10", "kN/m", Dimension::Mass), None);
+        assert_eq!(spaced_unit("ten", "g", Dimension::Mass), None);
     }
 }

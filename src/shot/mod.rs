@@ -16,10 +16,23 @@ pub mod frame;
 use nalgebra::Vector2;
 
 use crate::model::{Bounce, Params, SolveError, solve};
+use crate::config;
 use aero::{Air, Projectile};
 use court::{BASELINE_X, NET_HEIGHT, NET_X};
 use flight::{Hit, Point, Stop, TooLong, fly};
 use frame::{Incidence, Surface};
+
+/// The preset a shot starts from, before any preset, scenario or flag given.
+pub const BASE_PRESET: &str = "topspin-forehand";
+
+/// The parameters a shot starts from, wherever one is played (`snapback shot`, the explorer's shot
+/// mode): the defaults with the [`BASE_PRESET`] applied (the paper's e_y = 1 would be a racquet that
+/// returns every bit of the ball's normal speed).
+pub fn base() -> Params {
+    config::preset(BASE_PRESET)
+        .expect("the base preset is compiled in")
+        .apply(Params::default())
+}
 
 /// Why a shot cannot be played.
 #[derive(Debug, thiserror::Error)]

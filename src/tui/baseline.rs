@@ -44,11 +44,12 @@ impl Baseline {
     }
 }
 
-/// A signed difference with `decimals` places that never reads `-0.0`: `+12.3`, `-0.004`, `±0.0`.
+/// A signed difference with `decimals` places: `+12.3`, `-0.004`, and no sign where it rounds to
+/// nothing, `0.0` (not `-0.0`, nor `±0.0`, which reads as an uncertainty).
 pub fn signed(delta: f64, decimals: usize) -> String {
     let text = format!("{:+.*}", decimals, delta);
     if text[1..].chars().all(|c| c == '0' || c == '.') {
-        format!("±{}", &text[1..])
+        text[1..].to_string()
     } else {
         text
     }
@@ -62,7 +63,7 @@ mod tests {
     fn signed_shows_the_sign_and_never_minus_zero() {
         assert_eq!(signed(12.34, 1), "+12.3");
         assert_eq!(signed(-0.0041, 3), "-0.004");
-        assert_eq!(signed(-0.00001, 1), "±0.0");
-        assert_eq!(signed(0.0, 3), "±0.000");
+        assert_eq!(signed(-0.00001, 1), "0.0");
+        assert_eq!(signed(0.0, 3), "0.000");
     }
 }

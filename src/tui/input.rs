@@ -1,8 +1,8 @@
 //! The terminal's input for the event loop: a thread reads the terminal's bytes as they come and another
-//! waits for SIGWINCH; both hand what they get to the loop through one channel, and [`decode`] turns the
-//! bytes into events. The loop waits on that channel alone, with a timeout while the bounce plays (for
+//! waits for SIGWINCH; both hand what they get to the loop through one channel, and [`super::decode`] turns
+//! the bytes into events. The loop waits on that channel alone, with a timeout while the bounce plays (for
 //! its ticks), while an answer is awaited, or while an escape sequence is unfinished: one that stays
-//! unfinished for [`ESCAPE_TIME`] is given up ([`decode::Decoder::flush`]).
+//! unfinished for [`ESCAPE_TIME`] is given up ([`super::decode::Decoder::flush`]).
 //!
 //! The reading thread is never joined: it is blocked in a read when the explorer quits, and ends with
 //! the process.

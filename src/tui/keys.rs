@@ -3,7 +3,7 @@
 
 use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
-use super::vocabulary::{Action, Mode};
+use super::vocabulary::{Action, Mode, View};
 
 /// One key, with the modifiers that matter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -291,7 +291,7 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Char('x'))],
         Action::Export,
-        "export the series (CSV) and outcome (JSON) here",
+        "export series (CSV), outcome (JSON) to this folder",
         extra("x", "export"),
     ),
     bind(
@@ -305,7 +305,7 @@ pub const EXPLORER: &[Binding] = &[
         &[Plain(KeyCode::Char('m'))],
         Action::ToggleShot,
         "shot mode on / off: θ1, v1, ω1 follow the racquet",
-        None,
+        hint("m", "shot off"),
     ),
 ];
 
@@ -410,6 +410,22 @@ pub const OVERWRITE: &[Binding] = &[
     ),
     bind(&[Ctrl('c')], Action::Quit, "quit", None),
 ];
+
+/// True when the status line offers `action`'s hint in `view`, shot mode on or not: not the time
+/// cursor's keys in the shot view, whose court has no time cursor, and `m` only while shot mode is on
+/// (to leave it; Tab into the shot view turns it on).
+pub fn offered(action: Action, view: View, shot_on: bool) -> bool {
+    match action {
+        Action::TogglePlay
+        | Action::ChangeSpeed { .. }
+        | Action::CursorStep { .. }
+        | Action::CursorPhase { .. }
+        | Action::CursorHome
+        | Action::CursorEnd => view != View::Shot,
+        Action::ToggleShot => shot_on,
+        _ => true,
+    }
+}
 
 /// The bindings in force in `mode`.
 pub fn bindings(mode: &Mode) -> &'static [Binding] {

@@ -266,11 +266,19 @@ impl Lab {
                 done,
                 of,
                 ..
-            }) => format!("refining start {}/{of}", done + 1),
+            }) => format!("short runs {done}/{of}"),
             Some(Progress {
                 stage: Stage::Converge,
+                done,
+                of,
                 ..
-            }) => "converging".to_string(),
+            }) => format!("converging minima {done}/{of}"),
+            Some(Progress {
+                stage: Stage::Profile,
+                done,
+                of,
+                ..
+            }) => format!("profile intervals {done}/{of}"),
         };
         let solves = fitting.progress.map_or(0, |p| p.solves);
         Some(format!(

@@ -207,7 +207,7 @@ pub fn open(options: Options) -> Result<(), OpenError> {
     };
     let mut app = App::new(options.params, theme)?;
     if options.shot {
-        app.explore_shot();
+        app.start_in_shot_mode();
     }
     if let Some(data) = options.data {
         app.load_data(data);

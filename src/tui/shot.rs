@@ -10,18 +10,69 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use super::solver::Recent;
+use super::values::shown;
 use super::worker::{Crash, Worker};
 use crate::model::Params;
-use crate::model::params::{ParamId, ParamSpec, spec};
+use crate::model::params::{Group, PARAMS, ParamId, ParamSpec, spec};
 use crate::shot::{self, Shot, ShotError};
 
 /// What the status line says when shot mode comes on (the shot view, or m).
-pub const MODE_ON: &str = "shot mode: θ1, v1 and ω1 now follow from the racquet and the incoming ball, \
-                           and the contact view shows the bounce on the strings (m leaves it)";
+pub const MODE_ON: &str = "shot mode (m leaves it): θ1, v1 and ω1 now follow from the racquet and the \
+                           incoming ball, and the contact view shows the bounce on the strings";
 
-/// What the status line says when m turns shot mode off.
-pub const MODE_OFF: &str = "shot mode off: the bounce's own θ1, v1 and ω1 are back (Tab to the shot \
-                            view or m turns it on again)";
+/// What the status line says when shot mode comes on from a bounce and the shot's start changed
+/// `filled` (as [`starting`] says), now at their values in `params`.
+pub fn mode_on(filled: &[ParamId], params: &Params) -> String {
+    let changed: Vec<String> = filled
+        .iter()
+        .map(|&id| spec(id))
+        .filter(|s| s.group != Group::Shot)
+        .map(|s| format!("{} {}", s.symbol, shown(s, params.get(s.id))))
+        .collect();
+    if changed.is_empty() {
+        return MODE_ON.to_string();
+    }
+    format!(
+        "{MODE_ON}; the shot starts as `snapback shot` plays it: {}",
+        changed.join(", ")
+    )
+}
+
+/// What the status line says when m turns shot mode off, `restored` the parameters back from before.
+pub fn mode_off(restored: &[ParamId]) -> String {
+    format!(
+        "shot mode off: the bounce's own {} are back (Tab to the shot view or m turns it on again)",
+        symbols(restored)
+    )
+}
+
+/// `θ1, v1 and ω1`.
+fn symbols(ids: &[ParamId]) -> String {
+    let names: Vec<&str> = ids.iter().map(|&id| spec(id).symbol).collect();
+    match names.split_last() {
+        Some((last, [])) => last.to_string(),
+        Some((last, rest)) => format!("{} and {last}", rest.join(", ")),
+        None => String::new(),
+    }
+}
+
+/// The parameters a shot starts from when shot mode comes on from a bounce: every parameter still at
+/// its default takes the value a shot starts from ([`crate::shot::base`], as `snapback shot` plays),
+/// the ones the user changed stay, as flags given to `snapback shot` would; with the ids it changed.
+pub fn starting(params: &Params) -> (Params, Vec<ParamId>) {
+    let base = shot::base();
+    let default = Params::default();
+    let mut start = *params;
+    let mut filled = Vec::new();
+    for s in PARAMS {
+        let id = s.id;
+        if !derived(id) && params.get(id) == default.get(id) && base.get(id) != default.get(id) {
+            start.set(id, base.get(id));
+            filled.push(id);
+        }
+    }
+    (start, filled)
+}
 
 /// The parameters the frame change sets in a shot.
 pub const DERIVED: [ParamId; 3] = [ParamId::Angle, ParamId::Speed, ParamId::Spin];
@@ -106,6 +157,9 @@ pub struct Shots {
     pub on: bool,
     /// The parameters as they were when shot mode came on: leaving it brings their incidence back.
     pub before: Option<Params>,
+    /// The parameters the shot's start changed when shot mode came on from a bounce ([`starting`]), with
+    /// the values it gave them: leaving brings back those not changed since.
+    pub filled: Vec<(ParamId, f64)>,
     /// The newest shot played for the current parameters, or for earlier ones while those are played.
     pub shown: Option<Arc<Played>>,
     /// The keys of the shots asked for and not answered yet.
@@ -220,11 +274,11 @@ impl Shots {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::scenario;
+    use crate::config;
 
     #[test]
     fn the_strings_see_what_snapback_shot_says() {
-        let p = scenario::preset("topspin-forehand")
+        let p = config::preset("topspin-forehand")
             .unwrap()
             .apply(Params::default());
         let derived = strings_params(&p).unwrap();
@@ -264,5 +318,31 @@ mod tests {
         ] {
             assert!(text.contains(word), "{word} in {text}");
         }
+    }
+
+    #[test]
+    fn a_shot_from_the_default_bounce_starts_as_snapback_shot_plays() {
+        let (start, filled) = starting(&Params::default());
+        let base = shot::base();
+        for s in PARAMS.iter().filter(|s| !derived(s.id)) {
+            assert_eq!(start.get(s.id), base.get(s.id), "{}", s.label);
+        }
+        assert!(filled.contains(&ParamId::Ey), "{filled:?}");
+        // What the user changed stays, as a flag would.
+        let mu = Params {
+            mu: 0.3,
+            ..Params::default()
+        };
+        let (start, filled) = starting(&mu);
+        assert_eq!(start.mu, 0.3);
+        assert!(!filled.contains(&ParamId::Mu));
+        assert_eq!(start.ey, base.ey);
+        let message = mode_on(&filled, &start);
+        assert!(message.contains("snapback shot"), "{message}");
+        assert!(message.contains("m leaves it"), "{message}");
+        assert_eq!(
+            mode_off(&DERIVED),
+            "shot mode off: the bounce's own θ1, v1 and ω1 are back (Tab to the shot view or m turns it on again)"
+        );
     }
 }

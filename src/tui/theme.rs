@@ -73,7 +73,7 @@ const WORDS: [(&str, &str); 19] = [
 ];
 
 impl Theme {
-    /// `text` for the screen: as it is, or in ASCII with the symbols spelt out ([`WORDS`]); what is
+    /// `text` for the screen: as it is, or in ASCII with the symbols spelt out (`WORDS`); what is
     /// left beyond ASCII the output replaces character by character.
     pub fn words<'a>(&self, text: &'a str) -> Cow<'a, str> {
         if !self.ascii || text.is_ascii() {

@@ -273,10 +273,13 @@ fn critical_angle_prints_eq7_and_the_full_model() {
     let doc: Value = serde_json::from_str(&out).unwrap();
     assert!(doc["full_model_deg"].is_null());
     assert_eq!(doc["full_model"]["regime"], "always-slides");
-    usage_error(
-        &["critical-angle", "--angle", "0"],
-        &["--angle must be in (0, 90] deg", "got 0"],
-    );
+    // The angle is what the command finds: giving one is refused, not ignored.
+    for angle in ["45", "0"] {
+        usage_error(
+            &["critical-angle", "--angle", angle],
+            &["--angle is what critical-angle finds"],
+        );
+    }
 }
 
 #[test]

@@ -4,8 +4,9 @@
 use crate::support::bin;
 
 use assert_cmd::Command;
+use snapback::config::preset;
 use snapback::model::{Params, solve};
-use snapback::scenario::{PRESETS, Scenario, ScenarioError, preset};
+use snapback::scenario::{PRESETS, Scenario, ScenarioError};
 
 fn snapback() -> Command {
     bin::snapback()

@@ -283,6 +283,39 @@ fn cases() -> Vec<Case> {
         pairs.push(("cart-friction", num(rng.log_uniform(0.1, 300.0))));
         out.push(case(&pairs));
     }
+    // The free frame (issue 23), appended last so that earlier lines keep their places: the typical
+    // racquet's frame, a light and a heavy one, a normal mass alone, and seeded random frames.
+    for (frame, normal) in [
+        ("320g", "181g"),
+        ("50g", "0"),
+        ("10kg", "0"),
+        ("clamped", "181g"),
+    ] {
+        for ey in ["1", "0.85"] {
+            out.push(case(&[
+                ("frame-mass", frame.into()),
+                ("frame-normal-mass", normal.into()),
+                ("ey", ey.into()),
+            ]));
+        }
+    }
+    out.push(case(&[
+        ("frame-mass", "320g".into()),
+        ("cart-mass", "1g".into()),
+        ("stiffness", "9.554kN/m".into()),
+    ]));
+    out.push(case(&[
+        ("frame-mass", "320g".into()),
+        ("chain", "4".into()),
+    ]));
+    for _ in 0..30 {
+        let mut pairs = rigid(&mut rng);
+        pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
+        if rng.unit() < 0.5 {
+            pairs.push(("frame-normal-mass", num(rng.log_uniform(1e-2, 1e3))));
+        }
+        out.push(case(&pairs));
+    }
     out
 }
 
@@ -321,7 +354,8 @@ fn record(args: &[String]) -> Value {
                 })
                 .collect();
             let f = bounce.final_state;
-            json!({
+            let framed = params.frame_mass > 0.0 || params.frame_normal_mass > 0.0;
+            let mut line = json!({
                 "args": args,
                 "omega2": o.omega2,
                 "vx2": o.vx2,
@@ -341,7 +375,14 @@ fn record(args: &[String]) -> Value {
                     "ball_spring": e.ball_spring,
                     "dashpot_loss": e.dashpot_loss,
                 },
-            })
+            });
+            // What a frame adds (only on its lines, so that the others keep their bits).
+            if framed {
+                line["ey_apparent"] = json!(bounce.setup.ey_apparent);
+                line["frame_v"] = json!(bounce.frame_velocity());
+                line["energy"]["frame"] = json!(e.frame);
+            }
+            line
         }
     }
 }

@@ -52,7 +52,7 @@ fn averages() -> BTreeMap<String, (f64, usize)> {
 }
 
 fn preset(material: &str) -> (scenario::Scenario, Params) {
-    let s = scenario::preset(&format!("{material}-strings")).unwrap();
+    let s = snapback::config::preset(&format!("{material}-strings")).unwrap();
     let p = s.apply(Params::default());
     (s, p)
 }
@@ -168,7 +168,7 @@ fn string_presets_are_one_ball_on_one_bed_with_sensible_values() {
 #[test]
 fn uncalibrated_presets_say_so() {
     for name in ["billiard-cushion", "golf-compliant-face"] {
-        let preset = scenario::preset(name).unwrap();
+        let preset = snapback::config::preset(name).unwrap();
         assert!(
             preset
                 .description
@@ -181,7 +181,7 @@ fn uncalibrated_presets_say_so() {
         );
     }
     // The superball ends rolling (e_x = 0), as its description says, unlike the measured ball.
-    let p = scenario::preset("superball-rigid-floor")
+    let p = snapback::config::preset("superball-rigid-floor")
         .unwrap()
         .apply(Default::default());
     let ex = solve(&p).unwrap().outcome.ex.unwrap();

@@ -14,7 +14,6 @@ use proptest::prelude::*;
 use prop::config;
 use rng::Rng;
 use snapback::model::{Params, solve};
-use snapback::scenario;
 use snapback::shot::aero::{Air, GRAVITY, Projectile};
 use snapback::shot::court::{self, COURT_MASS, NET_HEIGHT, NET_X};
 use snapback::shot::flight::{Stop, fly};
@@ -22,7 +21,9 @@ use snapback::shot::frame::Surface;
 use snapback::shot::{self as shot, Shot, play, play_in};
 
 fn preset(name: &str) -> Params {
-    scenario::preset(name).unwrap().apply(Params::default())
+    snapback::config::preset(name)
+        .unwrap()
+        .apply(Params::default())
 }
 
 /// A random stroke around the forehand preset: every shot parameter moves.

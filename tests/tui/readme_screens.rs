@@ -13,7 +13,6 @@ use ratatui::Terminal;
 use ratatui::backend::TestBackend;
 use snapback::analysis::fit::data;
 use snapback::model::Params;
-use snapback::scenario;
 use snapback::tui::theme::Theme;
 use snapback::tui::{App, EventSource, Input, run};
 
@@ -137,7 +136,7 @@ fn draw(capture: &Capture) -> String {
     let scenario = capture
         .preset
         .as_deref()
-        .map(|name| scenario::preset(name).unwrap());
+        .map(|name| snapback::config::preset(name).unwrap());
     let params = scenario
         .as_ref()
         .map_or_else(Params::default, |s| s.apply(Params::default()));

@@ -1,8 +1,8 @@
-//! The real binary in a real pseudo-terminal (portable-pty, see `tests/support/pty.rs`): it opens, answers keys
-//! and quits with status 0; it never waits for a solve; it stays within its byte budget; signals restore
-//! the terminal; a worker's panic is reported in the explorer, which keeps the terminal; a non-UTF-8
-//! locale gets pure ASCII; stray escape sequences swallow no key. Without a terminal it refuses with
-//! status 2.
+//! The real binary in a real pseudo-terminal (portable-pty, see `tests/support/pty.rs`): it opens,
+//! answers keys and quits with status 0; it never waits for a solve; it stays within its byte budget;
+//! signals restore the terminal; a worker's panic is reported in the explorer, which keeps the terminal;
+//! a non-UTF-8 locale gets pure ASCII; stray escape sequences swallow no key. Without a terminal it
+//! refuses with status 2.
 //!
 //! Bounds on time here are generous (a loaded 2-core CI machine must pass them); the precise figures
 //! come from `cargo test --release --test tui tui_pty -- --ignored --nocapture`, which measures and

@@ -34,7 +34,9 @@ fn tabs(n: usize) -> Vec<Event> {
 
 /// The parameters of a preset, as the explorer's picker and `--preset` give them.
 fn preset(name: &str) -> Params {
-    scenario::preset(name).unwrap().apply(Params::default())
+    snapback::config::preset(name)
+        .unwrap()
+        .apply(Params::default())
 }
 
 /// `app` after `events` on a `width` x `height` screen, and the terminal.
@@ -497,7 +499,11 @@ fn a_file_listing_the_shot_keys_at_their_defaults_is_a_bounce() {
     };
     let every_key = scenario::Scenario::from_params("old", "saved before shot mode", &p);
     assert!(!every_key.is_shot());
-    assert!(scenario::preset("topspin-forehand").unwrap().is_shot());
+    assert!(
+        snapback::config::preset("topspin-forehand")
+            .unwrap()
+            .is_shot()
+    );
     let dir = std::env::temp_dir().join(format!("snapback-tui-shot-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("old.toml");
@@ -528,4 +534,86 @@ fn a_file_listing_the_shot_keys_at_their_defaults_is_a_bounce() {
     std::fs::remove_dir_all(&dir).unwrap();
     assert!(reopened.shots.on);
     assert_eq!(reopened.params, app.params);
+}
+
+#[test]
+fn tab_from_the_default_bounce_plays_the_shot_snapback_shot_plays() {
+    // `snapback shot` with no flag starts from shot::base(), not from the bounce's e_y = 1.
+    let expected = shot::play(&shot::base(), false).unwrap();
+    let (_, screen) = explore(Params::default(), Theme::default(), (160, 48), tabs(3));
+    assert!(
+        screen.contains("snapback shot"),
+        "the message says so:\n{screen}"
+    );
+    // A key that changes nothing (help opened and closed) clears the message for the hints.
+    let (app, screen) = explore(Params::default(), Theme::default(), (160, 48), {
+        let mut events = tabs(3);
+        events.extend([char('?'), char('?')]);
+        events
+    });
+    assert!(app.shots.on);
+    assert_eq!(app.view, View::Shot);
+    assert_eq!(app.params.ey, shot::base().ey);
+    for readout in readouts(&expected) {
+        assert!(screen.contains(&readout), "{readout} in\n{screen}");
+    }
+    // The hint line names m, and offers no key of the contact's time cursor: the court has none.
+    let hints = screen.lines().last().unwrap();
+    assert!(hints.contains("m shot off"), "{hints}");
+    for absent in ["␣ play", "[] time", "{} phase", "+- speed"] {
+        assert!(!hints.contains(absent), "{absent} in {hints}");
+    }
+    // Back in the contact view, shot mode stays on and m is still offered, with the time keys.
+    let (_, screen) = explore(Params::default(), Theme::default(), (160, 48), {
+        let mut events = tabs(4);
+        events.extend([char('?'), char('?')]);
+        events
+    });
+    let hints = screen.lines().last().unwrap();
+    assert!(
+        hints.contains("m shot off") && hints.contains("␣ play"),
+        "{hints}"
+    );
+    // m leaves it: e_y, which the shot's start set, comes back with the incidence.
+    let (app, screen) = explore(Params::default(), Theme::default(), (160, 48), {
+        let mut events = tabs(3);
+        events.push(char('m'));
+        events
+    });
+    assert_eq!(app.params, Params::default());
+    assert!(screen.contains("θ1, v1, ω1 and e_y are back"), "{screen}");
+}
+
+#[test]
+fn reset_all_leaves_the_shot_for_the_bounce_the_explorer_started_with() {
+    let start = Params {
+        mu: 0.3,
+        ..Params::default()
+    };
+    let (app, screen) = explore(start, Theme::default(), (160, 48), {
+        let mut events = tabs(3);
+        events.extend([char('l'), char('R')]);
+        events
+    });
+    assert!(!app.shots.on);
+    assert_eq!(app.view, View::Contact);
+    assert_eq!(app.params, start);
+    assert!(
+        screen.contains("reset: every parameter is back to the start, and shot mode is off"),
+        "{screen}"
+    );
+    // Started as a shot, R comes back to the shot.
+    let params = preset("topspin-forehand");
+    let mut app = App::new(params, Theme::default()).unwrap();
+    app.start_in_shot_mode();
+    let screen = text(&drive(&mut app, 160, 48, vec![char('m'), char('R')]));
+    assert!(app.shots.on);
+    assert_eq!(
+        app.params,
+        snapback::tui::shot::strings_params(&params).unwrap()
+    );
+    assert!(
+        screen.contains("shot mode is on, as at the start"),
+        "{screen}"
+    );
 }

@@ -2,8 +2,11 @@
 //! parameter flag (`angle`, `cart-mass`; the scenario key `cart_mass` too) gives that row's condition, a
 //! bare number in the flag's base unit or with a unit suffix (`56mph`, `-3820rpm`). A column named by a
 //! [`Quantity`] (`omega2`, `theta2_deg`, ...) is a measurement, a bare number in the quantity's unit, and
-//! `sigma_<quantity>` its standard uncertainty (above 0). Blank lines and lines starting with `#` are
-//! skipped. Every other cell must hold a value; the first bad one is an error naming file, line and column.
+//! `sigma_<quantity>` its standard uncertainty (above 0). A text column named in [`Layout::group`] splits
+//! the rows into groups (string beds, say), and columns named in [`Layout::ignore`] are labels left
+//! unread. A UTF-8 byte-order mark (as a spreadsheet saves it) is skipped, and so are blank lines and
+//! lines starting with `#`. Every other cell must hold a value; the first bad one is an error naming
+//! file, line and column.
 
 use std::fmt;
 
@@ -89,6 +92,8 @@ pub struct Measurement {
 pub struct Row {
     /// Line in the file, from 1.
     pub line: usize,
+    /// The row's group, an index into [`Dataset::groups`]; `None` without a group column.
+    pub group: Option<usize>,
     pub conditions: Vec<(ParamId, f64)>,
     pub measured: Vec<Measurement>,
 }
@@ -113,12 +118,35 @@ pub struct Dataset {
     pub conditions: Vec<ParamId>,
     /// True when every measured quantity has a `sigma_` column: the uncertainties are absolute.
     pub absolute_sigma: bool,
+    /// The labels of the groups, in the order they first appear (empty without a group column).
+    pub groups: Vec<String>,
 }
+
+/// How to read the columns that are not conditions or measurements.
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
+pub struct Layout {
+    /// A text column whose labels split the rows into groups.
+    pub group: Option<String>,
+    /// Columns to leave unread (labels: the string's name, the company).
+    pub ignore: Vec<String>,
+}
+
+/// The conditions of a bounce that a row may set: how the ball arrives.
+pub const INCOMING: [ParamId; 3] = [ParamId::Angle, ParamId::Speed, ParamId::Spin];
 
 impl Dataset {
     /// How many values were measured in all.
     pub fn measurements(&self) -> usize {
         self.rows.iter().map(|r| r.measured.len()).sum()
+    }
+
+    /// The incoming conditions no column sets, with their value in `base` (SI): every row takes it.
+    pub fn assumed(&self, base: &Params) -> Vec<(ParamId, f64)> {
+        INCOMING
+            .into_iter()
+            .filter(|id| !self.conditions.contains(id))
+            .map(|id| (id, base.get(id)))
+            .collect()
     }
 }
 
@@ -138,6 +166,10 @@ enum Column {
     Condition(ParamId),
     Value(Quantity),
     Sigma(Quantity),
+    /// The group column's labels.
+    Group,
+    /// A column left unread.
+    Ignored,
 }
 
 impl Column {
@@ -162,6 +194,12 @@ fn expected_columns() -> String {
 
 /// Reads CSV `text`; `origin` names it in messages.
 pub fn parse(text: &str, origin: &str) -> Result<Dataset, DataError> {
+    parse_with(text, origin, &Layout::default())
+}
+
+/// [`parse`], with a group column and ignored columns as `layout` names them.
+pub fn parse_with(text: &str, origin: &str, layout: &Layout) -> Result<Dataset, DataError> {
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let err = |line: usize, column: usize, message: String| DataError {
         origin: origin.to_string(),
         line,
@@ -178,11 +216,26 @@ pub fn parse(text: &str, origin: &str) -> Result<Dataset, DataError> {
     };
     let mut columns = Vec::new();
     for (i, name) in header.split(',').map(str::trim).enumerate() {
-        let column = Column::named(name).ok_or_else(|| {
+        let column = if layout.group.as_deref() == Some(name) {
+            Some(Column::Group)
+        } else if layout.ignore.iter().any(|c| c == name) {
+            Some(Column::Ignored)
+        } else {
+            Column::named(name)
+        };
+        let column = column.ok_or_else(|| {
             err(
                 header_line,
                 i + 1,
-                format!("unknown column '{name}': {}", expected_columns()),
+                format!(
+                    "unknown column '{name}': {}{}",
+                    expected_columns(),
+                    if layout.ignore.is_empty() {
+                        "; --ignore leaves a label column unread"
+                    } else {
+                        ""
+                    }
+                ),
             )
         })?;
         if columns.iter().any(|c: &Column| same(*c, column)) {
@@ -220,6 +273,25 @@ pub fn parse(text: &str, origin: &str) -> Result<Dataset, DataError> {
             ));
         }
     }
+    let names: Vec<&str> = header.split(',').map(str::trim).collect();
+    for (wanted, flag) in layout
+        .group
+        .iter()
+        .map(|g| (g, "--group"))
+        .chain(layout.ignore.iter().map(|c| (c, "--ignore")))
+    {
+        if !names.contains(&wanted.as_str()) {
+            return Err(err(
+                header_line,
+                1,
+                format!(
+                    "{flag}: no column '{wanted}' (the columns are {})",
+                    names.join(", ")
+                ),
+            ));
+        }
+    }
+    let mut groups: Vec<String> = Vec::new();
     let mut rows = Vec::new();
     for (line, text) in lines {
         let cells: Vec<&str> = text.split(',').map(str::trim).collect();
@@ -236,6 +308,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Dataset, DataError> {
         }
         let mut row = Row {
             line,
+            group: None,
             conditions: Vec::new(),
             measured: Vec::new(),
         };
@@ -244,9 +317,18 @@ pub fn parse(text: &str, origin: &str) -> Result<Dataset, DataError> {
             let at = |message: String| err(line, i + 1, message);
             let cell = match cells.get(i) {
                 Some(c) if !c.is_empty() => *c,
+                _ if matches!(column, Column::Ignored) => "",
                 _ => return Err(at(format!("missing value for {}", header_name(*column)))),
             };
             match *column {
+                Column::Ignored => {}
+                Column::Group => {
+                    let index = groups.iter().position(|g| g == cell).unwrap_or_else(|| {
+                        groups.push(cell.to_string());
+                        groups.len() - 1
+                    });
+                    row.group = Some(index);
+                }
                 Column::Condition(id) => {
                     let value = spec(id).parse(cell).map_err(|e| at(condition_error(e)))?;
                     row.conditions.push((id, value));
@@ -302,6 +384,7 @@ pub fn parse(text: &str, origin: &str) -> Result<Dataset, DataError> {
         rows,
         conditions,
         absolute_sigma,
+        groups,
     })
 }
 
@@ -309,6 +392,7 @@ fn same(a: Column, b: Column) -> bool {
     match (a, b) {
         (Column::Condition(x), Column::Condition(y)) => x == y,
         (Column::Value(x), Column::Value(y)) | (Column::Sigma(x), Column::Sigma(y)) => x == y,
+        (Column::Group, Column::Group) => true,
         _ => false,
     }
 }
@@ -318,6 +402,8 @@ fn header_name(column: Column) -> String {
         Column::Condition(id) => spec(id).flag.to_string(),
         Column::Value(q) => q.name().to_string(),
         Column::Sigma(q) => format!("sigma_{}", q.name()),
+        Column::Group => "the group".to_string(),
+        Column::Ignored => "an ignored column".to_string(),
     }
 }
 
@@ -393,6 +479,51 @@ mod tests {
         assert!(
             e.to_string().starts_with("d.csv:1:1: no measured column"),
             "{e}"
+        );
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_skipped() {
+        let data = parse("\u{feff}angle,omega2\n40,1\n", "d.csv").unwrap();
+        assert_eq!(data.conditions, vec![ParamId::Angle]);
+        // The incoming conditions no column sets are named, at the base's values.
+        let base = Params::default();
+        assert_eq!(
+            data.assumed(&base),
+            vec![(ParamId::Speed, base.speed), (ParamId::Spin, base.spin)]
+        );
+    }
+
+    #[test]
+    fn a_group_column_splits_the_rows_and_ignored_columns_are_left_unread() {
+        let layout = Layout {
+            group: Some("material".into()),
+            ignore: vec!["string".into(), "company".into()],
+        };
+        let text = "company,string,material,angle,omega2\nA,x,poly,40,1\nB,y,nylon,40,2\n,z,poly,50,3\n";
+        let data = parse_with(text, "d.csv", &layout).unwrap();
+        assert_eq!(data.groups, vec!["poly", "nylon"]);
+        let groups: Vec<_> = data.rows.iter().map(|r| r.group).collect();
+        assert_eq!(groups, vec![Some(0), Some(1), Some(0)]);
+        let e = parse("company,angle,omega2\nA,40,1\n", "d.csv").unwrap_err();
+        assert!(
+            e.to_string().starts_with("d.csv:1:1: unknown column 'company'"),
+            "{e}"
+        );
+        let e = parse_with("angle,omega2\n40,1\n", "d.csv", &layout).unwrap_err();
+        assert!(
+            e.to_string()
+                .starts_with("d.csv:1:1: --group: no column 'material'"),
+            "{e}"
+        );
+        let only_group = Layout {
+            group: layout.group.clone(),
+            ignore: Vec::new(),
+        };
+        let e = parse_with("material,angle,omega2\npoly,40,1\n,50,2\n", "d.csv", &only_group);
+        assert_eq!(
+            e.unwrap_err().to_string(),
+            "d.csv:3:1: missing value for the group"
         );
     }
 }

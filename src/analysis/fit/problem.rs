@@ -1,13 +1,14 @@
 //! The weighted residuals of a fit, (model - measured) / sigma for every measurement, and their Jacobian
 //! by central differences of the exact solver; rows are solved in parallel. The optimiser
-//! (`levenberg-marquardt`, built on nalgebra 0.34) sees them through [`Problem`].
+//! (`levenberg-marquardt`, built on nalgebra 0.34) sees them through [`Problem`], which may hold some
+//! coordinates still (a profile moves the others).
 
 use levenberg_marquardt::LeastSquaresProblem;
 use nalgebra_lm::{DMatrix, DVector, Dyn, U1, VecStorage};
 use rayon::prelude::*;
 
 use super::data::{Dataset, Row};
-use super::free::{Free, place};
+use super::free::{Free, place_for};
 use super::watch::Tally;
 use crate::model::error::MAX_TRANSITIONS;
 use crate::model::{Params, SolveOptions, solve_with};
@@ -25,6 +26,10 @@ pub struct Model<'a> {
     pub data: &'a Dataset,
     /// Bounces of more phases count as unsolvable.
     pub phase_limit: Option<usize>,
+    /// Bounces in which the cart swings more half-periods than this within the contact time count as
+    /// unsolvable: each phase of such a bounce searches for its end across every swing, slowly, and the
+    /// search does not need them.
+    pub swing_limit: Option<f64>,
     /// Counts the bounces solved, tells the watch after each evaluation, and stops every solve once
     /// the watch cancels.
     pub tally: &'a Tally<'a>,
@@ -38,7 +43,10 @@ impl Model<'_> {
 
     /// The model's value of each measured quantity of `row`, with the free parameters at `u`.
     pub fn predict(&self, row: &Row, u: &[f64]) -> Option<Vec<f64>> {
-        let params = row.params(&place(&self.base, self.free, u));
+        let params = row.params(&place_for(&self.base, self.free, u, row.group));
+        if self.swing_limit.is_some_and(|limit| swings(&params) > limit) {
+            return None;
+        }
         let cancelled = || self.tally.cancelled();
         let options = SolveOptions {
             cancelled: &cancelled,
@@ -82,24 +90,29 @@ impl Model<'_> {
             .map_or(f64::INFINITY, |r| r.iter().map(|x| x * x).sum())
     }
 
-    /// The Jacobian of the weighted residuals in the optimiser's coordinates, row-major (one row per
-    /// measurement). Each derivative is a central difference; where a range clamps a step, the step
-    /// actually taken divides, and where one side cannot be solved the other side is used.
-    pub fn jacobian(&self, u: &[f64]) -> Option<Vec<f64>> {
+    /// The Jacobian of the weighted residuals in the optimiser's coordinates `columns` (all of them:
+    /// `0..free.len()`), row-major (one row per measurement). Each derivative is a central difference;
+    /// where a range clamps a step, the step actually taken divides, and where one side cannot be solved
+    /// the other side is used. A coordinate of another group than the row's has derivative zero.
+    pub fn jacobian(&self, u: &[f64], columns: &[usize]) -> Option<Vec<f64>> {
         let rows: Option<Vec<Vec<f64>>> = self
             .data
             .rows
             .par_iter()
-            .map(|row| self.row_jacobian(row, u))
+            .map(|row| self.row_jacobian(row, u, columns))
             .collect();
         self.tally.report();
         rows.map(|r| r.concat())
     }
 
-    fn row_jacobian(&self, row: &Row, u: &[f64]) -> Option<Vec<f64>> {
-        let k = self.free.len();
-        let mut columns = Vec::with_capacity(k);
-        for (j, f) in self.free.iter().enumerate() {
+    fn row_jacobian(&self, row: &Row, u: &[f64], wanted: &[usize]) -> Option<Vec<f64>> {
+        let mut columns = Vec::with_capacity(wanted.len());
+        for &j in wanted {
+            let f = &self.free[j];
+            if !f.holds_for(row.group) {
+                columns.push(vec![0.0; row.measured.len()]);
+                continue;
+            }
             let h = STEP * u[j].abs().max(1.0);
             let shifted = |d: f64| {
                 let mut v = u.to_vec();
@@ -126,14 +139,40 @@ impl Model<'_> {
     }
 }
 
+/// Half-periods of the cart, pi sqrt(M/k), in the contact time T.
+pub fn swings(params: &Params) -> f64 {
+    params.duration / (std::f64::consts::PI * (params.cart_mass / params.stiffness).sqrt())
+}
+
 fn diff(a: &[f64], b: &[f64], du: f64) -> Vec<f64> {
     a.iter().zip(b).map(|(x, y)| (x - y) / du).collect()
 }
 
-/// The model as `levenberg-marquardt` sees it, at coordinates `u`.
+/// The model as `levenberg-marquardt` sees it: at coordinates `u`, of which it moves those in `moving`.
 pub struct Problem<'a> {
     pub model: &'a Model<'a>,
-    pub u: DVector<f64>,
+    pub u: Vec<f64>,
+    pub moving: Vec<usize>,
+}
+
+impl<'a> Problem<'a> {
+    /// The problem that moves every coordinate, from `u`.
+    pub fn new(model: &'a Model<'a>, u: &[f64]) -> Self {
+        Problem {
+            model,
+            u: u.to_vec(),
+            moving: (0..u.len()).collect(),
+        }
+    }
+
+    /// The problem that holds coordinate `j` at `u[j]` and moves the others.
+    pub fn holding(model: &'a Model<'a>, u: &[f64], j: usize) -> Self {
+        Problem {
+            model,
+            u: u.to_vec(),
+            moving: (0..u.len()).filter(|&i| i != j).collect(),
+        }
+    }
 }
 
 impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
@@ -142,26 +181,28 @@ impl LeastSquaresProblem<f64, Dyn, Dyn> for Problem<'_> {
     type ParameterStorage = VecStorage<f64, Dyn, U1>;
 
     fn set_params(&mut self, x: &DVector<f64>) {
-        self.u.copy_from(x);
+        for (&i, &v) in self.moving.iter().zip(x.iter()) {
+            self.u[i] = v;
+        }
     }
 
     fn params(&self) -> DVector<f64> {
-        self.u.clone()
+        DVector::from_iterator(self.moving.len(), self.moving.iter().map(|&i| self.u[i]))
     }
 
     fn residuals(&self) -> Option<DVector<f64>> {
         let r = self
             .model
-            .residuals(self.u.as_slice())
+            .residuals(&self.u)
             .unwrap_or_else(|| vec![UNSOLVABLE; self.model.measurements()]);
         Some(DVector::from_vec(r))
     }
 
     fn jacobian(&self) -> Option<DMatrix<f64>> {
-        let j = self.model.jacobian(self.u.as_slice())?;
+        let j = self.model.jacobian(&self.u, &self.moving)?;
         Some(DMatrix::from_row_slice(
             self.model.measurements(),
-            self.model.free.len(),
+            self.moving.len(),
             &j,
         ))
     }

@@ -13,15 +13,17 @@ pub enum Stage {
     Scan,
     /// Short runs of Levenberg-Marquardt from the best starting points.
     Refine,
-    /// The best of them run to convergence.
+    /// The distinct ends of the short runs run to convergence.
     Converge,
+    /// The profile-likelihood intervals walked out, two sides of each free parameter.
+    Profile,
 }
 
 /// Where a fit has got to.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Progress {
     pub stage: Stage,
-    /// Starting points scored, or short runs finished, of `of` (0 of 1 until the final run ends).
+    /// Starting points scored, runs finished or profile sides walked, of `of`.
     pub done: usize,
     pub of: usize,
     /// Bounces solved so far.
@@ -122,14 +124,14 @@ mod tests {
             fit(&base, &free, &data, &Options::default()).unwrap()
         );
         let seen = seen.into_inner().unwrap();
-        // Scan, short runs, final run, in order; the count of solves never goes back.
+        // Scan, short runs, runs to convergence, profiles, in order; the count of solves never goes back.
         let stages: Vec<Stage> = seen.iter().map(|p| p.stage).collect();
         assert_eq!(stages.first(), Some(&Stage::Scan));
         assert!(stages.contains(&Stage::Refine));
         assert!(stages.is_sorted_by_key(|s| *s as u8));
         assert!(seen.windows(2).all(|w| w[0].solves <= w[1].solves));
         let last = seen.last().unwrap();
-        assert_eq!((last.stage, last.done, last.of), (Stage::Converge, 1, 1));
+        assert_eq!((last.stage, last.done, last.of), (Stage::Profile, 1, 1));
         assert!(last.solves > data.rows.len() * 37);
     }
 

@@ -99,6 +99,11 @@ impl PhaseMotion for CartMotion {
     fn dashpot_loss(&self, _: &Setup, _: f64, _: f64) -> f64 {
         0.0
     }
+
+    /// The strings are tied to a clamped frame.
+    fn frame_velocity(&self, _: &Setup, _: f64) -> f64 {
+        0.0
+    }
 }
 
 /// The rigid ball on the single cart.

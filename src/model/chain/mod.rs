@@ -12,7 +12,7 @@
 //!
 //! String friction (Sec. IV's proposed enhancement) acts on the first mass, the one the ball touches:
 //! a constant -d F_c while it moves in direction d, and while the net push on it (the ball's friction
-//! less the link spring N k (X_1 - X_2)) stays within F_c, it holds it still ([`string`]). The modes
+//! less the link spring N k (X_1 - X_2)) stays within F_c, it holds it still (`string.rs`). The modes
 //! that follow each event are chosen by the single cart's rules ([`super::transition`]), the first mass
 //! (with the ball's m_eff while it grips) in the cart's place.
 
@@ -218,10 +218,15 @@ impl PhaseMotion for Motion {
     fn dashpot_loss(&self, _: &Setup, _: f64, _: f64) -> f64 {
         0.0
     }
+
+    /// The strings are tied to a clamped frame.
+    fn frame_velocity(&self, _: &Setup, _: f64) -> f64 {
+        0.0
+    }
 }
 
 /// The rigid ball on a chain of `params.chain` masses, for any N including 1 (where it reproduces the
-/// single cart to rounding; [`super::solve`] sends N = 1 to the single cart's own model).
+/// single cart to rounding; [`super::solve()`] sends N = 1 to the single cart's own model).
 pub struct ChainOfMasses {
     chain: Arc<Chain>,
     /// True with string friction on the first mass.

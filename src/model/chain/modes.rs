@@ -16,7 +16,7 @@ pub struct Modes {
     pub mass: [f64; MAX],
     /// Ω_j, rad/s.
     pub omega: [f64; MAX],
-    /// shape[i][j] = Φ_ij, the displacement of mass i in mode j.
+    /// `shape[i][j]` = Φ_ij, the displacement of mass i in mode j.
     pub shape: [[f64; MAX]; MAX],
     /// Φ_1j Ω_j², for the first mass's acceleration -Σ Φ_1j Ω_j² q_j (less its forcing).
     pub first_stiff: [f64; MAX],

@@ -356,6 +356,11 @@ impl PhaseMotion for CompliantMotion {
             0.0
         }
     }
+
+    /// The strings are tied to a clamped frame.
+    fn frame_velocity(&self, _: &Setup, _: f64) -> f64 {
+        0.0
+    }
 }
 
 thread_local! {

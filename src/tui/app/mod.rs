@@ -13,6 +13,7 @@ use crate::model::{Params, Sample, SolveError};
 
 mod lab;
 mod scenarios;
+mod shot_mode;
 
 pub use super::vocabulary::{Action, Message, Mode, Tone, View};
 
@@ -67,6 +68,8 @@ pub struct App {
     pub(super) file_params: Option<Params>,
     /// True after a quit that was asked about: the next quit goes.
     quit_asked: bool,
+    /// True when the explorer started in shot mode: `R` comes back to it.
+    start_shot: bool,
     /// Rows the help is scrolled down by (the overlay stops at its last row).
     pub help_scroll: u16,
     /// The time cursor, s, in `[0, T]`: the charts' vertical line, their readouts and the schematic.
@@ -128,6 +131,7 @@ impl App {
             presets: Vec::new(),
             file_params: None,
             quit_asked: false,
+            start_shot: false,
             help_scroll: 0,
             solver: Solver::default(),
             changed_at: Instant::now(),
@@ -350,43 +354,6 @@ impl App {
         }
     }
 
-    /// Explores a shot from now on: the shot group joins the panel, the incidence follows from the
-    /// racquet and the incoming ball, and the contact view shows the bounce on the strings.
-    pub fn explore_shot(&mut self) {
-        if self.shots.on {
-            return;
-        }
-        self.shots.on = true;
-        self.shots.before = Some(self.params);
-        if shot::derived(self.selected_spec().id) {
-            self.selected = PARAMS.len();
-        }
-        self.set_params(self.params, "parameters");
-    }
-
-    /// Leaves shot mode: the shot group leaves the panel, the bounce's own incidence (from before shot
-    /// mode) comes back, and the shot view gives way to the contact view.
-    pub fn leave_shot(&mut self) {
-        self.shots.on = false;
-        let mut params = self.params;
-        if let Some(before) = self.shots.before.take() {
-            for id in shot::DERIVED {
-                params.set(id, before.get(id));
-            }
-        }
-        if self.selected >= PARAMS.len() {
-            self.selected = 0;
-        }
-        if self.view == View::Shot {
-            self.view = View::Contact;
-        }
-        self.set_params(params, "parameters");
-        self.message = Some(Message {
-            text: shot::MODE_OFF.into(),
-            tone: Tone::Info,
-        });
-    }
-
     /// Applies one action; any change of parameters re-solves and recomputes everything shown.
     pub fn update(&mut self, action: Action) {
         self.message = None;
@@ -427,15 +394,11 @@ impl App {
                 params.set(spec.id, self.start.get(spec.id));
                 self.try_apply(params);
             }
-            Action::ResetAll => self.try_apply(self.start),
+            Action::ResetAll => self.reset_all(),
             Action::NextView => {
                 self.view = self.view.next();
                 if self.view == View::Shot && !self.shots.on {
-                    self.explore_shot();
-                    self.message = Some(Message {
-                        text: shot::MODE_ON.into(),
-                        tone: Tone::Info,
-                    });
+                    self.enter_shot();
                 }
                 self.changed_at = Instant::now();
                 self.want();
@@ -500,11 +463,7 @@ impl App {
                 if self.shots.on {
                     self.leave_shot();
                 } else {
-                    self.explore_shot();
-                    self.message = Some(Message {
-                        text: shot::MODE_ON.into(),
-                        tone: Tone::Info,
-                    });
+                    self.enter_shot();
                 }
             }
             Action::OpenPicker

@@ -396,11 +396,11 @@ fn labels(frame: &mut Frame, court: Rect, [x0, x1]: [f64; 2], theme: &Theme) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::config;
     use crate::model::Params;
-    use crate::scenario;
 
     fn forehand() -> Shot {
-        let p = scenario::preset("topspin-forehand")
+        let p = config::preset("topspin-forehand")
             .unwrap()
             .apply(Params::default());
         crate::shot::play(&p, true).unwrap()

@@ -162,7 +162,7 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
             ex,
             Line::from(vec![
                 label("friction", "lost to friction"),
-                Span::raw(format!("{friction_share:.1} % of energy in")),
+                Span::raw(format!("{friction_share:.1} % of the energy")),
             ]),
             Line::from(vec![
                 label("phases", "phases (ms)"),

@@ -58,11 +58,17 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             let head = format!("{pointer}{:<column$}", theme.words(spec.symbol));
             let room = width.saturating_sub(head.chars().count() + shown.chars().count() + 2);
             let derived = app.shots.on && shot::derived(spec.id);
-            // A free parameter says so before its label.
+            // A free parameter says so before its label, or in place of it where both do not fit (the
+            // symbol names it).
             let label = if derived {
                 "set by the shot".to_string()
             } else if app.lab.is_free(spec.id) {
-                format!("{FREE}{}", spec.label)
+                let long = format!("{FREE}{}", spec.label);
+                if long.chars().count() <= room {
+                    long
+                } else {
+                    FREE_SHORT.to_string()
+                }
             } else {
                 spec.label.to_string()
             };
@@ -107,6 +113,9 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
 
 /// What a free parameter's label starts with.
 pub const FREE: &str = "free: ";
+
+/// What a free parameter's label says where the label does not fit beside it.
+pub const FREE_SHORT: &str = "free for the fit";
 
 /// `value` with its uncertainty `sigma`, both in the unit the panel shows: `60.0±1.0 deg`.
 fn with_spread(spec: &ParamSpec, value: f64, sigma: f64) -> String {

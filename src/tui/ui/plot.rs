@@ -19,7 +19,7 @@ pub struct Scale {
 }
 
 impl Scale {
-    /// Bounds widened to round values around `[low, high]`, as tight as a grid of [`Scale::GRID`] ticks
+    /// Bounds widened to round values around `[low, high]`, as tight as a grid of `Scale::GRID` ticks
     /// allows, with at most `max_ticks` of the grid's ticks labelled: both ends, and zero when it can be.
     pub fn rounded(low: f64, high: f64, max_ticks: usize) -> Scale {
         let mut scale = Self::build(low, high, Self::GRID.max(max_ticks), true);
