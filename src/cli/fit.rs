@@ -11,7 +11,7 @@ use crate::analysis::fit::{self, Fit, Fitted, Options, Verdict, data, free, show
 use crate::input;
 use crate::model::params::{Bound, ParamId, spec};
 use crate::model::{Params, units};
-use crate::scenario::{self, Scenario};
+use crate::scenario::Scenario;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
 pub enum Format {
@@ -130,7 +130,7 @@ fn source(args: &ParamArgs, id: ParamId) -> String {
         return format!("from the scenario {}", path.display());
     }
     if let Some(name) = &args.preset
-        && scenario::preset(name).is_ok_and(|s| s.values.contains_key(key))
+        && crate::config::preset(name).is_ok_and(|s| s.values.contains_key(key))
     {
         return format!("from the preset {name}");
     }
