@@ -124,8 +124,7 @@ fn source(args: &ParamArgs, id: ParamId) -> String {
         return format!("from --{}", spec(id).flag);
     }
     if let Some(path) = &args.scenario
-        && (input::is_stdin(path)
-            || Scenario::load(path).is_ok_and(|s| s.values.contains_key(key)))
+        && (input::is_stdin(path) || Scenario::load(path).is_ok_and(|s| s.values.contains_key(key)))
     {
         return format!("from the scenario {}", path.display());
     }
@@ -333,12 +332,7 @@ fn differ(f: &Fitted) -> bool {
 }
 
 /// The fit as text in the explorer's units.
-pub fn table(
-    fit: &Fit,
-    data: &data::Dataset,
-    sources: &[String],
-    intervals: Intervals,
-) -> String {
+pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Intervals) -> String {
     let mut out = String::new();
     let _ = writeln!(
         out,
@@ -416,7 +410,11 @@ pub fn table(
             );
         }
     }
-    if fit.free.iter().any(|f| f.poorly_determined() && f.stderr.is_some()) {
+    if fit
+        .free
+        .iter()
+        .any(|f| f.poorly_determined() && f.stderr.is_some())
+    {
         let _ = writeln!(
             out,
             "  poorly determined: the data allow the parameter to reach an end of its range (open)"
@@ -472,10 +470,17 @@ pub fn table(
             .zip(&rival.values)
             .map(|(f, &v)| {
                 let s = spec(f.id);
-                let group = f.group.map_or(String::new(), |g| format!("[{}]", fit.groups[g]));
-                format!("{}{group} {} {}", s.symbol, shown(f.id, v, f.stderr), s.display_unit)
-                    .trim_end()
-                    .to_string()
+                let group = f
+                    .group
+                    .map_or(String::new(), |g| format!("[{}]", fit.groups[g]));
+                format!(
+                    "{}{group} {} {}",
+                    s.symbol,
+                    shown(f.id, v, f.stderr),
+                    s.display_unit
+                )
+                .trim_end()
+                .to_string()
             })
             .collect();
         let _ = writeln!(

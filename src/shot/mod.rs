@@ -15,8 +15,8 @@ pub mod frame;
 
 use nalgebra::Vector2;
 
-use crate::model::{Bounce, Params, SolveError, solve};
 use crate::config;
+use crate::model::{Bounce, Params, SolveError, solve};
 use aero::{Air, Projectile};
 use court::{BASELINE_X, NET_HEIGHT, NET_X};
 use flight::{Hit, Point, Stop, TooLong, fly};

@@ -500,14 +500,16 @@ mod tests {
             group: Some("material".into()),
             ignore: vec!["string".into(), "company".into()],
         };
-        let text = "company,string,material,angle,omega2\nA,x,poly,40,1\nB,y,nylon,40,2\n,z,poly,50,3\n";
+        let text =
+            "company,string,material,angle,omega2\nA,x,poly,40,1\nB,y,nylon,40,2\n,z,poly,50,3\n";
         let data = parse_with(text, "d.csv", &layout).unwrap();
         assert_eq!(data.groups, vec!["poly", "nylon"]);
         let groups: Vec<_> = data.rows.iter().map(|r| r.group).collect();
         assert_eq!(groups, vec![Some(0), Some(1), Some(0)]);
         let e = parse("company,angle,omega2\nA,40,1\n", "d.csv").unwrap_err();
         assert!(
-            e.to_string().starts_with("d.csv:1:1: unknown column 'company'"),
+            e.to_string()
+                .starts_with("d.csv:1:1: unknown column 'company'"),
             "{e}"
         );
         let e = parse_with("angle,omega2\n40,1\n", "d.csv", &layout).unwrap_err();
@@ -520,7 +522,11 @@ mod tests {
             group: layout.group.clone(),
             ignore: Vec::new(),
         };
-        let e = parse_with("material,angle,omega2\npoly,40,1\n,50,2\n", "d.csv", &only_group);
+        let e = parse_with(
+            "material,angle,omega2\npoly,40,1\n,50,2\n",
+            "d.csv",
+            &only_group,
+        );
         assert_eq!(
             e.unwrap_err().to_string(),
             "d.csv:3:1: missing value for the group"

@@ -235,12 +235,17 @@ mod tests {
         let p = place_for(&base, &free, &u, Some(1));
         assert!((p.mu - 0.3).abs() < 1e-12 && (p.cart_friction - 0.2).abs() < 1e-12);
         assert_eq!(place(&base, &free, &u).cart_friction, base.cart_friction);
-        assert!(parse_lists("mu", "mu", &[], 2).unwrap_err().contains("also in --free"));
-        assert!(parse_lists("", "mu", &[], 0).unwrap_err().contains("--group"));
-        assert_eq!(
-            Free::new(spec(ParamId::Ey)).coordinate_range(),
-            (0.0, 1.0)
+        assert!(
+            parse_lists("mu", "mu", &[], 2)
+                .unwrap_err()
+                .contains("also in --free")
         );
+        assert!(
+            parse_lists("", "mu", &[], 0)
+                .unwrap_err()
+                .contains("--group")
+        );
+        assert_eq!(Free::new(spec(ParamId::Ey)).coordinate_range(), (0.0, 1.0));
         assert_eq!(
             Free::new(spec(ParamId::CartMass)).coordinate_range(),
             (f64::NEG_INFINITY, f64::INFINITY)

@@ -269,7 +269,11 @@ pub fn fit_watched(
             "{}: {n} measurements cannot determine {} free {}; give more rows than free parameters",
             data.origin,
             free.len(),
-            if free.len() == 1 { "parameter" } else { "parameters" }
+            if free.len() == 1 {
+                "parameter"
+            } else {
+                "parameters"
+            }
         )));
     }
     let explore = Model {

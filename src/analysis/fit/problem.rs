@@ -44,7 +44,10 @@ impl Model<'_> {
     /// The model's value of each measured quantity of `row`, with the free parameters at `u`.
     pub fn predict(&self, row: &Row, u: &[f64]) -> Option<Vec<f64>> {
         let params = row.params(&place_for(&self.base, self.free, u, row.group));
-        if self.swing_limit.is_some_and(|limit| swings(&params) > limit) {
+        if self
+            .swing_limit
+            .is_some_and(|limit| swings(&params) > limit)
+        {
             return None;
         }
         let cancelled = || self.tally.cancelled();

@@ -79,7 +79,11 @@ pub fn side(
     let mut h = step;
     let (mut outside, mut g_outside) = loop {
         let x = u[j] + direction * h;
-        let x = if direction > 0.0 { x.min(end) } else { x.max(end) };
+        let x = if direction > 0.0 {
+            x.min(end)
+        } else {
+            x.max(end)
+        };
         let (v, g) = profile(x, &inside);
         if !g.is_finite() {
             return (Side::Open, lowest);

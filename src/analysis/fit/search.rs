@@ -185,7 +185,11 @@ mod tests {
                 base.duration / half
             })
             .collect();
-        assert!(ratios.iter().all(|r| (RATIO.0..=RATIO.1).contains(&(r * (1.0 + 1e-12)))));
+        assert!(
+            ratios
+                .iter()
+                .all(|r| (RATIO.0..=RATIO.1).contains(&(r * (1.0 + 1e-12))))
+        );
         assert!(ratios.iter().any(|&r| r < 1.0) && ratios.iter().any(|&r| r > 10.0));
     }
 
