@@ -43,8 +43,8 @@ const COS: [f64; 8] = [
 /// (sin x, cos x).
 #[inline]
 pub fn sin_cos(x: f64) -> (f64, f64) {
-    // Also false for NaN.
-    if !(x.abs() <= REDUCED) {
+    // NaN and infinities go to libm too.
+    if x.is_nan() || x.abs() > REDUCED {
         return x.sin_cos();
     }
     // k = x 2/π to the nearest integer; the last bits of `rounded` are those of k (2^51 + k, in two's
