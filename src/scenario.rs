@@ -20,7 +20,7 @@ use toml::Spanned;
 
 use crate::input;
 use crate::model::Params;
-use crate::model::params::{Group, PARAMS, ParamError, spec_named};
+use crate::model::params::{PARAMS, ParamError, spec_named};
 use crate::model::units;
 use crate::output::{self, Replace};
 
@@ -283,7 +283,7 @@ impl Scenario {
             self.values
                 .iter()
                 .filter_map(|(key, value)| Some((spec_named(key)?, *value)))
-                .filter(|(spec, _)| spec.group == Group::Shot)
+                .filter(|(spec, _)| spec.group.is_shot())
         };
         let every_key_at_defaults = self.values.len() == PARAMS.len()
             && shot_keys().all(|(spec, value)| value == spec.default);

@@ -5,7 +5,7 @@ use clap::{Args, ValueEnum};
 use super::{Failure, ShotParamArgs, emit};
 use crate::export;
 use crate::model::ParamId;
-use crate::model::params::{Group, ParamSpec, spec};
+use crate::model::params::{ParamSpec, spec};
 use crate::shot;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -66,7 +66,7 @@ pub fn refuse_shot_flags(
         .iter()
         .map(|(id, _)| spec(*id))
         .chain(varied)
-        .find(|s| s.group == Group::Shot);
+        .find(|s| s.group.is_shot());
     match shot {
         Some(s) => Err(Failure::usage(format!(
             "{} is a shot parameter and only a shot uses it: {fix}",

@@ -12,7 +12,7 @@ use super::{Failure, ShotParamArgs, shot};
 pub use crate::config::Theme as ThemeArg;
 use crate::config::{self, Charset};
 use crate::model::Params;
-use crate::model::params::{Group, spec};
+use crate::model::params::spec;
 use crate::scenario::Scenario;
 use crate::tui::{self, OpenError, Options, playback};
 
@@ -78,10 +78,7 @@ pub struct TuiArgs {
 fn start(args: &ShotParamArgs) -> Result<(Params, bool), Failure> {
     let params = args.apply(Params::default()).map_err(Failure::usage)?;
     // Both load: `apply` has read them without error.
-    let shot = args
-        .given
-        .iter()
-        .any(|(id, _)| spec(*id).group == Group::Shot)
+    let shot = args.given.iter().any(|(id, _)| spec(*id).group.is_shot())
         || args
             .preset
             .as_deref()

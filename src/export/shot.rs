@@ -1,5 +1,6 @@
 //! `snapback shot` as a table or JSON (the keys of issue 16: `contact`, `launch`, `net_clearance_m`,
-//! `landing_m`, `flight_time_s`, `in`, `court_bounce`, `kick_height_m`, `trajectory`).
+//! `landing_m`, `flight_time_s`, `in`, `court_bounce`, `kick_height_m`, `trajectory`; issue 23's
+//! `racquet`).
 
 use std::fmt::Write;
 
@@ -7,11 +8,32 @@ use serde_json::{Value, json};
 
 use crate::shot::Shot;
 use crate::shot::court::NET_X;
+use crate::shot::racquet::Recoil;
 
 const RPM: f64 = 30.0 / std::f64::consts::PI;
 
+/// What the racquet does to the shot: its effective masses at the impact point (kg; null when clamped),
+/// the apparent restitution e_A and its recoil (m/s).
+struct RacquetNumbers {
+    masses: Option<(f64, f64)>,
+    ey_apparent: f64,
+    recoil: Recoil,
+}
+
+fn racquet(shot: &Shot) -> RacquetNumbers {
+    let bounce = &shot.strings.bounce;
+    RacquetNumbers {
+        masses: shot.racquet.effective_masses(),
+        ey_apparent: shot
+            .racquet
+            .ey_apparent(bounce.params.ey, bounce.params.mass),
+        recoil: shot.racquet.recoil(bounce),
+    }
+}
+
 /// The shot as a JSON value; `trajectory` only when the shot sampled one.
 pub fn value(shot: &Shot) -> Value {
+    let r = racquet(shot);
     let contact = &shot.strings.incidence;
     let launch = &shot.strings.leaving;
     let court = shot.court.as_ref().map(|c| {
@@ -42,6 +64,15 @@ pub fn value(shot: &Shot) -> Value {
         "in": shot.is_in(),
         "court_bounce": court,
         "kick_height_m": shot.kick_height,
+        "racquet": {
+            "clamped": r.masses.is_none(),
+            "effective_mass_normal": r.masses.map(|m| m.0),
+            "effective_mass_tangential": r.masses.map(|m| m.1),
+            "ey_apparent": r.ey_apparent,
+            "recoil_speed": r.recoil.speed(),
+            "recoil_normal": r.recoil.normal,
+            "recoil_tangential": r.recoil.tangential,
+        },
     });
     if !shot.trajectory.is_empty() {
         doc["trajectory"] = shot
@@ -94,6 +125,36 @@ pub fn table(shot: &Shot) -> String {
         "rebound spin ω2",
         shot.strings.bounce.outcome.omega2,
         shot.strings.bounce.phase_summary()
+    );
+    let r = racquet(shot);
+    let _ = writeln!(out, "\nRacquet");
+    match r.masses {
+        None => {
+            let _ = writeln!(out, "  {:<24}clamped (immovable)", "held");
+        }
+        Some((normal, tangential)) => {
+            let _ = writeln!(out, "  {:<24}in the hand, free to recoil", "held");
+            let _ = writeln!(
+                out,
+                "  {:<24}{:.1} g normal, {:.1} g along the strings",
+                "effective mass",
+                normal * 1e3,
+                tangential * 1e3
+            );
+        }
+    }
+    let _ = writeln!(
+        out,
+        "  {:<24}{:.3} (e_y {:.3} on clamped strings)",
+        "apparent restitution", r.ey_apparent, shot.strings.bounce.params.ey
+    );
+    let _ = writeln!(
+        out,
+        "  {:<24}{:.2} m/s ({:.2} normal, {:.2} along)",
+        "recoil at impact",
+        r.recoil.speed(),
+        r.recoil.normal,
+        r.recoil.tangential
     );
     let _ = writeln!(out, "\nLaunch");
     let _ = writeln!(
@@ -160,20 +221,22 @@ pub fn table(shot: &Shot) -> String {
 }
 
 /// `sweep --shot` as CSV: the varied value's `column`, then the shot's numbers (an empty field for a
-/// null; `in` as true or false).
+/// null, as the effective masses of a clamped racquet; `in` as true or false).
 pub fn csv(column: &str, rows: &[(f64, Shot)]) -> String {
     let mut out = format!(
         "{column},contact_angle_deg,contact_speed,contact_spin,launch_speed,launch_angle_deg,\
-         launch_topspin_rpm,net_clearance_m,landing_m,flight_time_s,in,kick_height_m\n"
+         launch_topspin_rpm,net_clearance_m,landing_m,flight_time_s,in,kick_height_m,ey_apparent,\
+         effective_mass_normal,effective_mass_tangential,recoil_speed\n"
     );
     // `+ 0.0` writes -0 as 0.
     let field = |v: Option<f64>| v.map_or(String::new(), |v| (v + 0.0).to_string());
     for (value, s) in rows {
         let c = &s.strings.incidence;
         let l = &s.strings.leaving;
+        let r = racquet(s);
         let _ = writeln!(
             out,
-            "{value},{},{},{},{},{},{},{},{},{},{},{}",
+            "{value},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
             c.theta1_deg,
             c.speed,
             c.spin + 0.0,
@@ -185,6 +248,10 @@ pub fn csv(column: &str, rows: &[(f64, Shot)]) -> String {
             s.flight_time,
             s.is_in(),
             field(s.kick_height),
+            r.ey_apparent,
+            field(r.masses.map(|m| m.0)),
+            field(r.masses.map(|m| m.1)),
+            r.recoil.speed(),
         );
     }
     out

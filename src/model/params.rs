@@ -133,6 +133,8 @@ pub enum Group {
     Surface,
     /// A stroke on court (`snapback shot`): the incoming ball, the racquet's swing, the court.
     Shot,
+    /// The racquet that strikes a shot: its mass, balance, swing and twist weights, where it meets the ball.
+    Racquet,
 }
 
 impl Group {
@@ -141,6 +143,15 @@ impl Group {
             Group::Ball => "ball and impact",
             Group::Surface => "surface",
             Group::Shot => "shot",
+            Group::Racquet => "racquet",
+        }
+    }
+
+    /// True for the groups only a shot uses (the stroke and its racquet).
+    pub const fn is_shot(self) -> bool {
+        match self {
+            Group::Ball | Group::Surface => false,
+            Group::Shot | Group::Racquet => true,
         }
     }
 }
@@ -258,6 +269,7 @@ impl ParamSpec {
             ParamId::BallStiffness => Some("rigid"),
             ParamId::FrameMass => Some("clamped"),
             ParamId::FrameNormalMass => Some("frame mass"),
+            ParamId::RacquetMass => Some("clamped"),
             _ => None,
         }
     }
@@ -377,6 +389,12 @@ const POSITIVE: Range = Range {
 const NON_NEGATIVE: Range = Range {
     low: Bound::Closed(0.0),
     high: Bound::Unbounded,
+};
+/// A distance from a racquet's butt: up to 73.66 cm, the longest racquet the rules allow (ITF Rules of
+/// Tennis, Appendix II: 29 in).
+const RACQUET_LENGTH: Range = Range {
+    low: Bound::Open(0.0),
+    high: Bound::Closed(0.7366),
 };
 
 /// Declares every parameter once: its field in [`Params`] (SI), its [`ParamId`], and its row of [`PARAMS`]
@@ -1013,6 +1031,103 @@ parameters! {
         solvable: None,
         help: "duration of the bounce on the court (the normal force is a half sine, as on the strings)",
     },
+    /// Mass M_r of the racquet that strikes a shot, kg; 0 = clamped (an immovable racquet).
+    racquet_mass: RacquetMass {
+        group: Group::Racquet,
+        flag: "racquet-mass",
+        key: "racquet_mass",
+        symbol: "M_r",
+        label: "racquet mass",
+        dimension: Dimension::Mass,
+        bare_unit: None,
+        display_unit: "g",
+        decimals: 0,
+        range: NON_NEGATIVE,
+        fine: Step::Add(0.005),
+        coarse: Step::Add(0.02),
+        default: 0.320,
+        integer: false,
+        solvable: None,
+        help: "mass M_r of the racquet, held in the hand (free to recoil); clamped (0) = an immovable \
+               racquet, the strings on a wall",
+    },
+    /// Balance: the racquet's centre of mass from the butt, m.
+    balance: Balance {
+        group: Group::Racquet,
+        flag: "balance",
+        key: "balance",
+        symbol: "b_r",
+        label: "balance",
+        dimension: Dimension::Length,
+        bare_unit: None,
+        display_unit: "cm",
+        decimals: 1,
+        range: RACQUET_LENGTH,
+        fine: Step::Add(0.005),
+        coarse: Step::Add(0.02),
+        default: 0.33,
+        integer: false,
+        solvable: None,
+        help: "balance point: the racquet's centre of mass measured from the butt",
+    },
+    /// Swing weight SW: the racquet's moment of inertia about an axis 10 cm from the butt, kg m^2.
+    swing_weight: SwingWeight {
+        group: Group::Racquet,
+        flag: "swing-weight",
+        key: "swing_weight",
+        symbol: "SW",
+        label: "swing weight",
+        dimension: Dimension::MomentOfInertia,
+        bare_unit: Some("kg cm^2"),
+        display_unit: "kg cm^2",
+        decimals: 0,
+        range: POSITIVE,
+        fine: Step::Add(5e-4),
+        coarse: Step::Add(20e-4),
+        default: 320e-4,
+        integer: false,
+        solvable: None,
+        help: "swing weight SW: the moment of inertia about an axis 10 cm from the butt, as racquet \
+               specifications quote it",
+    },
+    /// Twist weight TW: the racquet's moment of inertia about its long axis, kg m^2.
+    twist_weight: TwistWeight {
+        group: Group::Racquet,
+        flag: "twist-weight",
+        key: "twist_weight",
+        symbol: "TW",
+        label: "twist weight",
+        dimension: Dimension::MomentOfInertia,
+        bare_unit: Some("kg cm^2"),
+        display_unit: "kg cm^2",
+        decimals: 1,
+        range: NON_NEGATIVE,
+        fine: Step::Add(0.5e-4),
+        coarse: Step::Add(2e-4),
+        default: 14e-4,
+        integer: false,
+        solvable: None,
+        help: "twist weight TW: the moment of inertia about the racquet's long axis",
+    },
+    /// Where the ball meets the strings, measured from the butt along the long axis, m.
+    impact: Impact {
+        group: Group::Racquet,
+        flag: "impact",
+        key: "impact",
+        symbol: "d_i",
+        label: "impact point",
+        dimension: Dimension::Length,
+        bare_unit: None,
+        display_unit: "cm",
+        decimals: 1,
+        range: RACQUET_LENGTH,
+        fine: Step::Add(0.005),
+        coarse: Step::Add(0.02),
+        default: 0.52,
+        integer: false,
+        solvable: None,
+        help: "where the ball meets the strings, measured from the butt along the long axis",
+    },
 }
 
 /// The parameters of one bounce: every group but the shot's, which come last in [`PARAMS`].
@@ -1020,7 +1135,7 @@ pub const BOUNCE_PARAMS: &[ParamSpec] = PARAMS.split_at(bounce_count()).0;
 
 const fn bounce_count() -> usize {
     let mut n = 0;
-    while n < PARAMS.len() && !matches!(PARAMS[n].group, Group::Shot) {
+    while n < PARAMS.len() && !PARAMS[n].group.is_shot() {
         n += 1;
     }
     n
@@ -1088,8 +1203,8 @@ mod tests {
     #[test]
     fn the_shot_group_comes_last() {
         let (bounce, shot) = PARAMS.split_at(BOUNCE_PARAMS.len());
-        assert!(bounce.iter().all(|s| s.group != Group::Shot));
-        assert!(!shot.is_empty() && shot.iter().all(|s| s.group == Group::Shot));
+        assert!(bounce.iter().all(|s| !s.group.is_shot()));
+        assert!(!shot.is_empty() && shot.iter().all(|s| s.group.is_shot()));
     }
 
     #[test]

@@ -16,6 +16,8 @@ pub enum Dimension {
     Angle,
     AngularVelocity,
     Force,
+    /// A moment of inertia (a racquet's swing and twist weights).
+    MomentOfInertia,
     Dimensionless,
 }
 
@@ -63,8 +65,13 @@ const ANGULAR_VELOCITY: &[Unit] = &[
     unit(&["rps", "rev/s"], 2.0 * std::f64::consts::PI),
 ];
 const FORCE: &[Unit] = &[unit(&["N"], 1.0), unit(&["kN"], 1e3)];
+const MOMENT_OF_INERTIA: &[Unit] = &[
+    unit(&["kg m^2", "kg m²"], 1.0),
+    unit(&["kg cm^2", "kg cm²"], 1e-4),
+    unit(&["g cm^2", "g cm²"], 1e-7),
+];
 
-const ALL: [Dimension; 9] = [
+const ALL: [Dimension; 10] = [
     Dimension::Mass,
     Dimension::Length,
     Dimension::Speed,
@@ -73,6 +80,7 @@ const ALL: [Dimension; 9] = [
     Dimension::Angle,
     Dimension::AngularVelocity,
     Dimension::Force,
+    Dimension::MomentOfInertia,
     Dimension::Dimensionless,
 ];
 
@@ -88,6 +96,7 @@ impl Dimension {
             Dimension::Angle => ANGLE,
             Dimension::AngularVelocity => ANGULAR_VELOCITY,
             Dimension::Force => FORCE,
+            Dimension::MomentOfInertia => MOMENT_OF_INERTIA,
             Dimension::Dimensionless => &[],
         }
     }
@@ -108,6 +117,7 @@ impl Dimension {
             Dimension::Angle => "an angle",
             Dimension::AngularVelocity => "an angular velocity",
             Dimension::Force => "a force",
+            Dimension::MomentOfInertia => "a moment of inertia",
             Dimension::Dimensionless => "a pure number",
         }
     }
@@ -433,6 +443,13 @@ mod tests {
         assert!((rpm - 100.007366).abs() < 1e-5, "{rpm}");
         let rad = parse("1rad", Dimension::Angle).unwrap();
         assert!((rad - 57.29577951308232).abs() < 1e-12);
+        let sw = parse("320 kg cm^2", Dimension::MomentOfInertia).unwrap();
+        assert!((sw - 0.032).abs() < 1e-15, "{sw}");
+        assert_eq!(parse("0.032 kg m²", Dimension::MomentOfInertia), Ok(0.032));
+        assert!(matches!(
+            parse("320 kg", Dimension::MomentOfInertia),
+            Err(UnitError::WrongDimension { .. })
+        ));
     }
 
     #[test]

@@ -1,5 +1,5 @@
 //! A stroke on court, from the strings to the opponent's baseline: the racquet's bounce in the frame of the
-//! moving strings ([`frame`], the core), the flight with drag and Magnus lift ([`flight`], [`aero`],
+//! moving strings ([`frame`], the core, on the frame of the racquet in the hand: [`racquet`]), the flight with drag and Magnus lift ([`flight`], [`aero`],
 //! integrated by [`dopri`]), the bounce on the court ([`court`], the core again) and the second flight to
 //! the opponent's baseline.
 //!
@@ -12,6 +12,7 @@ pub mod court;
 pub mod dopri;
 pub mod flight;
 pub mod frame;
+pub mod racquet;
 
 use nalgebra::Vector2;
 
@@ -21,13 +22,15 @@ use aero::{Air, Projectile};
 use court::{BASELINE_X, NET_HEIGHT, NET_X};
 use flight::{Hit, Point, Stop, TooLong, fly};
 use frame::{Incidence, Surface};
+use racquet::{Hold, RacquetError};
 
 /// The preset a shot starts from, before any preset, scenario or flag given.
 pub const BASE_PRESET: &str = "topspin-forehand";
 
 /// The parameters a shot starts from, wherever one is played (`snapback shot`, the explorer's shot
-/// mode): the defaults with the [`BASE_PRESET`] applied (the paper's e_y = 1 would be a racquet that
-/// returns every bit of the ball's normal speed).
+/// mode): the defaults with the [`BASE_PRESET`] applied (the ball's restitution on clamped strings and a
+/// real racquet in the hand, where the paper's e_y = 1 on the defaults' wall would return every bit of the
+/// ball's normal speed).
 pub fn base() -> Params {
     config::preset(BASE_PRESET)
         .expect("the base preset is compiled in")
@@ -44,6 +47,8 @@ pub enum ShotError {
     NeverMeets(f64),
     #[error("--height must be above the ball's radius ({radius} m); got {height} m")]
     BelowRadius { height: f64, radius: f64 },
+    #[error(transparent)]
+    Racquet(#[from] RacquetError),
     #[error("on the strings: {0}")]
     Strings(SolveError),
     #[error("on the court: {0}")]
@@ -94,6 +99,8 @@ pub struct Contact {
 /// A whole shot.
 #[derive(Clone, Debug)]
 pub struct Shot {
+    /// The racquet that strikes the ball.
+    pub racquet: Hold,
     /// The bounce on the strings.
     pub strings: Contact,
     /// Where the ball lands: x of the centre (and of the contact) as it comes down to its radius, m,
@@ -154,14 +161,22 @@ pub fn incidence(p: &Params) -> Result<Incidence, ShotError> {
 }
 
 /// The bounce on the strings: the frame change, the core (all of `p`'s ball and cart flags, with the
-/// incidence it sees), and back to the court frame.
+/// incidence it sees, on the frame of `p`'s racquet), and back to the court frame.
 pub fn hit(p: &Params) -> Result<Contact, ShotError> {
+    hit_by(p, &Hold::of(p)?)
+}
+
+/// [`hit`] by `racquet`: the one place a shot's racquet becomes the frame the core's strings are tied to.
+fn hit_by(p: &Params, racquet: &Hold) -> Result<Contact, ShotError> {
     let strings = strings(p);
     let incidence = incidence(p)?;
+    let (frame_mass, frame_normal_mass) = racquet.frame_masses();
     let bounce = solve(&Params {
         angle_deg: incidence.theta1_deg,
         speed: incidence.speed,
         spin: incidence.spin,
+        frame_mass,
+        frame_normal_mass,
         ..*p
     })
     .map_err(ShotError::Strings)?;
@@ -187,7 +202,8 @@ pub fn play_in(p: &Params, air: Air, trajectory: bool) -> Result<Shot, ShotError
             radius: p.radius,
         });
     }
-    let strings = hit(p)?;
+    let racquet = Hold::of(p)?;
+    let strings = hit_by(p, &racquet)?;
     let r = p.radius;
     let projectile = |m: &Motion| Projectile {
         mass: p.mass,
@@ -206,6 +222,7 @@ pub fn play_in(p: &Params, air: Air, trajectory: bool) -> Result<Shot, ShotError
         trajectory.then_some(&mut path),
     )?;
     let mut shot = Shot {
+        racquet,
         strings,
         landing_x: None,
         net_clearance: None,

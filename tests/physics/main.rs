@@ -31,4 +31,5 @@ mod numerical;
 mod paper;
 mod presets_measured;
 mod properties;
+mod racquet;
 mod shot;

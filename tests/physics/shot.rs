@@ -18,6 +18,7 @@ use snapback::shot::aero::{Air, GRAVITY, Projectile};
 use snapback::shot::court::{self, COURT_MASS, NET_HEIGHT, NET_X};
 use snapback::shot::flight::{Stop, fly};
 use snapback::shot::frame::Surface;
+use snapback::shot::racquet::Hold;
 use snapback::shot::{self as shot, Shot, play, play_in};
 
 fn preset(name: &str) -> Params {
@@ -98,7 +99,7 @@ fn the_flight_agrees_with_an_independent_rk4_to_a_millimetre() {
 }
 
 #[test]
-fn a_racquet_at_rest_facing_the_ball_is_simulate_at_normal_incidence() {
+fn a_racquet_at_rest_facing_the_ball_is_simulate_on_its_frame_at_normal_incidence() {
     for (descent, topspin) in [(10.0, 1000.0), (-5.0, -2500.0), (40.0, 0.0)] {
         let p = Params {
             racquet_speed: 0.0,
@@ -113,10 +114,15 @@ fn a_racquet_at_rest_facing_the_ball_is_simulate_at_normal_incidence() {
         assert!((i.theta1_deg - 90.0).abs() < 1e-9, "{i:?}");
         assert!((i.speed - 20.0).abs() < 1e-12);
         assert!((i.spin.abs() - p.ball_topspin.abs()).abs() < 1e-12);
+        // The racquet in the hand is simulate's free frame of its effective masses.
+        let (frame_mass, frame_normal_mass) = Hold::of(&p).unwrap().frame_masses();
+        assert!(frame_mass > 0.0 && frame_normal_mass > 0.0);
         let simulated = solve(&Params {
             angle_deg: 90.0,
             speed: 20.0,
             spin: i.spin,
+            frame_mass,
+            frame_normal_mass,
             ..p
         })
         .unwrap()
@@ -134,7 +140,7 @@ fn a_racquet_at_rest_facing_the_ball_is_simulate_at_normal_incidence() {
 }
 
 #[test]
-fn an_oblique_racquet_at_rest_is_simulate_at_its_incidence() {
+fn an_oblique_racquet_at_rest_is_simulate_on_its_frame_at_its_incidence() {
     let p = Params {
         racquet_speed: 0.0,
         ball_descent_deg: 10.0,
@@ -146,10 +152,13 @@ fn an_oblique_racquet_at_rest_is_simulate_at_its_incidence() {
     assert!((contact.incidence.theta1_deg - 60.0).abs() < 1e-9);
     assert!((contact.incidence.speed - p.ball_speed).abs() < 1e-12);
     assert!((contact.incidence.spin.abs() - p.ball_topspin.abs()).abs() < 1e-12);
+    let (frame_mass, frame_normal_mass) = Hold::of(&p).unwrap().frame_masses();
     let simulated = solve(&Params {
         angle_deg: contact.incidence.theta1_deg,
         speed: contact.incidence.speed,
         spin: contact.incidence.spin,
+        frame_mass,
+        frame_normal_mass,
         ..p
     })
     .unwrap();

@@ -9,7 +9,7 @@ use crate::analysis::fit::Fit;
 use crate::analysis::fit::data::Dataset;
 use crate::analysis::fit::free::Free;
 use crate::analysis::uncertainty::Spread;
-use crate::model::params::{BOUNCE_PARAMS as PARAMS, Group, ParamId, ParamSpec, spec};
+use crate::model::params::{BOUNCE_PARAMS as PARAMS, ParamId, ParamSpec, spec};
 use crate::model::units;
 
 use super::App;
@@ -97,7 +97,7 @@ impl App {
                 Tone::Error,
             );
         }
-        if spec.group == Group::Shot {
+        if spec.group.is_shot() {
             return self.say(
                 format!("{name} is the shot's: measured rebounds do not depend on it, so it cannot be fitted"),
                 Tone::Error,

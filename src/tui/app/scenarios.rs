@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 
 use crate::export;
 use crate::model::Params;
-use crate::model::params::{Group, spec_named};
+use crate::model::params::spec_named;
 use crate::output::{self, Replace};
 use crate::scenario::{PRESETS, Scenario};
 
@@ -233,7 +233,7 @@ impl App {
                 if shot {
                     !crate::tui::shot::derived(s.id)
                 } else {
-                    s.group != Group::Shot
+                    !s.group.is_shot()
                 }
             })
         });
