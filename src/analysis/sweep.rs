@@ -3,7 +3,7 @@
 use std::fmt::Write as _;
 use std::io::{self, Write};
 
-use crate::model::{Params, SolveOptions};
+use crate::model::{Bounce, Params, SolveOptions};
 use rayon::prelude::*;
 
 use super::{AnalysisError, Span};
@@ -125,8 +125,11 @@ pub enum WriteError {
 /// Bounces solved and written per block, so memory stays bounded for any number of steps.
 const BLOCK: usize = 1 << 16;
 
-/// Rows formatted per chunk on all cores.
-const CHUNK: usize = 4096;
+/// Rows solved and formatted per chunk, the chunks on all cores.
+const CHUNK: usize = 256;
+
+/// The usual length of a CSV line, for the chunk's first allocation.
+const LINE: usize = 128;
 
 /// Solves the sweep and writes it as CSV with a header; see [`write()`].
 pub fn write_csv(
@@ -160,13 +163,26 @@ pub fn write(
     span.check_steps("--steps", steps)?;
     let column = span.column();
     for start in (0..steps).step_by(BLOCK) {
-        let block = rows(
-            base,
-            span,
-            steps,
-            start..(start + BLOCK).min(steps),
-            options,
-        )?;
+        let end = (start + BLOCK).min(steps);
+        // Each chunk solved and formatted on one core, CSV lines straight from the bounce.
+        let chunk_text = |first: usize| -> Result<String, AnalysisError> {
+            let last = (first + CHUNK).min(end);
+            if layout != Layout::Csv {
+                let rows = rows(base, span, steps, first..last, options)?;
+                return Ok(format_rows(&rows, &column, layout, first == 0));
+            }
+            let mut text = String::with_capacity((last - first) * LINE);
+            for i in first..last {
+                let value = span.at(i, steps);
+                bounce_csv_line(&mut text, value, &span.solve(base, value, options)?);
+            }
+            Ok(text)
+        };
+        let chunks: Vec<usize> = (start..end).step_by(CHUNK).collect();
+        let texts = chunks
+            .into_par_iter()
+            .map(chunk_text)
+            .collect::<Result<Vec<String>, _>>()?;
         // The opening follows the first block, so a sweep of up to BLOCK bounces that fails writes nothing.
         if start == 0 {
             match layout {
@@ -175,11 +191,6 @@ pub fn write(
                 Layout::JsonLines => {}
             }
         }
-        let texts: Vec<String> = block
-            .par_chunks(CHUNK)
-            .enumerate()
-            .map(|(k, chunk)| format_rows(chunk, &column, layout, start + k * CHUNK == 0))
-            .collect();
         for text in &texts {
             out.write_all(text.as_bytes())?;
         }
@@ -223,23 +234,57 @@ pub(crate) fn push_element(text: &mut String, object: &serde_json::Value, first:
     }
 }
 
-/// One CSV line of `r`, its numbers written by ryu straight into `text` (no formatting machinery: the
-/// line is most of a fast bounce's cost).
+/// One CSV line of `r`.
 fn csv_line(text: &mut String, r: &Row) {
+    let numbers = [r.value, r.omega2, r.vx2, r.vy2, r.theta2_deg];
+    let flags = [r.slides_throughout, r.cart_stuck];
+    let phases = |text: &mut String| text.push_str(&r.phases);
+    csv_fields(
+        text,
+        numbers,
+        r.ex,
+        phases,
+        flags,
+        [r.stretch, r.patch_slip],
+    );
+}
+
+/// The CSV line of the bounce with the varied parameter at `value`, the same as its [`row`]'s, written
+/// without the row (no allocation for its phases).
+fn bounce_csv_line(text: &mut String, value: f64, bounce: &Bounce) {
+    let o = &bounce.outcome;
+    let patch = bounce.final_patch();
+    let numbers = [value, o.omega2, o.vx2, o.vy2, o.theta2_deg];
+    let flags = [bounce.slides_throughout(), bounce.cart_ever_stuck()];
+    let phases = |text: &mut String| bounce.push_phase_summary(text);
+    let patch = [patch.map(|(e, _)| e), patch.map(|(_, slip)| slip)];
+    csv_fields(text, numbers, o.ex, phases, flags, patch);
+}
+
+/// One CSV line in [`COLUMNS`]' order after the value, its numbers written by ryu straight into `text`
+/// (no formatting machinery: the line is a large part of a fast bounce's cost).
+fn csv_fields(
+    text: &mut String,
+    numbers: [f64; 5],
+    ex: Option<f64>,
+    phases: impl FnOnce(&mut String),
+    flags: [bool; 2],
+    patch: [Option<f64>; 2],
+) {
     let mut digits = ryu::Buffer::new();
-    for x in [r.value, r.omega2, r.vx2, r.vy2, r.theta2_deg] {
+    for x in numbers {
         push_number(text, &mut digits, x);
         text.push(',');
     }
-    if let Some(ex) = r.ex {
+    if let Some(ex) = ex {
         push_number(text, &mut digits, ex);
     }
     text.push(',');
-    text.push_str(&r.phases);
-    for flag in [r.slides_throughout, r.cart_stuck] {
+    phases(text);
+    for flag in flags {
         text.push_str(if flag { ",true" } else { ",false" });
     }
-    for x in [r.stretch, r.patch_slip] {
+    for x in patch {
         text.push(',');
         if let Some(x) = x {
             push_number(text, &mut digits, x);

@@ -12,7 +12,7 @@ use rayon::prelude::*;
 use super::AnalysisError;
 use super::fit::data::Quantity;
 use crate::model::params::{ParamId, ParamSpec, spec};
-use crate::model::{ParamError, Params, solve, units};
+use crate::model::{ParamError, Params, SolveOptions, solve_with, units};
 
 /// The default number of draws.
 pub const DEFAULT_SAMPLES: usize = 1000;
@@ -103,6 +103,17 @@ pub fn monte_carlo(
     samples: usize,
     seed: u64,
 ) -> Result<Bands, AnalysisError> {
+    monte_carlo_with(base, spreads, samples, seed, &SolveOptions::default())
+}
+
+/// [`monte_carlo`] with every draw solved on the caller's terms.
+pub fn monte_carlo_with(
+    base: &Params,
+    spreads: &[Spread],
+    samples: usize,
+    seed: u64,
+    options: &SolveOptions,
+) -> Result<Bands, AnalysisError> {
     let draws: Vec<Params> = (0..samples)
         .map(|i| {
             let mut rng =
@@ -118,7 +129,7 @@ pub fn monte_carlo(
     let outcomes: Vec<Vec<Option<f64>>> = draws
         .par_iter()
         .map(|p| {
-            let bounce = solve(p).map_err(|source| {
+            let bounce = solve_with(p, options).map_err(|source| {
                 AnalysisError::Input(format!(
                     "a Monte Carlo draw cannot be solved ({}): {source}",
                     spreads
@@ -158,6 +169,7 @@ pub fn monte_carlo(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::model::solve;
 
     #[test]
     fn a_spread_in_angle_spreads_the_spin_and_no_spread_gives_none() {

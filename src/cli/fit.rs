@@ -8,7 +8,6 @@ use serde_json::{Map, Value, json};
 
 use super::{Failure, ParamArgs, emit};
 use crate::analysis::fit::{self, Fit, Fitted, Options, Verdict, data, free, shown};
-use crate::config;
 use crate::input;
 use crate::model::params::{Bound, ParamId, spec};
 use crate::model::{Params, units};
@@ -130,7 +129,7 @@ fn source(args: &ParamArgs, id: ParamId) -> String {
         return format!("from the scenario {}", path.display());
     }
     if let Some(name) = &args.preset
-        && config::preset(name).is_ok_and(|s| s.values.contains_key(key))
+        && crate::config::preset(name).is_ok_and(|s| s.values.contains_key(key))
     {
         return format!("from the preset {name}");
     }
@@ -359,18 +358,27 @@ pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Int
     } else {
         "95% interval (Wald)"
     };
+    let name_of = |f: &Fitted| {
+        let s = spec(f.id);
+        match f.group {
+            Some(g) => format!("{} ({}) [{}]", s.flag, s.symbol, fit.groups[g]),
+            None => format!("{} ({})", s.flag, s.symbol),
+        }
+    };
+    let width = fit
+        .free
+        .iter()
+        .map(|f| name_of(f).chars().count())
+        .fold(22, usize::max);
     let _ = writeln!(
         out,
-        "\n  {:<26} {:>12} {:>10}  {heading:<28} unit",
+        "\n  {:<width$} {:>12} {:>10}  {heading:<28} unit",
         "parameter", "value", "stderr"
     );
     let mut differing = Vec::new();
     for f in &fit.free {
         let s = spec(f.id);
-        let name = match f.group {
-            Some(g) => format!("{} ({}) [{}]", s.flag, s.symbol, fit.groups[g]),
-            None => format!("{} ({})", s.flag, s.symbol),
-        };
+        let name = name_of(f);
         let stderr = f.stderr.map_or("-".into(), |se| shown(f.id, se, Some(se)));
         let mut interval = match (profile, f.profile95, f.ci95) {
             (true, Some((lo, hi)), _) => {
@@ -393,7 +401,7 @@ pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Int
             ""
         };
         let line = format!(
-            "  {name:<26} {:>12} {stderr:>10}  {interval:<28} {}{note}",
+            "  {name:<width$} {:>12} {stderr:>10}  {interval:<28} {}{note}",
             shown(f.id, f.value, f.stderr),
             s.display_unit
         );
@@ -401,14 +409,14 @@ pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Int
     }
     for f in differing {
         if let Some((lo, hi)) = f.ci95 {
-            let _ = writeln!(
-                out,
+            let line = format!(
                 "  * differs from the Wald interval by more than 10%: {} [{}, {}] {}",
                 label(fit, f),
                 shown(f.id, lo, f.stderr),
                 shown(f.id, hi, f.stderr),
                 spec(f.id).display_unit
             );
+            let _ = writeln!(out, "{}", line.trim_end());
         }
     }
     if fit
@@ -503,8 +511,13 @@ pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Int
     }
     if fit.free.len() > 1 {
         let _ = writeln!(out, "\ncorrelation");
+        let width = fit
+            .free
+            .iter()
+            .map(|f| label(fit, f).chars().count())
+            .fold(14, usize::max);
         for (f, row) in fit.free.iter().zip(&fit.correlation) {
-            let _ = write!(out, "  {:<22}", label(fit, f));
+            let _ = write!(out, "  {:<width$}", label(fit, f));
             for c in row {
                 let _ = write!(out, " {:>6}", c.map_or("-".into(), |c| format!("{c:.2}")));
             }

@@ -3,7 +3,7 @@
 use clap::{Args, ValueEnum};
 
 use super::{Failure, ParamArgs, emit};
-use crate::analysis::uncertainty::{DEFAULT_SAMPLES, monte_carlo};
+use crate::analysis::uncertainty::{DEFAULT_SAMPLES, monte_carlo_with};
 use crate::export;
 use crate::model::reportable::reportable;
 use crate::model::{Params, SolveOptions, solve_with};
@@ -75,8 +75,14 @@ pub fn run(args: &SimulateArgs, options: &SolveOptions) -> Result<(), Failure> {
         ));
     }
     let mc = &args.monte_carlo;
-    let bands = monte_carlo(&params, &spreads, mc.mc_samples as usize, mc.mc_seed)
-        .map_err(Failure::usage)?;
+    let bands = monte_carlo_with(
+        &params,
+        &spreads,
+        mc.mc_samples as usize,
+        mc.mc_seed,
+        options,
+    )
+    .map_err(Failure::usage)?;
     let text = match args.format {
         Format::Json => {
             let value = export::uncertainty::json(&spreads, &bands);

@@ -8,7 +8,7 @@ use super::simulate::MonteCarloArgs;
 use super::{Failure, ShotParamArgs, emit, shot};
 use crate::analysis::fit::data::Quantity;
 use crate::analysis::sweep::{Layout, WriteError};
-use crate::analysis::uncertainty::{Spread, monte_carlo};
+use crate::analysis::uncertainty::{Spread, monte_carlo_with};
 use crate::analysis::{Span, shots, span, sweep};
 use crate::export;
 use crate::model::{Params, SolveOptions};
@@ -120,11 +120,12 @@ fn write_with_bands(
     for (i, row) in rows.iter().enumerate() {
         let mut at = *base;
         at.set(span.spec.id, row.value);
-        let drawn = monte_carlo(
+        let drawn = monte_carlo_with(
             &at,
             bands.spreads,
             bands.mc.mc_samples as usize,
             bands.mc.mc_seed,
+            options,
         )?;
         let mut text = String::new();
         if i == 0 {

@@ -194,11 +194,24 @@ impl Bounce {
 
     /// The ball's phase kinds joined, e.g. `slide-grip-slide`.
     pub fn phase_summary(&self) -> String {
-        self.ball_phases()
-            .iter()
-            .map(|p| p.kind.name())
-            .collect::<Vec<_>>()
-            .join("-")
+        let mut summary = String::with_capacity(6 * self.phases.len());
+        self.push_phase_summary(&mut summary);
+        summary
+    }
+
+    /// [`Bounce::phase_summary`] written onto `text` (a sweep's CSV line), with no allocation of its own.
+    pub fn push_phase_summary(&self, text: &mut String) {
+        let mut previous = None;
+        for p in &self.phases {
+            let ball = Some((p.kind, p.slip_sign));
+            if ball != previous {
+                if previous.is_some() {
+                    text.push('-');
+                }
+                text.push_str(p.kind.name());
+                previous = ball;
+            }
+        }
     }
 
     /// The velocity along the surface of the frame the strings are tied to, as the ball leaves (0 on a

@@ -35,26 +35,30 @@ pub enum Stall {
     Resolution { t: f64 },
 }
 
-/// The work left to the solve running on this thread, and why its search stalled, if it did. A solve
+/// The budget of the solve running on this thread, and why its search stalled, if it did. A solve
 /// runs on one thread from start to end, and the searches' signature is shared by every contact model,
-/// so the meter is kept here rather than passed through them.
+/// so the meter is kept here rather than passed through them. The two things every evaluation reads,
+/// the evaluations left and whether the search stalled, have cells of their own ([`LEFT`],
+/// [`STALLED`]).
 #[derive(Clone, Copy)]
 struct Meter {
     armed: bool,
     budget: u64,
-    left: u64,
     stall: Option<Stall>,
 }
 
 const IDLE: Meter = Meter {
     armed: false,
     budget: u64::MAX,
-    left: u64::MAX,
     stall: None,
 };
 
 thread_local! {
     static METER: Cell<Meter> = const { Cell::new(IDLE) };
+    /// The evaluations left to the solve.
+    static LEFT: Cell<u64> = const { Cell::new(u64::MAX) };
+    /// True once the solve's search stalled (its reason is the meter's).
+    static STALLED: Cell<bool> = const { Cell::new(false) };
     /// The evaluations the last outermost metered solve on this thread spent.
     static SPENT: Cell<u64> = const { Cell::new(0) };
 }
@@ -68,15 +72,18 @@ pub fn metered<T>(budget: u64, solve: impl FnOnce() -> T) -> Result<T, Stall> {
         METER.set(Meter {
             armed: true,
             budget,
-            left: budget,
             stall: None,
         });
+        LEFT.set(budget);
+        STALLED.set(false);
     }
     let result = solve();
     let meter = METER.get();
     if !outer.armed {
-        SPENT.set(meter.budget - meter.left);
+        SPENT.set(meter.budget - LEFT.get());
         METER.set(IDLE);
+        LEFT.set(u64::MAX);
+        STALLED.set(false);
     }
     meter.stall.map_or(Ok(result), Err)
 }
@@ -92,29 +99,37 @@ pub fn metering() -> bool {
 }
 
 /// Records one evaluation at `t`.
+#[inline]
 fn spend(t: f64) {
-    let mut meter = METER.get();
-    if meter.left == 0 {
-        meter.stall.get_or_insert(Stall::Budget {
-            evaluations: meter.budget,
+    let left = LEFT.get();
+    if left == 0 {
+        stall(Stall::Budget {
+            evaluations: METER.get().budget,
             t,
         });
     } else {
-        meter.left -= 1;
+        LEFT.set(left - 1);
     }
-    METER.set(meter);
 }
 
 /// Records that the search cannot advance past `t`.
 fn stall_at(t: f64) {
+    stall(Stall::Resolution { t });
+}
+
+/// Records why the search stalled (the first reason stands).
+#[cold]
+fn stall(why: Stall) {
     let mut meter = METER.get();
-    meter.stall.get_or_insert(Stall::Resolution { t });
+    meter.stall.get_or_insert(why);
     METER.set(meter);
+    STALLED.set(true);
 }
 
 /// True once this thread's solve has stalled: every search then ends at once.
+#[inline]
 fn stalled() -> bool {
-    METER.get().stall.is_some()
+    STALLED.get()
 }
 
 /// The event: `K` branches, each a value and its time derivative at `t`. The phase ends when any

@@ -193,7 +193,7 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Char(' '))],
         Action::TogglePlay,
-        "play in slow motion from the time cursor, or pause",
+        "play or pause the bounce (shot view: the flight)",
         hint("␣", "play"),
     ),
     bind(
@@ -411,17 +411,14 @@ pub const OVERWRITE: &[Binding] = &[
     bind(&[Ctrl('c')], Action::Quit, "quit", None),
 ];
 
-/// True when the status line offers `action`'s hint in `view`, shot mode on or not: not the time
-/// cursor's keys in the shot view, whose court has no time cursor, and `m` only while shot mode is on
-/// (to leave it; Tab into the shot view turns it on).
+/// True when the status line offers `action`'s hint in `view`, shot mode on or not: in the shot view,
+/// where the flight plays in real time, not the contact's speed, step and phase keys; and `m` only while
+/// shot mode is on (to leave it; Tab into the shot view turns it on).
 pub fn offered(action: Action, view: View, shot_on: bool) -> bool {
     match action {
-        Action::TogglePlay
-        | Action::ChangeSpeed { .. }
-        | Action::CursorStep { .. }
-        | Action::CursorPhase { .. }
-        | Action::CursorHome
-        | Action::CursorEnd => view != View::Shot,
+        Action::ChangeSpeed { .. } | Action::CursorStep { .. } | Action::CursorPhase { .. } => {
+            view != View::Shot
+        }
         Action::ToggleShot => shot_on,
         _ => true,
     }

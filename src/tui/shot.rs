@@ -278,6 +278,12 @@ impl Shots {
         changed
     }
 
+    /// When the shot on screen ends, s from the stroke: at the last point of its path.
+    pub fn flight_end(&self) -> Option<f64> {
+        let shot = self.shown.as_ref()?.shot.as_ref().ok()?;
+        Some(shot.trajectory.last()?[0])
+    }
+
     /// True while the shot on screen is not that of `current`.
     pub fn stale(&self, current: &Params) -> bool {
         self.shown

@@ -2,14 +2,10 @@
 //! numerical integration, the apparent restitution against its formula, the heavy frame against the
 //! clamped one, momentum along the surface, the energy budget, and property tests over random frames.
 
-#[path = "common/frame_integrator.rs"]
-mod frame_integrator;
-#[path = "support/rng.rs"]
-mod rng;
-
-use frame_integrator::integrate_frame;
 use proptest::prelude::*;
-use rng::Rng;
+
+use crate::support::frame_integrator::integrate_frame;
+use crate::support::rng::Rng;
 use snapback::model::params::spec;
 use snapback::model::setup::apparent_restitution;
 use snapback::model::{FrameKind, ParamId, Params, PhaseKind, SolveError, solve};

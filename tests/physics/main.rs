@@ -25,6 +25,7 @@ mod chain_string;
 mod compliant;
 mod compliant_string;
 mod critical;
+mod frame;
 mod golden;
 mod numerical;
 mod paper;

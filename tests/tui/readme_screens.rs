@@ -1,11 +1,14 @@
-//! README.md's captures of the explorer are the explorer's screens: each `text` block after a comment
+//! The documents' captures of the explorer (README.md's and `docs/*.md`'s) are the explorer's screens:
+//! each `text` block after a comment
 //! `<!-- screen WIDTHxHEIGHT [no-colour] [data=FILE] [preset=NAME] keys: KEY ... -->` must be what the
 //! explorer draws on a screen of that size (with the measurements in FILE, as `--data FILE`, started from
 //! the preset, as `--preset NAME`, in shot mode for a shot) after those keys (`]x14`
 //! presses `]` fourteen times; `Tab`, `}` and other characters as named), once the heatmap, if shown,
-//! has filled in.
+//! has filled in. `README_BLESS=1 cargo test --release --test tui readme_screens` rewrites each stale
+//! capture with what the explorer draws.
 
 use std::io;
+use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
 use crossterm::event::{Event, KeyCode, KeyEvent, KeyModifiers};
@@ -18,11 +21,24 @@ use snapback::tui::{App, EventSource, Input, run};
 
 use crate::support::screen;
 
-const README: &str = include_str!("../../README.md");
+/// The documents that may hold captures, relative to the repository: README.md and the guide.
+fn documents() -> Vec<PathBuf> {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut all: Vec<PathBuf> = std::fs::read_dir(root.join("docs"))
+        .expect("docs/ is readable")
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "md"))
+        .collect();
+    all.sort();
+    all.insert(0, root.join("README.md"));
+    all
+}
 
 /// A screen capture: where it is, how to draw it, and what it shows.
 struct Capture {
+    /// The line of its comment (1-based), and the lines of its text (0-based, end excluded).
     line: usize,
+    text: (usize, usize),
     size: (u16, u16),
     colour: bool,
     /// The measurements' file, relative to the repository.
@@ -61,8 +77,8 @@ fn keys(spec: &str) -> Vec<Input> {
         .collect()
 }
 
-fn captures() -> Vec<Capture> {
-    let lines: Vec<&str> = README.lines().collect();
+fn captures(document: &str) -> Vec<Capture> {
+    let lines: Vec<&str> = document.lines().collect();
     let mut found = Vec::new();
     for (n, line) in lines.iter().enumerate() {
         let Some(spec) = line
@@ -88,6 +104,7 @@ fn captures() -> Vec<Capture> {
         let end = start + 1 + lines[start + 1..].iter().position(|l| *l == "```").unwrap();
         found.push(Capture {
             line: n + 1,
+            text: (start + 1, end),
             size: (w.parse().unwrap(), h.parse().unwrap()),
             colour,
             data,
@@ -162,26 +179,49 @@ fn draw(capture: &Capture) -> String {
 
 #[test]
 fn every_screen_capture_is_the_explorers_screen() {
-    let captures = captures();
-    assert_eq!(
-        captures.len(),
-        5,
-        "the contact, sweep and heatmap views, the lab and the shot"
-    );
+    let bless = std::env::var_os("README_BLESS").is_some();
     let mut stale = Vec::new();
-    for capture in &captures {
-        let drawn = draw(capture);
-        let shown: Vec<&str> = capture.shown.lines().map(str::trim_end).collect();
-        if drawn != shown.join("\n") {
-            stale.push(format!(
-                "README.md:{}: the explorer draws\n{drawn}",
-                capture.line
-            ));
+    let mut count = 0;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    for path in documents() {
+        let name = path.strip_prefix(root).unwrap().display().to_string();
+        let document = std::fs::read_to_string(&path).unwrap();
+        let captures = captures(&document);
+        if name == "README.md" {
+            assert_eq!(captures.len(), 1, "README.md shows one screen");
+        }
+        count += captures.len();
+        let mut lines: Vec<String> = document.lines().map(str::to_string).collect();
+        let mut changed = false;
+        // From the end, so that earlier line numbers still hold when one is rewritten.
+        for capture in captures.iter().rev() {
+            let drawn = draw(capture);
+            let shown: Vec<&str> = capture.shown.lines().map(str::trim_end).collect();
+            if drawn == shown.join("\n") {
+                continue;
+            }
+            if bless {
+                let (from, to) = capture.text;
+                lines.splice(from..to, drawn.lines().map(str::to_string));
+                changed = true;
+            } else {
+                stale.push(format!(
+                    "{name}:{}: the explorer draws\n{drawn}",
+                    capture.line
+                ));
+            }
+        }
+        if changed {
+            std::fs::write(&path, lines.join("\n") + "\n").unwrap();
         }
     }
     assert!(
+        count >= 6,
+        "{count} captures: README.md's, and the guide's contact, sweep and heatmap views, lab and shot"
+    );
+    assert!(
         stale.is_empty(),
-        "stale screen captures:\n\n{}",
+        "stale screen captures (README_BLESS=1 rewrites them):\n\n{}",
         stale.join("\n\n")
     );
 }

@@ -194,6 +194,31 @@ fn the_prompt_names_the_unit_of_a_bare_number() {
 }
 
 #[test]
+fn a_bare_number_far_outside_the_usual_range_gets_the_command_lines_note() {
+    let select = || vec![key(KeyCode::Char('j')); 11];
+    let mut events = select();
+    events.push(key(KeyCode::Char('e')));
+    events.extend(typed("10"));
+    events.push(key(KeyCode::Enter));
+    let (app, screen) = explore(120, 40, events);
+    assert_eq!(app.params.cart_mass, 10.0, "the value is taken as written");
+    let message = app.message.as_ref().expect("a note").text.clone();
+    assert_eq!(
+        message,
+        "note: cart mass 10 is read as 10 kg; write 10g for grams"
+    );
+    assert!(screen.contains(&message), "{screen}");
+    // With its unit, no note.
+    let mut events = select();
+    events.push(key(KeyCode::Char('e')));
+    events.extend(typed("10g"));
+    events.push(key(KeyCode::Enter));
+    let (app, _) = explore(120, 40, events);
+    assert_eq!(app.params.cart_mass, 0.010);
+    assert!(app.message.is_none(), "{:?}", app.message);
+}
+
+#[test]
 fn a_rejected_edit_shows_why_and_keeps_the_value() {
     for (w, h) in SIZES {
         let mut events = vec![key(KeyCode::Enter)];

@@ -559,10 +559,13 @@ fn tab_from_the_default_bounce_plays_the_shot_snapback_shot_plays() {
     for readout in readouts(&expected) {
         assert!(screen.contains(&readout), "{readout} in\n{screen}");
     }
-    // The hint line names m, and offers no key of the contact's time cursor: the court has none.
+    // The hint line names m, and offers play (the flight) but not the contact's time keys.
     let hints = screen.lines().last().unwrap();
-    assert!(hints.contains("m shot off"), "{hints}");
-    for absent in ["␣ play", "[] time", "{} phase", "+- speed"] {
+    assert!(
+        hints.contains("m shot off") && hints.contains("␣ play"),
+        "{hints}"
+    );
+    for absent in ["[] time", "{} phase", "+- speed"] {
         assert!(!hints.contains(absent), "{absent} in {hints}");
     }
     // Back in the contact view, shot mode stays on and m is still offered, with the time keys.
@@ -621,4 +624,38 @@ fn reset_all_leaves_the_shot_for_the_bounce_the_explorer_started_with() {
         screen.contains("shot mode is on, as at the start"),
         "{screen}"
     );
+}
+
+#[test]
+fn space_plays_the_flight_in_the_shot_view() {
+    use snapback::tui::Input;
+    use std::time::Duration;
+    let params = preset("topspin-forehand");
+    let mut app = App::new(params, Theme::default()).unwrap();
+    app.start_in_shot_mode();
+    let mut inputs: Vec<Input> = tabs(3).into_iter().map(Input::from).collect();
+    inputs.push(char(' ').into());
+    inputs.extend(vec![Input::Tick(Duration::from_millis(100)); 3]);
+    let mut terminal = Terminal::new(TestBackend::new(160, 48)).unwrap();
+    run(&mut terminal, &mut app, &mut Scripted::from(inputs)).unwrap();
+    let screen = text(&terminal);
+    assert!(app.playing);
+    assert!((app.flight - 0.3).abs() < 1e-9, "{}", app.flight);
+    assert!(screen.contains("t 0.30 s"), "{screen}");
+    assert!(screen.contains('●'), "the ball on its path:\n{screen}");
+    // End puts it where the path ends (past the court bounce), and the contact's cursor never moved.
+    let screen = text(&drive(
+        &mut app,
+        160,
+        48,
+        vec![char(' '), key(KeyCode::End)],
+    ));
+    let end = shot::play(&params, true)
+        .unwrap()
+        .trajectory
+        .last()
+        .unwrap()[0];
+    assert_eq!(app.flight, end);
+    assert!(screen.contains(&format!("t {end:.2} s")), "{screen}");
+    assert_eq!(app.cursor, 0.0);
 }

@@ -43,6 +43,9 @@ impl Model<'_> {
 
     /// The model's value of each measured quantity of `row`, with the free parameters at `u`.
     pub fn predict(&self, row: &Row, u: &[f64]) -> Option<Vec<f64>> {
+        if self.tally.cancelled() {
+            return None;
+        }
         let params = row.params(&place_for(&self.base, self.free, u, row.group));
         if self
             .swing_limit

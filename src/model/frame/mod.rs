@@ -24,7 +24,7 @@ use std::cell::Cell;
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise;
-use super::oscillator::{forced, free};
+use super::oscillator::{detuned, forced, free_given};
 use super::params::Params;
 use super::quadrature::integrate;
 use super::setup::{Setup, State};
@@ -56,7 +56,15 @@ pub struct FrameMotion {
     /// The cart's velocity at the start as the closed form gives it (the grip's impulse on the ball is
     /// measured from it, so that it is exactly zero at the start).
     v1_start: f64,
+    /// Sliding away from resonance: the particular response's amplitude F0 / (M (Ω² - w²)), which
+    /// [`detuned`] scales with no trigonometry beyond the free swing's; `None` near resonance, where
+    /// [`forced`] is exact (the single cart's `Slide` makes the same choice).
+    amplitude: Option<f64>,
 }
+
+/// The detuned form is used while the particular response's speed A w is at most this many times the
+/// speeds at the start of the phase (the single cart's criterion).
+const DETUNED_GAIN: f64 = 16.0;
 
 /// Everything at one instant of a phase.
 #[derive(Clone, Copy, Debug)]
@@ -88,7 +96,16 @@ impl FrameMotion {
             frame: frame.mass,
             p0: cart * start.s.v + frame.mass * start.vf,
             v1_start: start.s.v,
+            amplitude: None,
         };
+        if dir != 0.0 {
+            let w = setup.w;
+            let amplitude = dir * setup.peak_friction() / (cart * (omega * omega - w * w));
+            let s0 = &start.s;
+            let speeds = s0.vx.abs() + setup.r * s0.omega.abs() + s0.v.abs() + start.vf.abs();
+            motion.amplitude =
+                ((amplitude * w).abs() <= DETUNED_GAIN * speeds).then_some(amplitude);
+        }
         motion.v1_start = motion.cart_velocity(motion.p0, start.s.v - start.vf);
         motion
     }
@@ -104,7 +121,8 @@ impl FrameMotion {
         let s0 = &self.start.s;
         let tau = t - s0.t;
         let (y0, dy0) = (s0.x, s0.v - self.start.vf);
-        let (y_free, dy_free) = free(y0, dy0, self.omega, tau);
+        let (sin_omega_tau, cos_omega_tau) = (self.omega * tau).sin_cos();
+        let (y_free, dy_free) = free_given(y0, dy0, self.omega, tau, sin_omega_tau, cos_omega_tau);
         if self.dir == 0.0 {
             let v = self.cart_velocity(self.p0, dy_free);
             let impulse = -setup.m_eff * (v - self.v1_start);
@@ -133,9 +151,24 @@ impl FrameMotion {
         // and the frame together gain.
         let impulse =
             force_amplitude * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / w;
-        let (g, dg) = forced(self.omega, w, self.sin_wt0, self.cos_wt0, tau);
-        let drive = force_amplitude / self.cart;
-        let (y, dy) = (y_free + drive * g, dy_free + drive * dg);
+        let (y, dy) = match self.amplitude {
+            Some(amplitude) => {
+                let (g, dg) = detuned(
+                    self.omega,
+                    w,
+                    tau,
+                    (self.sin_wt0, self.cos_wt0),
+                    (sin_w_tau, cos_w_tau),
+                    (sin_omega_tau, cos_omega_tau),
+                );
+                (y_free + amplitude * g, dy_free + amplitude * dg)
+            }
+            None => {
+                let (g, dg) = forced(self.omega, w, self.sin_wt0, self.cos_wt0, tau);
+                let drive = force_amplitude / self.cart;
+                (y_free + drive * g, dy_free + drive * dg)
+            }
+        };
         let v = self.cart_velocity(self.p0 + impulse, dy);
         let friction = force_amplitude * sin_wt.max(0.0);
         Point {
@@ -156,16 +189,21 @@ impl FrameMotion {
     }
 
     /// A bound on |y'| over the rest of the contact: the oscillator's energy, in velocity units, grows at
-    /// most by the drive's impulse per unit mass.
+    /// most by the drive's impulse per unit mass; away from resonance, also the free swing about the
+    /// particular response A sin(w t) plus that response's speed |A| w, whichever is smaller.
     fn stretch_speed(&self, setup: &Setup) -> f64 {
         let s0 = &self.start.s;
         let dy0 = s0.v - self.start.vf;
         let free = dy0.hypot(self.omega * s0.x);
         if self.dir == 0.0 {
-            free
-        } else {
-            free + setup.peak_friction() * (setup.duration - s0.t) / self.cart
+            return free;
         }
+        let fed = free + setup.peak_friction() * (setup.duration - s0.t) / self.cart;
+        self.amplitude.map_or(fed, |a| {
+            let w = setup.w;
+            let swing = (dy0 - a * w * self.cos_wt0).hypot(self.omega * (s0.x - a * self.sin_wt0));
+            fed.min(swing + a.abs() * w)
+        })
     }
 }
 

@@ -232,8 +232,12 @@ impl App {
         }
         let values: Vec<String> = fit.free.iter().map(fitted_text).collect();
         let converged = if fit.converged { "" } else { ", NOT converged" };
+        let verdict = match fit.p_value {
+            Some(p) => format!("{} (p {})", fit.verdict.name(), units::brief(p, 2)),
+            None => format!("{} (no sigmas)", fit.verdict.name()),
+        };
         let text = format!(
-            "fit in {seconds:.2} s: {}; chi2 {} for {} dof{converged}",
+            "fit in {seconds:.2} s: {}; chi2 {} for {} dof{converged}, verdict {verdict}",
             values.join(", "),
             units::brief(fit.chi2, 4),
             fit.dof

@@ -74,7 +74,9 @@ pub struct App {
     pub help_scroll: u16,
     /// The time cursor, s, in `[0, T]`: the charts' vertical line, their readouts and the schematic.
     pub cursor: f64,
-    /// True while the bounce plays in slow motion.
+    /// The time along the flight, s, in the shot view: where its ball is drawn.
+    pub flight: f64,
+    /// True while the bounce plays in slow motion (in the shot view: the flight, in real time).
     pub playing: bool,
     pub speed: Speed,
     /// Wall time between frames while playing.
@@ -116,6 +118,7 @@ impl App {
             solved: None,
             sweeps: None,
             cursor: 0.0,
+            flight: 0.0,
             playing: false,
             speed: Speed::default(),
             frame: playback::FRAME,
@@ -327,17 +330,35 @@ impl App {
 
     /// Moves the cursor on by `elapsed` wall time at the playback speed, stopping at T. True if anything
     /// changed (only while playing).
+    /// In the shot view the flight plays instead, in real time.
     pub fn advance(&mut self, elapsed: Duration) -> bool {
         if !self.playing {
             return false;
         }
-        let duration = self.duration();
-        self.cursor += elapsed.as_secs_f64() * self.speed.rate();
-        if self.cursor >= duration {
-            self.cursor = duration;
+        let rate = if self.view == View::Shot {
+            1.0
+        } else {
+            self.speed.rate()
+        };
+        let (time, end) = self.timeline();
+        *time += elapsed.as_secs_f64() * rate;
+        if *time >= end {
+            *time = end;
             self.playing = false;
         }
         true
+    }
+
+    /// The time that plays in this view and where it ends: the flight's in the shot view, s (0 before
+    /// the shot is played), else the contact's cursor and T.
+    fn timeline(&mut self) -> (&mut f64, f64) {
+        if self.view == View::Shot {
+            let end = self.shots.flight_end().unwrap_or(0.0);
+            (&mut self.flight, end)
+        } else {
+            let end = self.duration();
+            (&mut self.cursor, end)
+        }
     }
 
     /// The spec of the highlighted parameter.
@@ -396,7 +417,10 @@ impl App {
             }
             Action::ResetAll => self.reset_all(),
             Action::NextView => {
+                // What plays is the view's own: the flight in the shot view, the contact elsewhere.
+                let shot = self.view == View::Shot;
                 self.view = self.view.next();
+                self.playing &= shot == (self.view == View::Shot);
                 if self.view == View::Shot && !self.shots.on {
                     self.enter_shot();
                 }
@@ -419,15 +443,19 @@ impl App {
                     self.cursor = stop;
                 }
             }
-            Action::CursorHome => self.cursor = 0.0,
-            Action::CursorEnd => self.cursor = self.duration(),
+            Action::CursorHome => *self.timeline().0 = 0.0,
+            Action::CursorEnd => {
+                let (time, end) = self.timeline();
+                *time = end;
+            }
             Action::CursorTo(t) => self.cursor = t.clamp(0.0, self.duration()),
             Action::TogglePlay => {
                 if self.playing {
                     self.playing = false;
                 } else {
-                    if self.cursor >= self.duration() {
-                        self.cursor = 0.0;
+                    let (time, end) = self.timeline();
+                    if *time >= end {
+                        *time = 0.0;
                     }
                     self.playing = true;
                 }
@@ -542,6 +570,16 @@ impl App {
                 let mut params = self.params;
                 params.set(spec.id, value);
                 self.try_apply(params);
+                // A bare number far outside the usual range gets the command line's note, unless
+                // the value was refused.
+                if self.message.is_none()
+                    && let Some(note) = spec.bare_note(spec.label, &text)
+                {
+                    self.message = Some(Message {
+                        text: format!("note: {note}"),
+                        tone: Tone::Info,
+                    });
+                }
             }
             // The core names the command-line flag; the panel's name is what the user sees here.
             Err(e) => self.refuse(e.to_string().replace(

@@ -16,6 +16,9 @@
 //!     0                    net              23.77 m
 //! ```
 //!
+//! `␣` plays the flight in real time, the ball drawn on its path and its time in the title; Home and
+//! End put it at the stroke and at the end of the path.
+//!
 //! A shot the model cannot play (a racquet that never meets the ball, a flight that does not end) is
 //! shown as its reason in place of the court.
 
@@ -119,6 +122,10 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     if base.is_some() {
         title.push(pinned::legend(theme));
     }
+    let ball = flying(app, shot);
+    if let Some((t, _)) = ball {
+        title.push(Span::styled(format!("t {t:.2} s "), theme.key()));
+    }
     let block = Block::new().borders(Borders::TOP).title(Line::from(title));
     let inner = block.inner(area);
     frame.render_widget(block, area);
@@ -138,7 +145,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         ..inner
     };
     if court.height >= 3 && court.width >= 20 {
-        draw_court(frame, court, app, shot, base);
+        draw_court(frame, court, app, shot, base, ball.map(|(_, at)| at));
     }
 }
 
@@ -310,7 +317,34 @@ fn polyline(ctx: &mut Context, points: &[(f64, f64)], color: Color) {
     }
 }
 
-fn draw_court(frame: &mut Frame, area: Rect, app: &App, shot: &Shot, base: Option<&Shot>) {
+/// Where the ball is at the flight's time, once `␣` has played it or while it plays: the time (within
+/// the flight) and the point, by linear interpolation along the path.
+fn flying(app: &App, shot: &Shot) -> Option<(f64, (f64, f64))> {
+    if app.flight <= 0.0 && !app.playing {
+        return None;
+    }
+    let path = &shot.trajectory;
+    let t = app.flight.clamp(path.first()?[0], path.last()?[0]);
+    let i = path
+        .partition_point(|p| p[0] < t)
+        .clamp(1, path.len().max(2) - 1);
+    let (a, b) = (path.get(i - 1)?, path.get(i)?);
+    let f = if b[0] > a[0] {
+        (t - a[0]) / (b[0] - a[0])
+    } else {
+        1.0
+    };
+    Some((t, (a[1] + f * (b[1] - a[1]), a[2] + f * (b[2] - a[2]))))
+}
+
+fn draw_court(
+    frame: &mut Frame,
+    area: Rect,
+    app: &App,
+    shot: &Shot,
+    base: Option<&Shot>,
+    ball: Option<(f64, f64)>,
+) {
     let theme = &app.theme;
     let ([x0, x1], [y0, y1]) = bounds(shot, base);
     // One cell up, in metres: the height of the line marks; a dot about every third column.
@@ -355,6 +389,13 @@ fn draw_court(frame: &mut Frame, area: Rect, app: &App, shot: &Shot, base: Optio
         polyline(ctx, &first, theme.current());
         polyline(ctx, &kick, theme.phase(PhaseKind::Grip));
         ctx.print(x0, y1, Line::styled(format!("{} m", y1), theme.dim()));
+        if let Some((x, y)) = ball {
+            ctx.print(
+                x,
+                y,
+                Span::styled(theme.words("●").into_owned(), theme.key()),
+            );
+        }
     };
     frame.render_widget(
         Canvas::default()

@@ -1,13 +1,15 @@
 //! The outcome panel's lines on the measurements given with `--data`: how far the model at the current
 //! parameters is from them (rms as `snapback fit` reports it, and chi2 per degree of freedom when the
 //! data give sigmas, the degrees of freedom counting the parameters marked free), the measurement
-//! furthest from the model (its line in the file, model - measured), and the rows the model cannot give.
+//! furthest from the model (its line in the file, model - measured), the incoming conditions no column
+//! sets (every row takes the current value), and the rows the model cannot give.
 //! Dimmed while the current parameters' are solved.
 
 use ratatui::style::Style;
 use ratatui::text::{Line, Span};
 
 use crate::analysis::fit::data::Quantity;
+use crate::model::params::spec;
 use crate::model::units;
 use crate::tui::app::App;
 use crate::tui::residuals::{Compared, Residuals};
@@ -136,6 +138,23 @@ pub fn lines(app: &App, wide: bool) -> Vec<Line<'static>> {
                 ]));
             }
         }
+    }
+    // The incoming conditions no column sets: every row is solved at the current value.
+    let assumed = data.assumed(&app.params);
+    if !assumed.is_empty() {
+        let values: Vec<String> = assumed
+            .iter()
+            .map(|&(id, v)| format!("{} {}", spec(id).symbol, spec(id).show(v)))
+            .collect();
+        let names: Vec<&str> = assumed.iter().map(|&(id, _)| spec(id).symbol).collect();
+        lines.push(Line::from(vec![
+            label("assumed", "not in the data"),
+            fitting(vec![
+                format!("{} every row", values.join(", ")),
+                values.join(", "),
+                format!("{} as set", names.join(", ")),
+            ]),
+        ]));
     }
     if let Some(c) = r.worst() {
         lines.push(Line::from(vec![
