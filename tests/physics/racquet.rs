@@ -375,7 +375,7 @@ fn independent_launch(p: &Params) -> ([f64; 2], f64) {
 
 #[test]
 fn a_hand_held_shot_agrees_with_an_independent_solution_end_to_end() {
-    let mut rng = Rng(0x4acc_e7_2023);
+    let mut rng = Rng(0x004a_cce7_2023);
     let mut cases: Vec<Params> = ["topspin-forehand", "flat-drive", "slice", "kick-serve"]
         .iter()
         .map(|n| preset(n))
