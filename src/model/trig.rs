@@ -5,7 +5,7 @@
 //! and the rest to 53 bits), then sin and cos of the remainder r, |r| <= π/4, come from their Taylor
 //! series to r^17 and r^18 (the first term left out is below 1e-19). The result is within about an ulp
 //! of the correctly rounded one, the remainder's absolute error about 1e-21; angles beyond
-//! [`REDUCED`] (none of the closed forms' arguments, which [`super::error::MAX_RADIANS`] bounds) and
+//! `REDUCED` (none of the closed forms' arguments, which [`super::error::MAX_RADIANS`] bounds) and
 //! non-finite ones go to the library.
 
 use std::f64::consts::FRAC_2_PI;

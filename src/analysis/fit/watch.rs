@@ -77,13 +77,20 @@ impl<'a> Tally<'a> {
     pub fn at(&self, stage: Stage, done: usize, of: usize) {
         if let Ok(mut s) = self.stage.lock() {
             *s = (stage, done, of);
+            self.tell(*s);
         }
-        self.report();
     }
 
     /// Tells the watch where the fit is.
     pub fn report(&self) {
-        let (stage, done, of) = self.stage.lock().map_or((Stage::Scan, 0, 1), |s| *s);
+        if let Ok(s) = self.stage.lock() {
+            self.tell(*s);
+        }
+    }
+
+    /// Called with the stage's lock held, so that reports from the search's threads reach the watch one
+    /// at a time, in order: the count of solves a watch sees never goes back.
+    fn tell(&self, (stage, done, of): (Stage, usize, usize)) {
         (self.watch.progress)(Progress {
             stage,
             done,
