@@ -152,6 +152,17 @@ impl Setup {
     #[inline]
     pub fn grip_margins(&self, t: f64, force: f64, rate: f64) -> [(f64, f64); 2] {
         let (sin_wt, cos_wt) = sin_cos(self.w * t);
+        self.grip_margins_given((sin_wt, cos_wt), force, rate)
+    }
+
+    /// [`Setup::grip_margins`] with sin(w t) and cos(w t) at hand.
+    #[inline]
+    pub fn grip_margins_given(
+        &self,
+        (sin_wt, cos_wt): (f64, f64),
+        force: f64,
+        rate: f64,
+    ) -> [(f64, f64); 2] {
         let limit = self.peak_friction() * sin_wt.max(0.0);
         let limit_rate = self.peak_friction() * self.w * cos_wt;
         [

@@ -1,9 +1,9 @@
 //! The grip phase, Eqs. (4)-(6): the contact point moves with the cart, held by static friction.
 
 use super::super::contact::Cart;
-use super::super::oscillator::{free, step};
+use super::super::oscillator::{free_given, step};
 use super::super::setup::{Setup, State};
-use super::super::trig::sin_cos;
+use super::super::trig::{sin_cos, sin_cos2};
 
 /// A grip phase from `start`.
 #[derive(Clone, Copy, Debug)]
@@ -35,15 +35,37 @@ impl Grip {
     /// is -m_eff (V - V0), which gives v_x and omega.
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> State {
+        let (omega, tau) = (setup.omega_grip, t - self.start.t);
+        self.at_given(setup, t, sin_cos(omega * tau))
+    }
+
+    /// The state at `t` and how far the grip is from breaking forward and backward there: sign F_s - mu N
+    /// for sign = +1 and -1, each with its rate (the grip breaks when either rises above zero). The
+    /// cart's angle and the normal force's are computed together.
+    #[inline]
+    pub fn evaluate(&self, setup: &Setup, t: f64) -> (State, [(f64, f64); 2]) {
+        let (omega, tau) = (setup.omega_grip, t - self.start.t);
+        let (cart, normal) = sin_cos2(omega * tau, setup.w * t);
+        let s = self.at_given(setup, t, cart);
+        let margins = setup.grip_margins_given(
+            normal,
+            self.friction(setup, s.x),
+            self.force_rate(setup, &s),
+        );
+        (s, margins)
+    }
+
+    /// [`Grip::at`] with sin(Ωτ) and cos(Ωτ) at hand.
+    #[inline]
+    fn at_given(&self, setup: &Setup, t: f64, (s, c): (f64, f64)) -> State {
         let s0 = &self.start;
         if self.cart == Cart::Stuck {
             return State { t, ..*s0 };
         }
         let (omega, tau) = (setup.omega_grip, t - s0.t);
-        let (mut x, mut v) = free(s0.x, s0.v, omega, tau);
+        let (mut x, mut v) = free_given(s0.x, s0.v, omega, tau, s, c);
         let push = self.push(setup);
         if push != 0.0 {
-            let (s, c) = sin_cos(omega * tau);
             let (x_push, v_push) = step(s, c, omega, tau);
             x += push * x_push;
             v += push * v_push;
@@ -67,16 +89,14 @@ impl Grip {
         }
     }
 
-    /// How far the grip is from breaking forward and backward: sign F_s - mu N for sign = +1 and -1,
-    /// each with its rate. The grip breaks when either rises above zero.
+    /// The rate of the static friction, k m_eff V / (M + m_eff) (0 on a stuck cart).
     #[inline]
-    pub fn margins(&self, setup: &Setup, s: &State) -> [(f64, f64); 2] {
-        let force_rate = if self.cart == Cart::Stuck {
+    fn force_rate(&self, setup: &Setup, s: &State) -> f64 {
+        if self.cart == Cart::Stuck {
             0.0
         } else {
             setup.grip_gain * s.v
-        };
-        setup.grip_margins(s.t, self.friction(setup, s.x), force_rate)
+        }
     }
 
     /// The size of the terms the cart's velocity is computed from, for the rounding floor of its event.

@@ -262,9 +262,8 @@ impl Contact for SingleCart {
                 let cart_dir = f64::from(cart_dir);
                 let string = setup.cart_friction > 0.0;
                 let f = |t: f64| {
-                    let s = grip.at(setup, t);
+                    let (s, [forward, backward]) = grip.evaluate(setup, t);
                     last.set(s);
-                    let [forward, backward] = grip.margins(setup, &s);
                     let stop = if string {
                         (
                             -cart_dir * (s.v - v_offset),

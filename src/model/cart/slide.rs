@@ -3,7 +3,7 @@
 use super::super::contact::Cart;
 use super::super::oscillator::{detuned, forced, free, free_given, step};
 use super::super::setup::{Setup, State};
-use super::super::trig::sin_cos;
+use super::super::trig::{sin_cos, sin_cos2};
 
 /// A sliding phase from `start`, with the slip's sign `dir` (+1: the contact point moves forward
 /// relative to the cart and the friction on the ball, F = dir mu N, acts backward).
@@ -78,7 +78,8 @@ impl Slide {
         let tau = t - s0.t;
         let (w, omega) = (setup.w, setup.omega_slide);
         let force_amplitude = self.dir * setup.peak_friction();
-        let (sin_w_tau, cos_w_tau) = sin_cos(w * tau);
+        // The normal force's angle and the cart's together (the cart's is wasted when it is stuck).
+        let ((sin_w_tau, cos_w_tau), (s, c)) = sin_cos2(w * tau, omega * tau);
         let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
         // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
         let impulse =
@@ -86,7 +87,6 @@ impl Slide {
         let (x, v) = match self.response {
             CartResponse::Detuned { amplitude } => {
                 // Free response from the start state, plus A (sin w t - its free continuation from t0).
-                let (s, c) = sin_cos(omega * tau);
                 let (x_free, v_free) = free_given(s0.x, s0.v, omega, tau, s, c);
                 let phase0 = (self.sin_wt0, self.cos_wt0);
                 let (x_forced, v_forced) =
@@ -101,11 +101,6 @@ impl Slide {
                 let (x_free, v_free) = free(s0.x, s0.v, omega, tau);
                 let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
                 let drive = force_amplitude / setup.cart_mass;
-                let (s, c) = if self.push == 0.0 {
-                    (0.0, 1.0)
-                } else {
-                    sin_cos(omega * tau)
-                };
                 let (x_push, v_push) = self.push_response(s, c, omega, tau);
                 (x_free + drive * g + x_push, v_free + drive * dg + v_push)
             }
