@@ -4,8 +4,10 @@
 //! taken from the amplitudes of its closed-form solution. Between two points `a < b` the function then
 //! lies below both parabolas `f(a) + f'(a) s + curvature s²/2` and `f(b) - f'(b) (b - t) + curvature
 //! (b - t)²/2`; when the lower of the two stays below the noise floor, the interval provably holds no
-//! rise. Otherwise it is halved, earliest half first, so the crossing found is the first one, however
-//! close two crossings lie (a short phase is never skipped).
+//! rise. When a branch has risen by the interval's end, its crossing is predicted by Newton's method
+//! from the secant point, and the rest, `[a, crossing]`, is proved empty in the same way; an interval
+//! that cannot be proved is halved, earliest half first, so the crossing found is the first one,
+//! however close two crossings lie (a short phase is never skipped).
 //!
 //! Every search is metered ([`metered`]): a solve has a budget of evaluations, and a search whose step
 //! no longer advances time stops. Either way the search gives up, and the solve is refused with the
@@ -204,32 +206,46 @@ fn search<const K: usize>(
         noise,
         ends_only: at_zero,
     };
+    // The first coarse interval, when a branch starts on its zero: proved empty as any other if the
+    // bound allows, else split at the window.
+    let mut pending = None;
     if at_zero.contains(&true) {
-        let window = match start {
-            Start::Downward => step / 8.0,
-            Start::Tangent => {
-                let tangent = (0..K)
-                    .filter(|&i| at_zero[i] && curvature[i] > 0.0)
-                    .map(|i| (2.0 * noise[i] / curvature[i]).sqrt())
-                    .fold(f64::INFINITY, f64::min);
-                (step / 8.0).min(tangent.max(step * 1e-6))
+        let b = Point::at(&f, (t0 + step).min(t1));
+        if search.proved_empty(&a, &b) {
+            a = b;
+        } else {
+            let window = match start {
+                Start::Downward => step / 8.0,
+                Start::Tangent => {
+                    let tangent = (0..K)
+                        .filter(|&i| at_zero[i] && curvature[i] > 0.0)
+                        .map(|i| (2.0 * noise[i] / curvature[i]).sqrt())
+                        .fold(f64::INFINITY, f64::min);
+                    (step / 8.0).min(tangent.max(step * 1e-6))
+                }
+            };
+            let w = Point::at(&f, (t0 + window).min(t1));
+            if let Some(t) = search.first_in(&a, &w, true) {
+                return Some(t);
             }
-        };
-        let b = Point::at(&f, (t0 + window).min(t1));
-        if let Some(t) = search.first_in(&a, &b) {
-            return Some(t);
+            a = w;
+            pending = Some(b);
         }
-        a = b;
         search.ends_only = [false; K];
     }
     while a.t < t1 && !stalled() {
-        let next = (a.t + step).min(t1);
-        if next <= a.t {
-            stall_at(a.t);
-            return None;
-        }
-        let b = Point::at(&f, next);
-        if let Some(t) = search.first_in(&a, &b) {
+        let b = match pending.take() {
+            Some(b) if b.t > a.t => b,
+            _ => {
+                let next = (a.t + step).min(t1);
+                if next <= a.t {
+                    stall_at(a.t);
+                    return None;
+                }
+                Point::at(&f, next)
+            }
+        };
+        if let Some(t) = search.first_in(&a, &b, true) {
             return Some(t);
         }
         a = b;
@@ -266,9 +282,14 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
         (0..K).find(|&i| p.branches[i].0 > self.noise[i])
     }
 
+    /// True when no branch rises on `[a, b]`: each is at most its noise at `b` and proved so between.
+    fn proved_empty(&self, a: &Point<K>, b: &Point<K>) -> bool {
+        (0..K).all(|i| b.branches[i].0 <= self.noise[i] && self.proved_below(a, b, i))
+    }
+
     /// The first rise in `[a, b]`, given that every branch is at most `noise` at `a` and nothing rose
     /// before `a`.
-    fn first_in(&self, a: &Point<K>, b: &Point<K>) -> Option<(f64, usize)> {
+    fn first_in(&self, a: &Point<K>, b: &Point<K>, predict: bool) -> Option<(f64, usize)> {
         if stalled() {
             return None;
         }
@@ -281,33 +302,43 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
         }
         let width = b.t - a.t;
         if width <= FINEST * b.t.abs().max(f64::MIN_POSITIVE) {
-            return risen.map(|branch| (self.crossing(branch, a, b), branch));
+            return risen.map(|branch| (self.crossing(branch, a, b).t, branch));
         }
-        // One branch rising throughout (f' >= f'(a) - curvature (b - a) > 0, so its crossing is
-        // unique) while the others are proved below: that crossing is the first rise.
         if let Some(i) = risen {
+            // One branch rising throughout (f' >= f'(a) - curvature (b - a) > 0, so its crossing is
+            // unique) while the others are proved below: that crossing is the first rise.
             let rising = a.branches[i].1 - 2.0 * self.half_curvature[i] * width > 0.0;
             if rising && (0..K).all(|j| j == i || below(j)) {
-                return Some((self.crossing(i, a, b), i));
+                return Some((self.crossing(i, a, b).t, i));
+            }
+            if predict {
+                // The risen branch's crossing, by Newton: the first rise unless another lies before it,
+                // which the search of [a, crossing] (without predicting) proves absent or finds.
+                let at = self.crossing(i, a, b);
+                return self.first_in(a, &at, false).or(Some((at.t, i)));
             }
         }
         let mid = Point::at(self.f, a.t + 0.5 * width);
-        self.first_in(a, &mid).or_else(|| self.first_in(&mid, b))
+        self.first_in(a, &mid, predict)
+            .or_else(|| self.first_in(&mid, b, predict))
     }
 
-    /// Where branch `i`, above its noise at `b`, crosses zero. Within the noise it may already be a
-    /// little above zero at `a`; the crossing then lies before `a`, and is bracketed by stepping back.
-    fn crossing(&self, i: usize, a: &Point<K>, b: &Point<K>) -> f64 {
-        let branch = |t: f64| (self.f)(t)[i];
-        let (mut low, mut high) = ((a.t, a.branches[i].0), (b.t, b.branches[i].0));
+    /// Where branch `i`, above its noise at `b`, crosses zero, with every branch there. Within the
+    /// noise it may already be a little above zero at `a`; the crossing then lies before `a`, and is
+    /// bracketed by stepping back.
+    fn crossing(&self, i: usize, a: &Point<K>, b: &Point<K>) -> Point<K> {
+        let (mut low, mut high) = (*a, *b);
         let mut step = b.t - a.t;
-        while low.1 > 0.0 && low.0 > self.start && step > 0.0 {
+        while low.branches[i].0 > 0.0 && low.t > self.start && step > 0.0 {
             high = low;
-            let t = (low.0 - step).max(self.start);
-            low = (t, branch(t).0);
+            let t = (low.t - step).max(self.start);
+            low = Point {
+                t,
+                branches: (self.f)(t),
+            };
             step *= 2.0;
         }
-        refine(branch, low, high)
+        refine(self.f, i, low, high)
     }
 
     /// True when the two parabolas through `a` and `b` prove branch `i` at most `noise` on `[a, b]`.
@@ -331,19 +362,21 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
     }
 }
 
-/// The crossing of zero in `[a, b]`, given as (time, value) with `f(a) <= 0 < f(b)` (up to noise), by
-/// Newton iteration from the secant point, kept inside a shrinking bracket, to a few units in the last
-/// place of `t`.
-fn refine(f: impl Fn(f64) -> (f64, f64), (mut a, fa): (f64, f64), (mut b, fb): (f64, f64)) -> f64 {
+/// The crossing of zero of branch `i` of `f` in `[a, b]`, given `f_i(a) <= 0 < f_i(b)` (up to noise),
+/// by Newton iteration from the secant point, kept inside a shrinking bracket, to a few units in the
+/// last place of `t`; with every branch at that time (the last evaluation, which the solver keeps).
+fn refine<const K: usize>(f: &impl Event<K>, i: usize, a: Point<K>, b: Point<K>) -> Point<K> {
     let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
+    let ((mut a, fa), (mut b, fb)) = ((a.t, a.branches[i].0), (b.t, b.branches[i].0));
     let secant = a + (b - a) * (-fa / (fb - fa));
     let mut t = if secant > a && secant < b {
         secant
     } else {
         0.5 * (a + b)
     };
+    let mut last = Point { t, branches: f(t) };
     for _ in 0..100 {
-        let (value, rate) = f(t);
+        let (value, rate) = last.branches[i];
         if value > 0.0 {
             b = t;
         } else {
@@ -354,18 +387,18 @@ fn refine(f: impl Fn(f64) -> (f64, f64), (mut a, fa): (f64, f64), (mut b, fb): (
         }
         let newton = t - value / rate;
         // Newton converges quadratically: once a step is this small, t is within it of the crossing,
-        // far below the resolution asked of transition times (1e-12 s). t is returned rather than the
-        // step's end, so that the last evaluation is the one at the returned time (the solver keeps it).
+        // far below the resolution asked of transition times (1e-12 s).
         if rate != 0.0 && (newton - t).abs() <= CONVERGED * t.abs() {
-            return t;
+            break;
         }
         t = if rate != 0.0 && newton > a && newton < b {
             newton
         } else {
             0.5 * (a + b)
         };
+        last = Point { t, branches: f(t) };
     }
-    t
+    last
 }
 
 #[cfg(test)]

@@ -199,7 +199,15 @@ fn string_friction_beyond_any_push_holds_the_cart_as_a_still_surface() {
         })
         .unwrap();
         assert!(a.phases.iter().all(|ph| ph.cart == Cart::Stuck));
-        assert_eq!(a.outcome, b.outcome);
+        // The same bounce, to the rounding of the event search (whose probes depend on the cart).
+        let (x, y) = (&a.outcome, &b.outcome);
+        let speed = x.vx2.abs() + x.vy2.abs();
+        assert!(
+            (x.omega2 - y.omega2).abs() * p.radius <= 1e-13 * speed
+                && (x.vx2 - y.vx2).abs() <= 1e-13 * speed
+                && x.vy2 == y.vy2,
+            "{x:?} {y:?}"
+        );
         let e = a.energy();
         assert_eq!((e.final_cart, e.cart_friction_loss), (0.0, 0.0));
         assert!(e.residual.abs() < 1e-12, "{e:?}");
