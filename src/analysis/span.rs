@@ -2,7 +2,7 @@
 
 use crate::model::params::{PARAMS, ParamSpec, Params};
 use crate::model::units;
-use crate::model::{Bounce, SolveOptions, solve_with};
+use crate::model::{Bounce, SolveError, SolveOptions, solve_in, solve_with};
 
 use super::AnalysisError;
 
@@ -241,9 +241,33 @@ impl Span {
         value: f64,
         options: &SolveOptions,
     ) -> Result<Bounce, AnalysisError> {
+        solve_with(&self.with(base, value), options).map_err(|source| self.failed(value, source))
+    }
+
+    /// [`Span::solve`] into `slot`, over the bounce already there ([`solve_in`]): one slot per core
+    /// solves a sweep's bounces with no allocation each.
+    pub fn solve_in<'a>(
+        &self,
+        base: &Params,
+        value: f64,
+        options: &SolveOptions,
+        slot: &'a mut Option<Bounce>,
+    ) -> Result<&'a Bounce, AnalysisError> {
+        solve_in(&self.with(base, value), options, slot)
+            .map_err(|source| self.failed(value, source))
+    }
+
+    /// `base` with the varied parameter at `value`.
+    fn with(&self, base: &Params, value: f64) -> Params {
         let mut params = *base;
         params.set(self.spec.id, value);
-        solve_with(&params, options).map_err(|source| AnalysisError::Solve {
+        params
+    }
+
+    /// The error of a bounce at `value` that could not be solved.
+    #[cold]
+    fn failed(&self, value: f64, source: SolveError) -> AnalysisError {
+        AnalysisError::Solve {
             flag: self.spec.flag,
             value: format!(
                 "{} {}",
@@ -253,7 +277,7 @@ impl Span {
             .trim_end()
             .to_string(),
             source,
-        })
+        }
     }
 }
 

@@ -128,8 +128,9 @@ const BLOCK: usize = 1 << 16;
 /// Rows solved and formatted per chunk, the chunks on all cores.
 const CHUNK: usize = 256;
 
-/// The usual length of a CSV line, for the chunk's first allocation.
-const LINE: usize = 128;
+/// A CSV line's usual length at most (a rigid ball's about 135 bytes, a compliant one's about 190),
+/// for the chunk's one allocation.
+const LINE: usize = 192;
 
 /// Solves the sweep and writes it as CSV with a header; see [`write()`].
 pub fn write_csv(
@@ -172,9 +173,14 @@ pub fn write(
                 return Ok(format_rows(&rows, &column, layout, first == 0));
             }
             let mut text = String::with_capacity((last - first) * LINE);
+            let mut slot = None;
             for i in first..last {
                 let value = span.at(i, steps);
-                bounce_csv_line(&mut text, value, &span.solve(base, value, options)?);
+                bounce_csv_line(
+                    &mut text,
+                    value,
+                    span.solve_in(base, value, options, &mut slot)?,
+                );
             }
             Ok(text)
         };

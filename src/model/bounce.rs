@@ -71,14 +71,26 @@ pub struct Bounce {
     pub outcome: Outcome,
 }
 
+/// The bounce of `params` solved into `phases`, leaving in state `last`.
 pub(super) fn finish(params: &Params, setup: Setup, phases: Vec<Phase>, last: State) -> Bounce {
+    Bounce {
+        params: *params,
+        outcome: outcome(params, &setup, &last),
+        setup,
+        phases,
+        final_state: last,
+    }
+}
+
+/// The ball as it leaves in state `last`.
+fn outcome(params: &Params, setup: &Setup, last: &State) -> Outcome {
     let vy2 = setup.vy2();
     let r = setup.r;
     let incoming_slip = setup.vx1 - r * params.spin;
     let scale = setup.vx1.abs() + r * params.spin.abs();
     let ex = (incoming_slip.abs() > ROLLING * scale)
         .then(|| -(last.vx - r * last.omega) / incoming_slip);
-    let outcome = Outcome {
+    Outcome {
         omega2: last.omega,
         vx2: last.vx,
         vy2,
@@ -87,17 +99,18 @@ pub(super) fn finish(params: &Params, setup: Setup, phases: Vec<Phase>, last: St
         ex,
         ey: params.ey,
         roll_ratio: (last.vx != 0.0).then(|| r * last.omega / last.vx),
-    };
-    Bounce {
-        params: *params,
-        setup,
-        phases,
-        final_state: last,
-        outcome,
     }
 }
 
 impl Bounce {
+    /// [`finish`] in place, the phases already solved into [`Bounce::phases`].
+    pub(super) fn refinish(&mut self, params: &Params, setup: Setup, last: State) {
+        self.outcome = outcome(params, &setup, &last);
+        self.params = *params;
+        self.setup = setup;
+        self.final_state = last;
+    }
+
     /// Where the incoming energy went. The friction loss is integrated from the exact solution (Gauss-
     /// Legendre, to about 1e-14), independently of the end states, so the residual checks the solution.
     /// Computed on request: a sweep of outcomes does not pay for it.

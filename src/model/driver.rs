@@ -11,19 +11,21 @@ use super::phase::{Phase, PhaseKind};
 use super::registry::Motion;
 use super::setup::{Setup, State};
 
-/// The phases of one bounce and the state of ball and surface as the ball leaves.
+/// The phases of one bounce, written over `phases` (the caller's memory, reused from bounce to bounce),
+/// and the state of ball and surface as the ball leaves.
 pub fn run<C: Contact>(
     model: &C,
     setup: &Setup,
     options: &SolveOptions,
-) -> Result<(Vec<Phase>, State), SolveError>
+    phases: &mut Vec<Phase>,
+) -> Result<State, SolveError>
 where
     C::Motion: Into<Motion>,
 {
     let end = setup.duration;
     let (mut state, mut mode) = model.start(setup);
     let mut cause = Cause::Start;
-    let mut phases = Vec::with_capacity(8);
+    phases.clear();
     for _ in 0..options.max_phases {
         if (options.cancelled)() {
             return Err(SolveError::Cancelled);
@@ -53,7 +55,7 @@ where
             });
         }
         let Some((_, next_cause)) = event else {
-            return Ok((phases, C::contact(&state)));
+            return Ok(C::contact(&state));
         };
         cause = next_cause;
         mode = model.next(setup, &mut state, mode, cause);

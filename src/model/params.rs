@@ -28,7 +28,7 @@ pub struct Range {
 }
 
 impl Range {
-    pub fn contains(&self, value: f64) -> bool {
+    pub const fn contains(&self, value: f64) -> bool {
         let above = match self.low {
             Bound::Open(b) => value > b,
             Bound::Closed(b) => value >= b,
@@ -419,6 +419,12 @@ macro_rules! parameters {
         pub const PARAMS: &[ParamSpec] = &[$(ParamSpec { id: ParamId::$id, $($spec)* },)*];
 
         impl Params {
+            /// Every value, in [`ParamId`]'s order (the order of [`PARAMS`]).
+            #[inline]
+            pub fn values(&self) -> [f64; PARAM_COUNT] {
+                [$(self.$field,)*]
+            }
+
             pub fn get(&self, id: ParamId) -> f64 {
                 match id {
                     $(ParamId::$id => self.$field,)*
@@ -1141,6 +1147,71 @@ const fn bounce_count() -> usize {
     n
 }
 
+/// The number of parameters: the rows of [`PARAMS`].
+pub const PARAM_COUNT: usize = PARAMS.len();
+
+/// Each parameter's range as the closed interval of the values it allows (an open end moved to the
+/// next f64 inside, an unbounded one to the largest finite f64, so NaN and the infinities fall
+/// outside): the whole check of a value is two comparisons. Lower ends, then upper ends.
+const RANGES: [[f64; PARAM_COUNT]; 2] = {
+    let mut ranges = [[0.0; PARAM_COUNT]; 2];
+    let mut i = 0;
+    while i < PARAM_COUNT {
+        let range = PARAMS[i].range;
+        ranges[0][i] = match range.low {
+            Bound::Open(b) => b.next_up(),
+            Bound::Closed(b) => b,
+            Bound::Unbounded => -f64::MAX,
+        };
+        ranges[1][i] = match range.high {
+            Bound::Open(b) => b.next_down(),
+            Bound::Closed(b) => b,
+            Bound::Unbounded => f64::MAX,
+        };
+        i += 1;
+    }
+    ranges
+};
+
+/// The counts among the parameters (whole numbers only), by index.
+const COUNTS: [usize; count_rows()] = {
+    let mut counts = [0; count_rows()];
+    let (mut i, mut n) = (0, 0);
+    while i < PARAM_COUNT {
+        if PARAMS[i].integer {
+            counts[n] = i;
+            n += 1;
+        }
+        i += 1;
+    }
+    counts
+};
+
+const fn count_rows() -> usize {
+    let (mut i, mut n) = (0, 0);
+    while i < PARAM_COUNT {
+        n += PARAMS[i].integer as usize;
+        i += 1;
+    }
+    n
+}
+
+/// True when every value lies in its range and every count is whole: the check of every solve, as
+/// comparisons on the table [`RANGES`] (a count is compared with its truncation, which is exact below
+/// 2^63; a count beyond fails here and is judged by its row).
+#[inline]
+fn all_allowed(values: &[f64; PARAM_COUNT]) -> bool {
+    let [low, high] = &RANGES;
+    let mut ok = true;
+    for i in 0..PARAM_COUNT {
+        ok &= (values[i] >= low[i]) & (values[i] <= high[i]);
+    }
+    for i in COUNTS {
+        ok &= values[i] == values[i] as i64 as f64;
+    }
+    ok
+}
+
 /// The spec of one parameter: its row of [`PARAMS`], which lists them in [`ParamId`]'s order.
 #[inline]
 pub fn spec(id: ParamId) -> &'static ParamSpec {
@@ -1161,7 +1232,20 @@ impl Params {
     }
 
     /// Checks every value against its range.
+    #[inline]
     pub fn validate(&self) -> Result<(), ParamError> {
+        if all_allowed(&self.values()) {
+            Ok(())
+        } else {
+            self.refusal()
+        }
+    }
+
+    /// The first value out of its range, refused row by row (kept out of line: every solve validates,
+    /// and [`all_allowed`] passes almost all of them).
+    #[cold]
+    #[inline(never)]
+    fn refusal(&self) -> Result<(), ParamError> {
         PARAMS
             .iter()
             .try_for_each(|spec| spec.check_value(self.get(spec.id)))
@@ -1188,6 +1272,39 @@ mod tests {
         assert_eq!(p.stiffness, 15000.0);
         assert_eq!(p.chain, 1.0);
         assert!(p.validate().is_ok());
+    }
+
+    /// The table passes only what each row passes, and validation answers as the rows do, at and beside
+    /// every bound and off the numbers.
+    #[test]
+    fn the_fast_check_is_the_rows_check() {
+        let base = Params::default();
+        for spec in PARAMS {
+            let mut values = vec![0.0, -0.0, 0.5, 1.0, 2.5, 16.0, 17.0, -1.0, 1e300, -1e300];
+            values.extend([
+                f64::NAN,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::MAX,
+                f64::MIN,
+            ]);
+            for bound in [spec.range.low, spec.range.high] {
+                if let Bound::Open(b) | Bound::Closed(b) = bound {
+                    values.extend([b, b.next_up(), b.next_down(), b + 0.5, b - 0.5]);
+                }
+            }
+            for value in values {
+                let mut p = base;
+                p.set(spec.id, value);
+                let rows = PARAMS.iter().try_for_each(|s| s.check_value(p.get(s.id)));
+                assert!(
+                    !all_allowed(&p.values()) || rows.is_ok(),
+                    "{} {value}",
+                    spec.flag
+                );
+                assert_eq!(p.validate(), rows, "{} {value}", spec.flag);
+            }
+        }
     }
 
     #[test]

@@ -4,7 +4,7 @@
 //! ([`ParamSpec::solvable`]), and a lightly damped ball against the relaxation its dashpot can resolve.
 
 use super::error::Unsolvable;
-use super::params::{PARAMS, ParamId, ParamSpec, Params, Solvable, spec};
+use super::params::{PARAM_COUNT, PARAMS, ParamId, ParamSpec, Params, Solvable, spec};
 use super::units;
 
 /// Why the scales are bounded.
@@ -15,8 +15,52 @@ pub(super) const SCALES: &str = "beyond, the bounce's forces and rates leave wha
 /// far above the rounding of t.
 pub const MAX_RELAXATIONS: f64 = 1e15;
 
+/// Each parameter's solvable magnitudes from its row of [`PARAMS`]: the smallest, the largest, and
+/// 0 where its range allows zero (NaN where not, so that no size equals it); a row without limits
+/// allows from 0 to infinity.
+const LIMITS: [[f64; PARAM_COUNT]; 3] = {
+    let mut limits = [
+        [0.0; PARAM_COUNT],
+        [f64::INFINITY; PARAM_COUNT],
+        [f64::NAN; PARAM_COUNT],
+    ];
+    let mut i = 0;
+    while i < PARAM_COUNT {
+        if let Some(limit) = PARAMS[i].solvable {
+            limits[0][i] = limit.smallest;
+            limits[1][i] = limit.largest;
+            if PARAMS[i].range.contains(0.0) {
+                limits[2][i] = 0.0;
+            }
+        }
+        i += 1;
+    }
+    limits
+};
+
 /// Checks every parameter against the magnitudes that can be solved, and a damped ball's relaxation.
+/// Every solve asks: the magnitudes are compared on the table [`LIMITS`]; a refusal (or a NaN, which
+/// the table cannot pass) goes row by row.
+#[inline]
 pub fn check(params: &Params) -> Result<(), Unsolvable> {
+    let values = params.values();
+    let [smallest, largest, zero] = &LIMITS;
+    let mut ok = true;
+    for i in 0..PARAM_COUNT {
+        let size = values[i].abs();
+        ok &= (size == zero[i]) | ((size >= smallest[i]) & (size <= largest[i]));
+    }
+    if !ok {
+        return by_rows(params);
+    }
+    relaxation(params)
+}
+
+/// [`check`] row by row: the first parameter outside the magnitudes that can be solved is refused with
+/// its range.
+#[cold]
+#[inline(never)]
+fn by_rows(params: &Params) -> Result<(), Unsolvable> {
     for row in PARAMS {
         let Some(limit) = row.solvable else {
             continue;
@@ -89,6 +133,24 @@ mod tests {
     #[test]
     fn the_defaults_and_the_paper_are_solvable() {
         assert_eq!(check(&Params::default()), Ok(()));
+    }
+
+    /// The table answers as the rows do, at and beside every limit and off the numbers.
+    #[test]
+    fn the_table_is_the_rows() {
+        for row in PARAMS {
+            let mut values = vec![0.0, 1.0, -1.0, f64::NAN, f64::INFINITY, f64::MAX];
+            if let Some(limit) = row.solvable {
+                for b in [limit.smallest, limit.largest] {
+                    values.extend([b, -b, b.next_up(), b.next_down(), -b.next_up()]);
+                }
+            }
+            for value in values {
+                let mut p = Params::default();
+                p.set(row.id, value);
+                assert_eq!(check(&p), by_rows(&p), "{} {value}", row.flag);
+            }
+        }
     }
 
     #[test]

@@ -12,9 +12,10 @@ use super::events::{self, Stall};
 use super::frame::FramedCart;
 use super::options::SolveOptions;
 use super::params::Params;
+use super::phase::Phase;
 use super::registry::{BallKind, FrameKind, SupportKind};
 use super::reportable::finite;
-use super::setup::Setup;
+use super::setup::{Setup, State};
 use super::solvable;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
@@ -35,30 +36,76 @@ pub fn solve_cancellable(
 
 /// [`solve`] on the caller's terms: its cancellation, phase cap and shared work ([`SolveOptions`]).
 pub fn solve_with(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
-    bounded(params, options, || solve_model(params, options))
+    bounce_of(params, options, |phases| {
+        solve_model(params, options, phases)
+    })
+}
+
+/// [`solve_with`] into `slot`, over the bounce already there: its memory (the phases') is reused and
+/// no bounce is moved, so a caller that solves many bounces in turn (a sweep) allocates nothing per
+/// bounce once the first is solved. An error empties the slot.
+pub fn solve_in<'a>(
+    params: &Params,
+    options: &SolveOptions,
+    slot: &'a mut Option<Bounce>,
+) -> Result<&'a Bounce, SolveError> {
+    let solved = match slot.as_mut() {
+        Some(bounce) => resolve(params, options, bounce),
+        None => solve_with(params, options).map(|bounce| *slot = Some(bounce)),
+    };
+    match solved {
+        Ok(()) => Ok(slot.as_ref().expect("a solved slot holds its bounce")),
+        Err(e) => {
+            *slot = None;
+            Err(e)
+        }
+    }
+}
+
+/// The bounce of `params` solved by `solve` (into the phases it is given) within [`bounded`], and
+/// refused when its outcome is not finite.
+fn bounce_of(
+    params: &Params,
+    options: &SolveOptions,
+    solve: impl FnOnce(&mut Vec<Phase>) -> Result<(Setup, State), SolveError>,
+) -> Result<Bounce, SolveError> {
+    let mut phases = Vec::with_capacity(8);
+    let (setup, last) = bounded(params, options, || solve(&mut phases))?;
+    let bounce = finish(params, setup, phases, last);
+    finite(&bounce)?;
+    Ok(bounce)
+}
+
+/// [`solve_with`] over `bounce`, in place.
+fn resolve(params: &Params, options: &SolveOptions, bounce: &mut Bounce) -> Result<(), SolveError> {
+    let (setup, last) = bounded(params, options, || {
+        solve_model(params, options, &mut bounce.phases)
+    })?;
+    bounce.refinish(params, setup, last);
+    finite(bounce)
 }
 
 /// Runs `solve` for `params` bounded: refused up front when a parameter is outside what can be solved
-/// ([`solvable::check`]), within its work budget and the caller's shared work, and refused when the
-/// outcome is not finite. Counted in the shared work's tally unless nested in another solve.
-fn bounded(
+/// ([`solvable::check`]), within its work budget and the caller's shared work. Counted in the shared
+/// work's tally unless nested in another solve.
+fn bounded<T>(
     params: &Params,
     options: &SolveOptions,
-    solve: impl FnOnce() -> Result<Bounce, SolveError>,
-) -> Result<Bounce, SolveError> {
+    solve: impl FnOnce() -> Result<T, SolveError>,
+) -> Result<T, SolveError> {
     let outermost = !events::metering();
-    let bounce = checked(params, options, solve);
+    let solved = checked(params, options, solve);
     if let (true, Some(work)) = (outermost, options.work) {
         work.count();
     }
-    bounce
+    solved
 }
 
-fn checked(
+fn checked<T>(
     params: &Params,
     options: &SolveOptions,
-    solve: impl FnOnce() -> Result<Bounce, SolveError>,
-) -> Result<Bounce, SolveError> {
+    solve: impl FnOnce() -> Result<T, SolveError>,
+) -> Result<T, SolveError> {
     params.validate()?;
     solvable::check(params)?;
     let weight = weight(params);
@@ -70,15 +117,13 @@ fn checked(
     if let Some(work) = options.work {
         work.spend(events::spent().saturating_mul(weight));
     }
-    let bounce = solved.map_err(|stall| match stall {
+    solved.map_err(|stall| match stall {
         Stall::Budget { .. } if allowed < budget(params) => SolveError::CommandBudget,
         stall => SolveError::Stalled {
             stall,
             hint: advice(params),
         },
-    })??;
-    finite(&bounce)?;
-    Ok(bounce)
+    })?
 }
 
 /// What helps a solve that ran out of work.
@@ -95,13 +140,18 @@ fn advice(params: &Params) -> &'static str {
     }
 }
 
-/// The model for `params` ([`Params::model`]), run by the driver (`bounded` has validated them).
-fn solve_model(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
+/// The model for `params` ([`Params::model`]), run by the driver into `phases` (`bounded` has
+/// validated them): the constants of the bounce and the state as the ball leaves.
+fn solve_model(
+    params: &Params,
+    options: &SolveOptions,
+    phases: &mut Vec<Phase>,
+) -> Result<(Setup, State), SolveError> {
     let kind = params.model();
-    let (setup, phases, last) = match (kind.ball, kind.support, kind.frame) {
+    match (kind.ball, kind.support, kind.frame) {
         (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Clamped) => {
             let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
-            let (phases, last) = run(&model, &setup, options).map_err(|e| match e {
+            let last = run(&model, &setup, options, phases).map_err(|e| match e {
                 SolveError::TooManyPhases { limit, .. } => SolveError::TooManyPhases {
                     limit,
                     hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, \
@@ -109,49 +159,56 @@ fn solve_model(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveE
                 },
                 e => e,
             })?;
-            (setup, phases, last)
+            Ok((setup, last))
         }
         (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped) => {
             let setup = Setup::new(params);
-            let (phases, last) = run(&ChainOfMasses::new(params, &setup)?, &setup, options)?;
-            (setup, phases, last)
+            let last = run(
+                &ChainOfMasses::new(params, &setup)?,
+                &setup,
+                options,
+                phases,
+            )?;
+            Ok((setup, last))
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Clamped) => {
             let setup = Setup::new(params);
-            let (phases, last) = run(&SingleCart::new(params, &setup)?, &setup, options)?;
-            (setup, phases, last)
+            let last = run(&SingleCart::new(params, &setup)?, &setup, options, phases)?;
+            Ok((setup, last))
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Free) => {
             let setup = Setup::new(params);
             let model = FramedCart::new(params, &setup, params.frame_mass)?;
-            let (phases, last) = run(&model, &setup, options)?;
-            (setup, phases, last)
+            let last = run(&model, &setup, options, phases)?;
+            Ok((setup, last))
         }
-        (BallKind::Rigid, SupportKind::Chain, FrameKind::Free) => {
-            return Err(SolveError::FreeFrame {
-                what: "a chain (--chain)",
-            });
-        }
+        (BallKind::Rigid, SupportKind::Chain, FrameKind::Free) => Err(SolveError::FreeFrame {
+            what: "a chain (--chain)",
+        }),
         (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Free) => {
-            return Err(SolveError::FreeFrame {
+            Err(SolveError::FreeFrame {
                 what: "a compliant ball (--ball-stiffness)",
-            });
+            })
         }
-    };
-    Ok(finish(params, setup, phases, last))
+    }
 }
 
 /// The rigid ball on a chain of `params.chain` masses, for any N including 1, where it reproduces the
 /// single cart to rounding (a compliant ball goes to its own model, as in [`solve`]).
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     let options = SolveOptions::default();
-    bounded(params, &options, || {
-        if params.model().compliant() {
-            return solve(params);
-        }
+    if params.model().compliant() {
+        return bounded(params, &options, || solve(params));
+    }
+    bounce_of(params, &options, |phases| {
         let setup = Setup::new(params);
-        let (phases, last) = run(&ChainOfMasses::new(params, &setup)?, &setup, &options)?;
-        Ok(finish(params, setup, phases, last))
+        let last = run(
+            &ChainOfMasses::new(params, &setup)?,
+            &setup,
+            &options,
+            phases,
+        )?;
+        Ok((setup, last))
     })
 }
 
@@ -163,10 +220,10 @@ pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
         ..*params
     };
     let options = SolveOptions::default();
-    bounded(&params, &options, || {
+    bounce_of(&params, &options, |phases| {
         let (model, setup) = CompliantBall::new(&params, false)?;
-        let (phases, last) = run(&model, &setup, &options)?;
-        Ok(finish(&params, setup, phases, last))
+        let last = run(&model, &setup, &options, phases)?;
+        Ok((setup, last))
     })
 }
 
@@ -213,6 +270,63 @@ mod tests {
                 "stops at the first check that says so"
             );
         }
+    }
+
+    /// A bounce solved over another in its slot is the bounce solved afresh, on every model, and a
+    /// refusal empties the slot.
+    #[test]
+    fn a_bounce_solved_in_a_slot_is_the_same_bounce() {
+        let base = Params {
+            cart_mass: 0.001,
+            stiffness: 9554.0,
+            ..Params::default()
+        };
+        let cases = [
+            Params::default(),
+            base,
+            Params { chain: 4.0, ..base },
+            Params {
+                ball_stiffness: 1e6,
+                ball_damping: 0.5,
+                ..base
+            },
+            Params {
+                frame_mass: 0.3,
+                ..Params::default()
+            },
+            Params {
+                cart_friction: 0.5,
+                ..base
+            },
+        ];
+        let options = SolveOptions::default();
+        let mut slot = None;
+        for params in cases.iter().chain(cases.iter().rev()) {
+            let fresh = solve(params).unwrap();
+            let reused = solve_in(params, &options, &mut slot).unwrap();
+            assert_eq!(reused.params, fresh.params);
+            assert_eq!(reused.outcome, fresh.outcome);
+            assert_eq!(reused.final_state, fresh.final_state);
+            assert_eq!(reused.phases.len(), fresh.phases.len());
+            for (a, b) in reused.phases.iter().zip(&fresh.phases) {
+                assert_eq!((a.kind, a.slip_sign, a.cart), (b.kind, b.slip_sign, b.cart));
+                assert_eq!((a.start, a.end), (b.start, b.end));
+                assert_eq!(
+                    a.state_at(&reused.setup, a.end),
+                    b.state_at(&fresh.setup, b.end)
+                );
+            }
+            assert_eq!(reused.series(50), fresh.series(50));
+        }
+        let unsolvable = Params {
+            speed: 1e160,
+            ..Params::default()
+        };
+        assert_eq!(
+            solve_in(&unsolvable, &options, &mut slot).map(|_| ()),
+            solve(&unsolvable).map(|_| ())
+        );
+        assert!(slot.is_none());
     }
 
     #[test]

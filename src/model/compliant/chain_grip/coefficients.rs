@@ -2,14 +2,18 @@
 //! [[C, D], [D, 0]], with one step of iterative refinement, accepted only where they rebuild the state
 //! and its force to rounding without cancellation.
 
+use super::super::super::chain::modes::MAX;
 use super::{C64, CANCELLATION, FORCE_RECONSTRUCTION, GripModes, Mode, RECONSTRUCTION};
 
+/// Room for a grip's state: the ball's stretch and the masses' displacements, then their rates.
+const STATE: usize = 2 * MAX + 2;
+
 /// The weighted coefficients of a state in the modes, by their orthogonality, and the state they
-/// rebuild.
-fn project(g: &GripModes, list: &[Mode], z: &[f64]) -> (Vec<C64>, Vec<f64>) {
+/// rebuild (its first `z.len()` entries; no allocation but the coefficients').
+fn project(g: &GripModes, list: &[Mode], z: &[f64]) -> (Vec<C64>, [f64; STATE]) {
     let n = g.n;
     let e = z[0] - (0..n).map(|j| g.phi1[j] * z[j + 1]).sum::<f64>();
-    let mut rebuilt = vec![0.0; 2 * n + 2];
+    let mut rebuilt = [0.0; STATE];
     let c = list
         .iter()
         .map(|mode| {
@@ -39,15 +43,21 @@ fn project(g: &GripModes, list: &[Mode], z: &[f64]) -> (Vec<C64>, Vec<f64>) {
 pub(super) fn coefficients(g: &GripModes, list: &[Mode], z0: &[f64]) -> Option<Vec<C64>> {
     let n = g.n;
     let size = g.energy_norm(z0);
+    let len = z0.len();
     let (mut c, rebuilt) = project(g, list, z0);
-    let residual: Vec<f64> = z0.iter().zip(&rebuilt).map(|(a, b)| a - b).collect();
-    let (correction, rebuilt_residual) = project(g, list, &residual);
+    let mut residual = [0.0; STATE];
+    for i in 0..len {
+        residual[i] = z0[i] - rebuilt[i];
+    }
+    let (correction, rebuilt_residual) = project(g, list, &residual[..len]);
     for (ci, di) in c.iter_mut().zip(&correction) {
         *ci += di;
     }
-    let error: Vec<f64> = (0..z0.len())
-        .map(|i| rebuilt[i] + rebuilt_residual[i] - z0[i])
-        .collect();
+    let mut error = [0.0; STATE];
+    for i in 0..len {
+        error[i] = rebuilt[i] + rebuilt_residual[i] - z0[i];
+    }
+    let error = &error[..len];
     let terms: f64 = list.iter().zip(&c).map(|(m, c)| c.norm() * m.size).sum();
     let e0 = z0[0] - (0..n).map(|j| g.phi1[j] * z0[j + 1]).sum::<f64>();
     let de0 = z0[n + 1] - (0..n).map(|j| g.phi1[j] * z0[n + 2 + j]).sum::<f64>();
@@ -61,7 +71,7 @@ pub(super) fn coefficients(g: &GripModes, list: &[Mode], z0: &[f64]) -> Option<V
         - (g.kb * e0 + g.cb * de0))
         .abs();
     let fine = c.iter().all(|c| c.re.is_finite() && c.im.is_finite())
-        && g.energy_norm(&error) <= RECONSTRUCTION * size
+        && g.energy_norm(error) <= RECONSTRUCTION * size
         && force_error <= FORCE_RECONSTRUCTION * (force_terms + force_sum)
         && terms <= CANCELLATION * size;
     (fine || size == 0.0).then_some(c)
