@@ -12,6 +12,7 @@ mod support {
 mod readme_screens;
 mod tui;
 mod tui_heatmap;
+mod tui_help;
 mod tui_lab;
 mod tui_motion;
 mod tui_pty;

@@ -20,6 +20,7 @@ pub use super::vocabulary::{Action, Message, Mode, Tone, View};
 use super::baseline::Baseline;
 use super::heatmap::Heatmap;
 use super::history::History;
+use super::keys::Context;
 use super::lab::Lab;
 use super::playback::{self, Speed};
 use super::shot::{self, Shots};
@@ -358,6 +359,16 @@ impl App {
         } else {
             let end = self.duration();
             (&mut self.cursor, end)
+        }
+    }
+
+    /// Where the user is, for the keys the help and the hints offer; `schematic` when it is drawn.
+    pub fn key_context(&self, schematic: bool) -> Context {
+        Context {
+            view: self.view,
+            shot_on: self.shots.on,
+            schematic,
+            data: self.lab.data.is_some(),
         }
     }
 
