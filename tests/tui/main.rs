@@ -15,6 +15,7 @@ mod tui_heatmap;
 mod tui_help;
 mod tui_lab;
 mod tui_motion;
+mod tui_panel;
 mod tui_pty;
 mod tui_scenarios;
 mod tui_shot;

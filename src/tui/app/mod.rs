@@ -276,10 +276,6 @@ impl App {
                 self.stale_marked &= self.solver.busy();
             }
             Err(reason) => {
-                self.message = Some(Message {
-                    text: format!("{reason} ({} unchanged)", self.unchanged),
-                    tone: Tone::Error,
-                });
                 // Back to the bounce on screen, if there is one (a refused start has none).
                 if let Some(solved) = &self.solved
                     && solved.params != self.params
@@ -288,6 +284,21 @@ impl App {
                     self.history = self.settled_history.clone();
                     self.want();
                 }
+                // In shot mode the panel shows what the shot decides, which the bounce left on screen
+                // (from before shot mode) may not be.
+                let not_the_shot = self.shots.on
+                    && self
+                        .strings_params(self.params)
+                        .is_ok_and(|p| p != self.params);
+                let shown = if not_the_shot {
+                    "; the bounce shown is not the shot's"
+                } else {
+                    ""
+                };
+                self.message = Some(Message {
+                    text: format!("{reason} ({} unchanged{shown})", self.unchanged),
+                    tone: Tone::Error,
+                });
             }
         }
     }
