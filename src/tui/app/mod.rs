@@ -373,6 +373,27 @@ impl App {
         }
     }
 
+    /// Shows the notes on the starting flags (a bare number far outside its usual range: `--cart-mass
+    /// 10` is read as 10 kg) in the status line, as the commands write them on stderr, after any message
+    /// the start gave; the next key clears them.
+    pub fn start_notes(&mut self, notes: &[String]) {
+        if notes.is_empty() {
+            return;
+        }
+        let notes: Vec<String> = notes.iter().map(|n| format!("note: {n}")).collect();
+        let notes = notes.join("; ");
+        self.message = Some(match self.message.take() {
+            Some(m) => Message {
+                text: format!("{}; {notes}", m.text),
+                ..m
+            },
+            None => Message {
+                text: notes,
+                tone: Tone::Info,
+            },
+        });
+    }
+
     /// Where the user is, for the keys the help and the hints offer; `schematic` when it is drawn.
     pub fn key_context(&self, schematic: bool) -> Context {
         Context {
