@@ -125,6 +125,7 @@ pub fn run(args: &TuiArgs) -> Result<(), Failure> {
         fps: args.fps.or(config.fps).unwrap_or(playback::DEFAULT_FPS),
         shot,
         data,
+        notes: args.params.notes(),
     };
     tui::open(options).map_err(|e| match e {
         OpenError::NotATerminal | OpenError::Solve(_) => Failure::usage(e),

@@ -5,6 +5,46 @@ use crossterm::event::{KeyCode, KeyEvent, KeyEventKind, KeyModifiers};
 
 use super::vocabulary::{Action, Mode, View};
 
+/// Where a binding does something: the help overlay lists, and the status line hints at, only the keys
+/// that do something where the user is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Scope {
+    /// In every view: the parameters, the views, presets, files, history, help and quitting.
+    Everywhere,
+    /// The contact's time cursor and playback speed: in the contact view, and wherever the schematic is
+    /// drawn, except the shot view (whose flight plays in real time).
+    Contact,
+    /// Playing and the ends of the timeline: the contact's, or the flight's in the shot view.
+    Timeline,
+    /// Marking parameters free and fitting them: with measurements (`--data`).
+    Lab,
+}
+
+/// Where the user is, as far as the keys are concerned.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Context {
+    pub view: View,
+    /// Shot mode is on.
+    pub shot_on: bool,
+    /// The schematic (the bounce at the time cursor) is drawn.
+    pub schematic: bool,
+    /// Measurements were loaded (`--data`).
+    pub data: bool,
+}
+
+impl Scope {
+    /// True when keys of this scope do something in `context`.
+    pub fn applies(self, context: &Context) -> bool {
+        let view = context.view;
+        match self {
+            Scope::Everywhere => true,
+            Scope::Contact => view == View::Contact || (context.schematic && view != View::Shot),
+            Scope::Timeline => view == View::Contact || view == View::Shot || context.schematic,
+            Scope::Lab => context.data,
+        }
+    }
+}
+
 /// One key, with the modifiers that matter.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Key {
@@ -97,6 +137,33 @@ pub struct Binding {
     pub help: &'static str,
     /// A short form for the status line, if the binding earns a place there.
     pub hint: Option<Hint>,
+    /// Where the keys do something.
+    pub scope: Scope,
+    /// What the help says the keys do in the shot view, where that differs from `help`.
+    pub shot_help: Option<&'static str>,
+}
+
+impl Binding {
+    /// The binding, doing something only in `scope`.
+    const fn only(self, scope: Scope) -> Binding {
+        Binding { scope, ..self }
+    }
+
+    /// The binding, whose keys do what `words` say in the shot view.
+    const fn in_shot(self, words: &'static str) -> Binding {
+        Binding {
+            shot_help: Some(words),
+            ..self
+        }
+    }
+
+    /// What the help says the keys do in `view`.
+    pub fn help_in(&self, view: View) -> &'static str {
+        match self.shot_help {
+            Some(words) if view == View::Shot => words,
+            _ => self.help,
+        }
+    }
 }
 
 const fn bind(
@@ -110,6 +177,8 @@ const fn bind(
         action,
         help,
         hint,
+        scope: Scope::Everywhere,
+        shot_help: None,
     }
 }
 
@@ -193,52 +262,62 @@ pub const EXPLORER: &[Binding] = &[
     bind(
         &[Plain(KeyCode::Char(' '))],
         Action::TogglePlay,
-        "play or pause the bounce (shot view: the flight)",
+        "play or pause the bounce in slow motion",
         hint("␣", "play"),
-    ),
+    )
+    .only(Scope::Timeline)
+    .in_shot("play or pause the flight"),
     bind(
         &[Plain(KeyCode::Char('+')), Plain(KeyCode::Char('='))],
         Action::ChangeSpeed { faster: true },
         "play twice / half as fast (default 1 ms per 2 s)",
         extra("+-", "speed"),
-    ),
+    )
+    .only(Scope::Contact),
     bind(
         &[Plain(KeyCode::Char('-'))],
         Action::ChangeSpeed { faster: false },
         "",
         None,
-    ),
+    )
+    .only(Scope::Contact),
     bind(
         &[Plain(KeyCode::Char('['))],
         Action::CursorStep { forward: false },
         "time cursor back / on 0.05 ms; or click a chart",
         extra("[]", "time"),
-    ),
+    )
+    .only(Scope::Contact),
     bind(
         &[Plain(KeyCode::Char(']'))],
         Action::CursorStep { forward: true },
         "",
         None,
-    ),
+    )
+    .only(Scope::Contact),
     bind(
         &[Plain(KeyCode::Char('{'))],
         Action::CursorPhase { forward: false },
         "time cursor to the previous / next transition",
         extra("{}", "phase"),
-    ),
+    )
+    .only(Scope::Contact),
     bind(
         &[Plain(KeyCode::Char('}'))],
         Action::CursorPhase { forward: true },
         "",
         None,
-    ),
+    )
+    .only(Scope::Contact),
     bind(
         &[Plain(KeyCode::Home)],
         Action::CursorHome,
         "time cursor to the start / end of the contact",
         None,
-    ),
-    bind(&[Plain(KeyCode::End)], Action::CursorEnd, "", None),
+    )
+    .only(Scope::Timeline)
+    .in_shot("the ball to the start / end of the flight"),
+    bind(&[Plain(KeyCode::End)], Action::CursorEnd, "", None).only(Scope::Timeline),
     bind(
         &[Plain(KeyCode::Char('?'))],
         Action::ToggleHelp,
@@ -299,8 +378,9 @@ pub const EXPLORER: &[Binding] = &[
         Action::ToggleFree,
         "mark free or fixed / fit to --data; F or Esc stops",
         None,
-    ),
-    bind(&[Plain(KeyCode::Char('F'))], Action::Fit, "", None),
+    )
+    .only(Scope::Lab),
+    bind(&[Plain(KeyCode::Char('F'))], Action::Fit, "", None).only(Scope::Lab),
     bind(
         &[Plain(KeyCode::Char('m'))],
         Action::ToggleShot,
@@ -411,17 +491,11 @@ pub const OVERWRITE: &[Binding] = &[
     bind(&[Ctrl('c')], Action::Quit, "quit", None),
 ];
 
-/// True when the status line offers `action`'s hint in `view`, shot mode on or not: in the shot view,
-/// where the flight plays in real time, not the contact's speed, step and phase keys; and `m` only while
-/// shot mode is on (to leave it; Tab into the shot view turns it on).
-pub fn offered(action: Action, view: View, shot_on: bool) -> bool {
-    match action {
-        Action::ChangeSpeed { .. } | Action::CursorStep { .. } | Action::CursorPhase { .. } => {
-            view != View::Shot
-        }
-        Action::ToggleShot => shot_on,
-        _ => true,
-    }
+/// True when the status line offers `binding`'s hint in `context`: where its keys do something
+/// ([`Scope::applies`]), and `m` only while shot mode is on (to leave it; Tab into the shot view turns
+/// it on).
+pub fn offered(binding: &Binding, context: &Context) -> bool {
+    binding.scope.applies(context) && (binding.action != Action::ToggleShot || context.shot_on)
 }
 
 /// The bindings in force in `mode`.
@@ -486,9 +560,23 @@ pub fn keys_label(binding: &Binding) -> String {
         .join(", ")
 }
 
+/// The explorer's bindings of `scopes` whose keys do something in `context`, in the table's order.
+pub fn explorer_keys(context: &Context, scopes: &[Scope]) -> Vec<Binding> {
+    EXPLORER
+        .iter()
+        .filter(|b| scopes.contains(&b.scope) && b.scope.applies(context))
+        .copied()
+        .collect()
+}
+
 /// The rows of the help overlay for `bindings`: the keys and what they do, the second of a pair on the
 /// row of the first (`↑, k / ↓, j`, `select the parameter above / below`).
 pub fn help_rows(bindings: &[Binding]) -> Vec<(String, &'static str)> {
+    help_rows_in(bindings, View::Contact)
+}
+
+/// [`help_rows`] as the help says them in `view`.
+pub fn help_rows_in(bindings: &[Binding], view: View) -> Vec<(String, &'static str)> {
     let mut rows: Vec<(String, &'static str)> = Vec::new();
     for b in bindings {
         match rows.last_mut() {
@@ -496,7 +584,7 @@ pub fn help_rows(bindings: &[Binding]) -> Vec<(String, &'static str)> {
                 keys.push_str(" / ");
                 keys.push_str(&keys_label(b));
             }
-            _ => rows.push((keys_label(b), b.help)),
+            _ => rows.push((keys_label(b), b.help_in(view))),
         }
     }
     rows

@@ -171,6 +171,8 @@ pub struct Options {
     pub shot: bool,
     /// Measurements to show beside the model and to fit (`--data`).
     pub data: Option<Dataset>,
+    /// The notes on the starting flags (a bare number far outside its usual range), for the status line.
+    pub notes: Vec<String>,
 }
 
 /// Why the explorer could not run.
@@ -212,6 +214,7 @@ pub fn open(options: Options) -> Result<(), OpenError> {
     if let Some(data) = options.data {
         app.load_data(data);
     }
+    app.start_notes(&options.notes);
     app.frame = Duration::from_secs_f64(1.0 / f64::from(options.fps.max(1)));
     let mut session = terminal::Session::start(options.ascii)?;
     let mut events = TerminalEvents::start()?;

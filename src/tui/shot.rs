@@ -14,6 +14,7 @@ use super::values::shown;
 use super::worker::{Crash, Worker};
 use crate::model::Params;
 use crate::model::params::{Group, PARAMS, ParamId, ParamSpec, spec};
+use crate::shot::racquet::Hold;
 use crate::shot::{self, Shot, ShotError};
 
 /// What the status line says when shot mode comes on (the shot view, or m).
@@ -93,6 +94,44 @@ pub fn derived(id: ParamId) -> bool {
 /// ([`crate::shot::strings_params`]); an error when the racquet never meets the ball.
 pub fn strings_params(params: &Params) -> Result<Params, ShotError> {
     shot::strings_params(params)
+}
+
+/// What the shot decides of the bounce on the strings, read from the shot's own groups (the incoming
+/// ball, the racquet's swing and the racquet), whatever bounce is on screen (a refused one leaves the
+/// one before): the incidence where the racquet meets the ball, the frame the racquet in the hand is
+/// to the strings, and e_A, the ball's apparent restitution on it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Decided {
+    /// `params` with the strings' incidence; `None` when the racquet never meets the ball.
+    pub strings: Option<Params>,
+    /// (M_t, M_n), kg, 0 for clamped; and e_A. `None` when the racquet's numbers are inconsistent.
+    pub frame: Option<((f64, f64), f64)>,
+}
+
+impl Decided {
+    pub fn of(params: &Params) -> Decided {
+        let frame = Hold::of(params)
+            .ok()
+            .map(|h| (h.frame_masses(), h.ey_apparent(params.ey, params.mass)));
+        Decided {
+            strings: shot::strings_params(params).ok(),
+            frame,
+        }
+    }
+
+    /// The value the shot gives the derived parameter `id` (see [`derived`]).
+    pub fn value(&self, id: ParamId) -> Option<f64> {
+        match id {
+            ParamId::FrameMass => self.frame.map(|((t, _), _)| t),
+            ParamId::FrameNormalMass => self.frame.map(|((_, n), _)| n),
+            _ => self.strings.map(|p| p.get(id)),
+        }
+    }
+
+    /// e_A = (e_y M_n - m)/(M_n + m) on the racquet's frame (e_y itself when clamped).
+    pub fn ey_apparent(&self) -> Option<f64> {
+        self.frame.map(|(_, e)| e)
+    }
 }
 
 /// Why `spec`, set by the frame change, cannot be changed in a shot; it names the shot's own

@@ -12,8 +12,10 @@ mod support {
 mod readme_screens;
 mod tui;
 mod tui_heatmap;
+mod tui_help;
 mod tui_lab;
 mod tui_motion;
+mod tui_panel;
 mod tui_pty;
 mod tui_scenarios;
 mod tui_shot;

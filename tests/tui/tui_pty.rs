@@ -44,6 +44,28 @@ fn the_binary_opens_takes_keys_and_quits_cleanly() {
 }
 
 #[test]
+fn a_note_on_a_starting_flag_shows_in_the_status_line_as_the_commands_give_it() {
+    // `simulate` writes the note on stderr; the explorer shows the same words at start-up.
+    let out = bin::command()
+        .args(["simulate", "--cart-mass", "10"])
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    let note = stderr.lines().find(|l| l.starts_with("note: ")).unwrap();
+    assert!(note.contains("read as 10 kg"), "{stderr}");
+    let mut pty = Pty::spawn(&["--cart-mass", "10"], &[], 160, 48);
+    pty.wait_for("the note in the status line", |s| {
+        s.lines().last().is_some_and(|l| l.contains(note))
+    });
+    // The next key clears it, as any message.
+    pty.send(b"j");
+    pty.wait_for("the note cleared", |s| !s.contains(note));
+    pty.send(b"q");
+    let status = pty.exit(pty::PATIENCE).expect("it quits");
+    assert!(status.success(), "{status:?}");
+}
+
+#[test]
 fn without_a_terminal_it_points_at_simulate() {
     bin::snapback()
         .assert()

@@ -152,10 +152,14 @@ fn tab_reaches_the_shot_view_with_snapback_shots_numbers_and_the_court() {
         assert_eq!(app.params.speed, json["contact"]["speed"].as_f64().unwrap());
         assert_eq!(app.params.spin, json["contact"]["spin"].as_f64().unwrap());
         if size.1 == 48 {
-            // At 48 rows the panel scrolls to the shot group (the frame and racquet groups joined it):
-            // the incidence is above, and the frame the racquet sets is shown.
+            // At 48 rows the panel shows the incidence the shot sets, and the frame the racquet
+            // sets, above the shot group.
             assert!(
-                line_with(&screen, "M_t").contains("set by the shot"),
+                line_with(&screen, "θ1").contains("set by the shot"),
+                "{screen}"
+            );
+            assert!(
+                line_with(&screen, "M_t").contains("from the racquet"),
                 "{screen}"
             );
         }
@@ -483,7 +487,7 @@ fn m_leaves_shot_mode_and_the_bounces_own_incidence_comes_back() {
     let strings = shot::hit(&own).unwrap().incidence;
     assert_eq!(app.params.angle_deg, strings.theta1_deg);
     assert!(
-        line_with(&screen, "M_t").contains("set by the shot"),
+        line_with(&screen, "M_t").contains("from the racquet"),
         "{screen}"
     );
     // And m once more gives the bounce back.

@@ -20,6 +20,7 @@ pub use super::vocabulary::{Action, Message, Mode, Tone, View};
 use super::baseline::Baseline;
 use super::heatmap::Heatmap;
 use super::history::History;
+use super::keys::Context;
 use super::lab::Lab;
 use super::playback::{self, Speed};
 use super::shot::{self, Shots};
@@ -275,10 +276,6 @@ impl App {
                 self.stale_marked &= self.solver.busy();
             }
             Err(reason) => {
-                self.message = Some(Message {
-                    text: format!("{reason} ({} unchanged)", self.unchanged),
-                    tone: Tone::Error,
-                });
                 // Back to the bounce on screen, if there is one (a refused start has none).
                 if let Some(solved) = &self.solved
                     && solved.params != self.params
@@ -287,6 +284,21 @@ impl App {
                     self.history = self.settled_history.clone();
                     self.want();
                 }
+                // In shot mode the panel shows what the shot decides, which the bounce left on screen
+                // (from before shot mode) may not be.
+                let not_the_shot = self.shots.on
+                    && self
+                        .strings_params(self.params)
+                        .is_ok_and(|p| p != self.params);
+                let shown = if not_the_shot {
+                    "; the bounce shown is not the shot's"
+                } else {
+                    ""
+                };
+                self.message = Some(Message {
+                    text: format!("{reason} ({} unchanged{shown})", self.unchanged),
+                    tone: Tone::Error,
+                });
             }
         }
     }
@@ -358,6 +370,37 @@ impl App {
         } else {
             let end = self.duration();
             (&mut self.cursor, end)
+        }
+    }
+
+    /// Shows the notes on the starting flags (a bare number far outside its usual range: `--cart-mass
+    /// 10` is read as 10 kg) in the status line, as the commands write them on stderr, after any message
+    /// the start gave; the next key clears them.
+    pub fn start_notes(&mut self, notes: &[String]) {
+        if notes.is_empty() {
+            return;
+        }
+        let notes: Vec<String> = notes.iter().map(|n| format!("note: {n}")).collect();
+        let notes = notes.join("; ");
+        self.message = Some(match self.message.take() {
+            Some(m) => Message {
+                text: format!("{}; {notes}", m.text),
+                ..m
+            },
+            None => Message {
+                text: notes,
+                tone: Tone::Info,
+            },
+        });
+    }
+
+    /// Where the user is, for the keys the help and the hints offer; `schematic` when it is drawn.
+    pub fn key_context(&self, schematic: bool) -> Context {
+        Context {
+            view: self.view,
+            shot_on: self.shots.on,
+            schematic,
+            data: self.lab.data.is_some(),
         }
     }
 

@@ -1,5 +1,7 @@
-//! The help overlay: every key from the key table, the prompt's keys, and what the selected parameter is,
-//! its range and the units it accepts.
+//! The help overlay: from the key table, the keys of the view shown (the contact's time cursor, the
+//! shot's flight, the schematic's time where it is drawn), then the keys of every view, the lab's with
+//! measurements, the prompt's keys, and what the selected parameter is, its range and the units it
+//! accepts.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
@@ -7,15 +9,16 @@ use ratatui::text::{Line, Span};
 
 use super::overlay;
 use crate::tui::app::App;
-use crate::tui::keys::{self, Binding};
+use crate::tui::keys::{self, Binding, Scope};
 use crate::tui::shot;
 use crate::tui::theme::Theme;
+use crate::tui::vocabulary::View;
 
 /// How the prompt takes an uncertainty.
 const UNCERTAINTY: &str = " 60±1 also sets an uncertainty: Fig. 2 then draws ω2's band; ±0 clears";
 
-fn rows<'a>(bindings: &[Binding], theme: &Theme, key_width: usize) -> Vec<Line<'a>> {
-    keys::help_rows(bindings)
+fn rows<'a>(bindings: &[Binding], view: View, theme: &Theme, key_width: usize) -> Vec<Line<'a>> {
+    keys::help_rows_in(bindings, view)
         .into_iter()
         .map(|(label, help)| {
             Line::from(vec![
@@ -39,8 +42,20 @@ fn key_width(theme: &Theme) -> usize {
         .unwrap_or(0)
 }
 
-pub fn render(frame: &mut Frame, area: Rect, app: &App) {
+/// The heading over the keys of the view shown.
+fn own_heading(view: View) -> String {
+    match view {
+        View::Contact | View::Shot => format!("Keys of the {} view", view.name()),
+        View::Sweep | View::Heatmap => {
+            "Keys of the schematic (the bounce at the time cursor)".into()
+        }
+    }
+}
+
+/// `schematic`: the schematic is drawn (its time keys work in every view).
+pub fn render(frame: &mut Frame, area: Rect, app: &App, schematic: bool) {
     let theme = &app.theme;
+    let context = app.key_context(schematic);
     let key_width = key_width(theme);
     let spec = app.selected_spec();
     let units = spec.dimension.symbols();
@@ -53,10 +68,37 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
             units[1..].join(", ")
         )
     };
-    let mut lines = vec![Line::styled("Keys", theme.title())];
-    lines.extend(rows(keys::EXPLORER, theme, key_width));
+    let own = keys::explorer_keys(&context, &[Scope::Contact, Scope::Timeline]);
+    let every = keys::explorer_keys(&context, &[Scope::Everywhere]);
+    let lab = keys::explorer_keys(&context, &[Scope::Lab]);
+    let mut lines = Vec::new();
+    let every_heading = if own.is_empty() {
+        format!(
+            "Keys in every view (the {} view has none of its own)",
+            app.view.name()
+        )
+    } else {
+        lines.push(Line::styled(
+            theme.words(&own_heading(app.view)).into_owned(),
+            theme.title(),
+        ));
+        lines.extend(rows(&own, app.view, theme, key_width));
+        "Keys in every view".to_string()
+    };
+    lines.push(Line::styled(
+        theme.words(&every_heading).into_owned(),
+        theme.title(),
+    ));
+    lines.extend(rows(&every, app.view, theme, key_width));
+    if !lab.is_empty() {
+        lines.push(Line::styled(
+            "With the measurements (--data)",
+            theme.title(),
+        ));
+        lines.extend(rows(&lab, app.view, theme, key_width));
+    }
     let mut prompt = vec![Line::styled("While typing a value", theme.title())];
-    prompt.extend(rows(keys::PROMPT, theme, key_width));
+    prompt.extend(rows(keys::PROMPT, app.view, theme, key_width));
     prompt.push(Line::raw(theme.words(UNCERTAINTY).into_owned()));
     let mut notes = vec![
         Line::styled(

@@ -182,7 +182,7 @@ pub fn draw(frame: &mut Frame, app: &App) {
         ..area
     };
     if app.mode == Mode::Help {
-        help::render(frame, main, app);
+        help::render(frame, main, app, regions.schematic.is_some());
     }
     if let Mode::Picker(_) = app.mode {
         picker::render(frame, main, app);

@@ -11,8 +11,8 @@ use ratatui::layout::Rect;
 use ratatui::text::{Line, Span};
 use ratatui::widgets::{Block, Paragraph};
 
-use crate::model::ParamSpec;
 use crate::model::units;
+use crate::model::{ParamId, ParamSpec};
 use crate::tui::app::App;
 use crate::tui::shot;
 use crate::tui::values::shown;
@@ -33,6 +33,22 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         .iter()
         .map(|spec| theme.words(spec.symbol).chars().count() + 1)
         .fold(4, usize::max);
+    let ellipsis = theme.words("…");
+    // Pointer, symbol, label (cut at a word to fit), value and the changed mark on the right.
+    let head = |pointer: char, symbol: &str| format!("{pointer}{:<column$}", theme.words(symbol));
+    let room = |symbol: &str, shown: &str| {
+        width.saturating_sub(head(' ', symbol).chars().count() + shown.chars().count() + 2)
+    };
+    let row = |pointer: char, symbol: &str, label: &str, shown: &str, changed: char| {
+        let head = head(pointer, symbol);
+        let room = room(symbol, shown);
+        let label = fit_label(label, room, &ellipsis);
+        let gap = room.saturating_sub(label.chars().count()) + 1;
+        format!("{head}{label}{:gap$}{shown}{changed}", "")
+    };
+    // In shot mode the derived rows show what the shot decides, not the bounce on screen (which a
+    // refused change leaves behind).
+    let decided = app.shots.on.then(|| shot::Decided::of(&app.params));
     for (i, spec) in specs.iter().enumerate() {
         if i > 0 && specs[i - 1].group != spec.group {
             let name = format!(" {} ", spec.group.name());
@@ -46,60 +62,56 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
         if i == app.selected {
             selected_line = lines.len();
         }
-        lines.push({
-            let value = app.params.get(spec.id);
-            let shown = match app.lab.spread(spec.id) {
-                Some(sigma) => theme.words(&with_spread(spec, value, sigma)).into_owned(),
-                None => shown(spec, value).to_string(),
-            };
-            let changed = if value == spec.default { ' ' } else { '•' };
-            let pointer = if i == app.selected { '▸' } else { ' ' };
-            // pointer, symbol, label, value and the changed mark on the right.
-            let head = format!("{pointer}{:<column$}", theme.words(spec.symbol));
-            let room = width.saturating_sub(head.chars().count() + shown.chars().count() + 2);
-            let derived = app.shots.on && shot::derived(spec.id);
-            // A free parameter says so before its label, or in place of it where both do not fit (the
-            // symbol names it).
-            let label = if derived {
-                "set by the shot".to_string()
-            } else if app.lab.is_free(spec.id) {
-                let long = format!("{FREE}{}", spec.label);
-                if long.chars().count() <= room {
-                    long
-                } else {
-                    FREE_SHORT.to_string()
-                }
+        let derived = decided.filter(|_| shot::derived(spec.id));
+        let value = derived
+            .and_then(|d| d.value(spec.id))
+            .unwrap_or(app.params.get(spec.id));
+        let shown = match app.lab.spread(spec.id) {
+            Some(sigma) => theme.words(&with_spread(spec, value, sigma)).into_owned(),
+            None => shown(spec, value).to_string(),
+        };
+        let changed = if value == spec.default { ' ' } else { '•' };
+        let pointer = if i == app.selected { '▸' } else { ' ' };
+        let racquet = matches!(spec.id, ParamId::FrameMass | ParamId::FrameNormalMass);
+        // A free parameter says so before its label, or in place of it where both do not fit (the
+        // symbol names it).
+        let label = if derived.is_some() && racquet {
+            FROM_RACQUET.to_string()
+        } else if derived.is_some() {
+            SET_BY_SHOT.to_string()
+        } else if app.lab.is_free(spec.id) {
+            let long = format!("{FREE}{}", spec.label);
+            if long.chars().count() <= room(spec.symbol, &shown) {
+                long
             } else {
-                spec.label.to_string()
-            };
-            let label: String = if room >= 8 {
-                label.chars().take(room).collect()
-            } else {
-                String::new()
-            };
-            let gap = room.saturating_sub(label.chars().count()) + 1;
-            let text = format!("{head}{label}{:gap$}{shown}{changed}", "");
-            let line = Line::from(text);
-            if i == app.selected {
-                line.style(theme.selected())
-            } else if derived {
-                line.style(theme.dim())
-            } else if app.lab.is_free(spec.id) {
-                line.style(theme.key())
-            } else {
-                line
+                FREE_SHORT.to_string()
             }
+        } else {
+            spec.label.to_string()
+        };
+        let line = Line::from(row(pointer, spec.symbol, &label, &shown, changed));
+        lines.push(if i == app.selected {
+            line.style(theme.selected())
+        } else if derived.is_some() {
+            line.style(theme.dim())
+        } else if app.lab.is_free(spec.id) {
+            line.style(theme.key())
+        } else {
+            line
         });
+        // The ball's apparent restitution on the racquet's frame follows its effective masses.
+        if let Some(d) = derived
+            && spec.id == ParamId::FrameNormalMass
+        {
+            let e = d.ey_apparent().map_or("?".into(), |e| format!("{e:.2}"));
+            let text = row(' ', "e_A", APPARENT, &e, ' ');
+            lines.push(Line::styled(text, theme.dim()));
+        }
     }
-    // Scroll so the selected line sits mid-panel where it can, and say where lines are hidden.
+    // Scroll no further than the selected line and the one under it need, so that the top rows (the
+    // incidence) stay in view while they can, and say where lines are hidden.
     let visible = usize::from(inner.height);
-    let start = if lines.len() > visible {
-        selected_line
-            .saturating_sub(visible / 2)
-            .min(lines.len() - visible)
-    } else {
-        0
-    };
+    let start = scroll(lines.len(), visible, selected_line);
     let mut block = block;
     if start > 0 {
         block = block.title(Line::styled(" ▲ more ", theme.dim()).right_aligned());
@@ -110,6 +122,42 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App) {
     let shown: Vec<Line> = lines.into_iter().skip(start).take(visible).collect();
     frame.render_widget(Paragraph::new(shown).block(block), area);
 }
+
+/// `label` in `room` columns: whole where it fits, else cut after its last word that fits with
+/// `ellipsis` after it (`frame normal…`), else nothing (the symbol names the parameter).
+pub fn fit_label(label: &str, room: usize, ellipsis: &str) -> String {
+    let width = |s: &str| s.chars().count();
+    if width(label) <= room {
+        return label.to_string();
+    }
+    let room = room.saturating_sub(width(ellipsis));
+    let cut = label
+        .match_indices(' ')
+        .map(|(i, _)| label[..i].trim_end_matches([':', ',']))
+        .filter(|head| width(head) <= room)
+        .last();
+    match cut {
+        Some(head) if !head.is_empty() => format!("{head}{ellipsis}"),
+        _ => String::new(),
+    }
+}
+
+/// The first of `lines` shown in `visible` rows with `selected` in view: 0 while the selected line and
+/// the one under it fit, else as little further as keeps them in view.
+pub fn scroll(lines: usize, visible: usize, selected: usize) -> usize {
+    (selected + 2)
+        .saturating_sub(visible)
+        .min(lines.saturating_sub(visible))
+}
+
+/// The label of the incidence a shot sets (theta1, v1, omega1).
+pub const SET_BY_SHOT: &str = "set by the shot";
+
+/// The label of the frame's effective masses in a shot, read from the racquet group.
+pub const FROM_RACQUET: &str = "from the racquet";
+
+/// The label of e_A, the ball's apparent restitution on the racquet in the hand, under M_n in a shot.
+pub const APPARENT: &str = "apparent restitution";
 
 /// What a free parameter's label starts with.
 pub const FREE: &str = "free: ";
@@ -136,5 +184,33 @@ pub fn group_headings(specs: &[ParamSpec]) -> usize {
 /// Rows the panel takes, borders included.
 pub fn height(app: &App) -> u16 {
     let specs = app.listed();
-    (specs.len() + group_headings(specs)) as u16 + 2
+    // In shot mode e_A follows M_n.
+    let apparent = usize::from(app.shots.on);
+    (specs.len() + group_headings(specs) + apparent) as u16 + 2
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{fit_label, scroll};
+
+    #[test]
+    fn the_list_scrolls_only_as_far_as_the_selection_needs() {
+        // 37 lines in 30 rows: the top stays until the selection reaches the last row.
+        assert_eq!(scroll(37, 30, 0), 0);
+        assert_eq!(scroll(37, 30, 19), 0);
+        assert_eq!(scroll(37, 30, 28), 0);
+        assert_eq!(scroll(37, 30, 29), 1);
+        assert_eq!(scroll(37, 30, 36), 7);
+        assert_eq!(scroll(20, 30, 19), 0);
+    }
+
+    #[test]
+    fn labels_are_cut_at_a_word() {
+        assert_eq!(fit_label("frame normal mass", 17, "…"), "frame normal mass");
+        assert_eq!(fit_label("frame normal mass", 16, "…"), "frame normal…");
+        assert_eq!(fit_label("frame normal mass", 12, "..."), "frame...");
+        assert_eq!(fit_label("free: cart mass", 11, "…"), "free: cart…");
+        assert_eq!(fit_label("free: cart mass", 10, "…"), "free…");
+        assert_eq!(fit_label("frame normal mass", 5, "…"), "");
+    }
 }

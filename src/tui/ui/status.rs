@@ -88,7 +88,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, schematic_shown: bool) {
     let used: usize = spans.iter().map(Span::width).sum();
     let hints: Vec<keys::Hint> = keys::bindings(&app.mode)
         .iter()
-        .filter(|b| keys::offered(b.action, app.view, app.shots.on))
+        .filter(|b| keys::offered(b, &app.key_context(schematic_shown)))
         .filter_map(|b| b.hint)
         .collect();
     // Each hint after the first takes two spaces before it.
