@@ -39,7 +39,7 @@ const LIMITS: [[f64; PARAM_COUNT]; 3] = {
 };
 
 /// Checks every parameter against the magnitudes that can be solved, and a damped ball's relaxation.
-/// Every solve asks: the magnitudes are compared on the table [`LIMITS`]; a refusal (or a NaN, which
+/// Every solve asks: the magnitudes are compared on the table `LIMITS`; a refusal (or a NaN, which
 /// the table cannot pass) goes row by row.
 #[inline]
 pub fn check(params: &Params) -> Result<(), Unsolvable> {

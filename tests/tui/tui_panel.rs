@@ -75,11 +75,10 @@ fn assert_labels_fit(mut app: App, width: u16, height: u16, what: &str) {
     let theme = app.theme;
     let ellipsis = theme.words("…").into_owned();
     let listed = app.listed();
-    for i in 0..listed.len() {
+    for (i, spec) in listed.iter().enumerate() {
         app.selected = i;
         let screen = draw(&app, width, height);
         let rows = panel(&screen);
-        let spec = &listed[i];
         let row = row_of(&rows, spec, &theme)
             .unwrap_or_else(|| panic!("{} not shown ({what}):\n{screen}", spec.symbol));
         let labels = [
@@ -230,11 +229,10 @@ fn the_panel_scrolls_no_further_than_the_selection_needs() {
     assert!(!screen.contains("▲ more"), "{screen}");
     // Every row selected in turn is in view, at both sizes; the top is hidden only when it must be.
     for (w, h) in [(80, 24), (160, 48)] {
-        for i in 0..PARAMS.len() {
+        for (i, spec) in PARAMS.iter().enumerate() {
             app.selected = i;
             let screen = draw(&app, w, h);
             let rows = panel(&screen);
-            let spec = &PARAMS[i];
             let row = row_of(&rows, spec, &app.theme)
                 .unwrap_or_else(|| panic!("{} hidden at {w}x{h}:\n{screen}", spec.symbol));
             assert!(row.starts_with('▸'), "{row}");

@@ -134,8 +134,7 @@ pub fn fit_label(label: &str, room: usize, ellipsis: &str) -> String {
     let cut = label
         .match_indices(' ')
         .map(|(i, _)| label[..i].trim_end_matches([':', ',']))
-        .filter(|head| width(head) <= room)
-        .last();
+        .rfind(|head| width(head) <= room);
     match cut {
         Some(head) if !head.is_empty() => format!("{head}{ellipsis}"),
         _ => String::new(),
