@@ -4,8 +4,8 @@
 
 use rayon::prelude::*;
 
-use crate::model::Params;
 use crate::model::units;
+use crate::model::{Params, SolveOptions};
 use crate::shot::{self, Shot};
 
 use super::optimize::scan_span;
@@ -74,11 +74,16 @@ impl ShotObjective {
     }
 }
 
-/// The shot with the varied parameter at `value`.
-pub fn play_at(base: &Params, span: &Span, value: f64) -> Result<Shot, AnalysisError> {
+/// The shot with the varied parameter at `value`, its bounces solved on `options`' terms.
+pub fn play_at(
+    base: &Params,
+    span: &Span,
+    value: f64,
+    options: &SolveOptions,
+) -> Result<Shot, AnalysisError> {
     let mut params = *base;
     params.set(span.spec.id, value);
-    shot::play(&params, false).map_err(|e| {
+    shot::play_with(&params, false, options).map_err(|e| {
         AnalysisError::Input(format!(
             "at --{} {}: {e}",
             span.spec.flag,
@@ -87,11 +92,16 @@ pub fn play_at(base: &Params, span: &Span, value: f64) -> Result<Shot, AnalysisE
     })
 }
 
-/// One shot per value of the span, on all cores, in order.
-pub fn sweep(base: &Params, span: &Span, steps: usize) -> Result<Vec<(f64, Shot)>, AnalysisError> {
+/// One shot per value of the span, on all cores, in order, solved on `options`' terms.
+pub fn sweep(
+    base: &Params,
+    span: &Span,
+    steps: usize,
+    options: &SolveOptions,
+) -> Result<Vec<(f64, Shot)>, AnalysisError> {
     span.values(steps)
         .into_par_iter()
-        .map(|value| play_at(base, span, value).map(|s| (value, s)))
+        .map(|value| play_at(base, span, value, options).map(|s| (value, s)))
         .collect()
 }
 
@@ -108,7 +118,7 @@ pub struct ShotOptimum {
 /// The value in `span` that maximises `objective` (minimises with `minimize`) among the shots that land
 /// in (all shots with `allow_out`): a scan of `scan` points, then Brent's method between the best
 /// point's neighbours to a relative 1e-10. A shot that does not play, that is out (unless allowed) or
-/// has no value of the objective counts as the worst.
+/// has no value of the objective counts as the worst. The shots are solved on `options`' terms.
 pub fn optimize(
     base: &Params,
     span: &Span,
@@ -116,11 +126,12 @@ pub fn optimize(
     minimize: bool,
     allow_out: bool,
     scan: usize,
+    options: &SolveOptions,
 ) -> Result<ShotOptimum, AnalysisError> {
     let span = scan_span(span);
     let sign = if minimize { 1.0 } else { -1.0 };
     let cost = |value: f64| {
-        play_at(base, &span, value)
+        play_at(base, &span, value, options)
             .ok()
             .filter(|s| allow_out || s.is_in())
             .and_then(|s| objective.of(&s))
@@ -154,7 +165,7 @@ pub fn optimize(
     } else {
         span.at(best, scan)
     };
-    let shot = play_at(base, &span, value)?;
+    let shot = play_at(base, &span, value, options)?;
     let objective_value = objective.of(&shot).expect("the optimum has a value");
     Ok(ShotOptimum {
         value,

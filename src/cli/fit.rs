@@ -7,10 +7,10 @@ use clap::{Args, ValueEnum};
 use serde_json::{Map, Value, json};
 
 use super::{Failure, ParamArgs, emit};
-use crate::analysis::fit::{self, Fit, Fitted, Options, Verdict, data, free, shown};
+use crate::analysis::fit::{self, Fit, Fitted, Options, Verdict, data, free, shown, watch::Watch};
 use crate::input;
 use crate::model::params::{Bound, ParamId, spec};
-use crate::model::{Params, units};
+use crate::model::{Params, SolveOptions, units};
 use crate::scenario::Scenario;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -82,7 +82,8 @@ pub struct FitArgs {
     pub format: Format,
 }
 
-pub fn run(args: &FitArgs) -> Result<(), Failure> {
+/// Fits the data, stopped by `options`' cancellation (Ctrl-C) and counted by its work.
+pub fn run(args: &FitArgs, options: &SolveOptions) -> Result<(), Failure> {
     let base = args
         .params
         .apply(Params::default())
@@ -99,12 +100,13 @@ pub fn run(args: &FitArgs) -> Result<(), Failure> {
         data.groups.len(),
     )
     .map_err(Failure::usage)?;
-    let options = Options {
+    let search = Options {
         starts: args.starts as usize,
         seed: args.seed,
         profile: args.intervals != Intervals::Wald,
     };
-    let fit = fit::fit(&base, &free, &data, &options).map_err(Failure::usage)?;
+    let fit = fit::fit_watched(&base, &free, &data, &search, &Watch::of(options))
+        .map_err(Failure::usage)?;
     let sources: Vec<String> = fit
         .assumed
         .iter()

@@ -111,7 +111,7 @@ pub fn run(cli: Cli) -> ExitCode {
     let result = match cli.command {
         Some(Commands::Simulate(args)) => headless(Work::unlimited(), |o| simulate::run(&args, o)),
         Some(Commands::Tui(args)) => tui::run(&args),
-        Some(Commands::Presets(args)) => headless(Work::unlimited(), |_| presets::run(&args)),
+        Some(Commands::Presets(args)) => headless(Work::unlimited(), |o| presets::run(&args, o)),
         Some(Commands::Sweep(args)) => headless(Work::unlimited(), |o| sweep::run(&args, o)),
         Some(Commands::CriticalAngle(args)) => headless(Work::limited(COMMAND_WORK), |o| {
             critical_angle::run(&args, o)
@@ -123,8 +123,8 @@ pub fn run(cli: Cli) -> ExitCode {
         Some(Commands::Figure(args)) => {
             headless(Work::limited(COMMAND_WORK), |o| figure::run(&args, o))
         }
-        Some(Commands::Fit(args)) => headless(Work::unlimited(), |_| fit::run(&args)),
-        Some(Commands::Shot(args)) => headless(Work::unlimited(), |_| shot::run(&args)),
+        Some(Commands::Fit(args)) => headless(Work::unlimited(), |o| fit::run(&args, o)),
+        Some(Commands::Shot(args)) => headless(Work::unlimited(), |o| shot::run(&args, o)),
         Some(Commands::Completions(args)) => completions::run(&args),
         Some(Commands::Man(args)) => man::run(&args),
         None => tui::run(&cli.explorer),

@@ -63,7 +63,7 @@ pub fn run(args: &OptimizeArgs, options: &SolveOptions) -> Result<(), Failure> {
     let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
     let scan = span::parse_count("--scan", &args.scan, 3).map_err(Failure::usage)?;
     if let Some(objective) = ShotObjective::named(&args.objective) {
-        return run_shot(args, &span, objective, scan);
+        return run_shot(args, &span, objective, scan, options);
     }
     let fix = "choose a shot objective (kick_height, net_clearance, landing, launch_speed, launch_topspin)";
     shot::refuse_shot_flags(&args.params.given, Some(span.spec), fix)?;
@@ -169,6 +169,7 @@ fn run_shot(
     span: &Span,
     objective: ShotObjective,
     scan: usize,
+    options: &SolveOptions,
 ) -> Result<(), Failure> {
     shot::refuse_bounce_incidence(&args.params.given, Some(span.spec))?;
     if span.spec.integer {
@@ -178,8 +179,16 @@ fn run_shot(
         )));
     }
     let base = args.params.apply(shot::base()).map_err(Failure::usage)?;
-    let best = shots::optimize(&base, span, objective, args.minimize, args.allow_out, scan)
-        .map_err(Failure::usage)?;
+    let best = shots::optimize(
+        &base,
+        span,
+        objective,
+        args.minimize,
+        args.allow_out,
+        scan,
+        options,
+    )
+    .map_err(Failure::usage)?;
     let spec = span.spec;
     let text = match args.format {
         Format::Json => {

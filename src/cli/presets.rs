@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use super::{Failure, emit};
 use crate::config;
-use crate::model::solve;
+use crate::model::{SolveOptions, solve_with};
 use crate::scenario::{PRESETS, Scenario};
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -39,7 +39,8 @@ struct PresetJson {
     params: crate::model::Params,
 }
 
-pub fn run(args: &PresetsArgs) -> Result<(), Failure> {
+/// Lists the presets, each solved (or its shot played) on `options`' terms.
+pub fn run(args: &PresetsArgs, options: &SolveOptions) -> Result<(), Failure> {
     if args.path {
         let dir = config::presets_dir().ok_or_else(|| {
             Failure::usage(format!(
@@ -73,20 +74,23 @@ pub fn run(args: &PresetsArgs) -> Result<(), Failure> {
             for (scenario, user) in &all {
                 let params = scenario.apply(crate::model::Params::default());
                 let spin = if scenario.is_shot() {
-                    crate::shot::play(&params, false).map_or("does not play".to_string(), |s| {
-                        let l = &s.strings.leaving;
-                        let rpm = l.topspin() * 30.0 / std::f64::consts::PI;
-                        format!(
-                            "shot: launch {:.1} m/s at {:.1} deg, {:.0} rpm {}, {}",
-                            l.speed(),
-                            l.angle_deg(),
-                            rpm.abs(),
-                            if rpm < 0.0 { "backspin" } else { "topspin" },
-                            if s.is_in() { "in" } else { "out" }
-                        )
-                    })
+                    crate::shot::play_with(&params, false, options).map_or(
+                        "does not play".to_string(),
+                        |s| {
+                            let l = &s.strings.leaving;
+                            let rpm = l.topspin() * 30.0 / std::f64::consts::PI;
+                            format!(
+                                "shot: launch {:.1} m/s at {:.1} deg, {:.0} rpm {}, {}",
+                                l.speed(),
+                                l.angle_deg(),
+                                rpm.abs(),
+                                if rpm < 0.0 { "backspin" } else { "topspin" },
+                                if s.is_in() { "in" } else { "out" }
+                            )
+                        },
+                    )
                 } else {
-                    solve(&params).map_or("does not solve".to_string(), |b| {
+                    solve_with(&params, options).map_or("does not solve".to_string(), |b| {
                         format!("ω2 = {:.1} rad/s", b.outcome.omega2)
                     })
                 };

@@ -4,8 +4,8 @@ use clap::{Args, ValueEnum};
 
 use super::{Failure, ShotParamArgs, emit};
 use crate::export;
-use crate::model::ParamId;
 use crate::model::params::{ParamSpec, spec};
+use crate::model::{ParamId, SolveOptions};
 use crate::shot;
 
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
@@ -81,10 +81,10 @@ pub fn refuse_shot_flags(
     }
 }
 
-pub fn run(args: &ShotArgs) -> Result<(), Failure> {
+pub fn run(args: &ShotArgs, options: &SolveOptions) -> Result<(), Failure> {
     refuse_bounce_incidence(&args.params.given, None)?;
     let params = args.params.apply(base()).map_err(Failure::usage)?;
-    let shot = shot::play(&params, args.trajectory).map_err(Failure::usage)?;
+    let shot = shot::play_with(&params, args.trajectory, options).map_err(Failure::usage)?;
     let text = match args.format {
         Format::Table => export::shot::table(&shot),
         Format::Json => export::shot::json(&shot),

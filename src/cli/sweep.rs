@@ -58,7 +58,7 @@ pub fn run(args: &SweepArgs, options: &SolveOptions) -> Result<(), Failure> {
     let span = Span::parse(&args.vary, &args.from, &args.to, args.log).map_err(Failure::usage)?;
     let steps = span::parse_count("--steps", &args.steps, 2).map_err(Failure::usage)?;
     if args.shot {
-        return run_shots(args, &span, steps);
+        return run_shots(args, &span, steps, options);
     }
     shot::refuse_shot_flags(&args.params.given, Some(span.spec), "add --shot")?;
     let (base, spreads) = args
@@ -190,10 +190,15 @@ fn write_with_bands(
 
 /// `sweep --shot`: one shot per value, in order, as CSV (an empty field for a null), JSON or JSON Lines,
 /// with `snapback shot`'s keys.
-fn run_shots(args: &SweepArgs, span: &Span, steps: usize) -> Result<(), Failure> {
+fn run_shots(
+    args: &SweepArgs,
+    span: &Span,
+    steps: usize,
+    options: &SolveOptions,
+) -> Result<(), Failure> {
     shot::refuse_bounce_incidence(&args.params.given, Some(span.spec))?;
     let base = args.params.apply(shot::base()).map_err(Failure::usage)?;
-    let rows = shots::sweep(&base, span, steps).map_err(Failure::usage)?;
+    let rows = shots::sweep(&base, span, steps, options).map_err(Failure::usage)?;
     let column = span.column();
     let docs = rows.iter().map(|(value, s)| {
         let mut doc = serde_json::json!({ column.as_str(): value });

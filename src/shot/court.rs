@@ -1,7 +1,7 @@
 //! The court: its lines (ITF rules, in the vertical plane of the shot) and the bounce on it, which is the
 //! paper's model on a rigid surface, taken as the limit of a heavy free cart through the core.
 
-use crate::model::{Bounce, Params, SolveError, solve};
+use crate::model::{Bounce, Params, SolveError, SolveOptions, solve_with};
 
 use super::frame::Incidence;
 
@@ -22,7 +22,16 @@ pub const COURT_MASS: f64 = 1e6;
 /// inertia and compliance), the court's friction, restitution and contact time, a heavy free cart on no
 /// frame (the racquet's is the strings').
 pub fn bounce(p: &Params, incidence: &Incidence) -> Result<Bounce, SolveError> {
-    solve(&Params {
+    bounce_with(p, incidence, &SolveOptions::default())
+}
+
+/// [`bounce`] solved on `options`' terms.
+pub fn bounce_with(
+    p: &Params,
+    incidence: &Incidence,
+    options: &SolveOptions,
+) -> Result<Bounce, SolveError> {
+    let court = Params {
         angle_deg: incidence.theta1_deg,
         speed: incidence.speed,
         spin: incidence.spin,
@@ -36,5 +45,6 @@ pub fn bounce(p: &Params, incidence: &Incidence) -> Result<Bounce, SolveError> {
         frame_mass: 0.0,
         frame_normal_mass: 0.0,
         ..*p
-    })
+    };
+    solve_with(&court, options)
 }

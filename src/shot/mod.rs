@@ -17,7 +17,7 @@ pub mod racquet;
 use nalgebra::Vector2;
 
 use crate::config;
-use crate::model::{Bounce, Params, SolveError, solve};
+use crate::model::{Bounce, Params, SolveError, SolveOptions, solve_with};
 use aero::{Air, Projectile};
 use court::{BASELINE_X, NET_HEIGHT, NET_X};
 use flight::{Hit, Point, Stop, TooLong, fly};
@@ -163,7 +163,7 @@ pub fn incidence(p: &Params) -> Result<Incidence, ShotError> {
 /// The bounce on the strings: the frame change, the core (all of `p`'s ball and cart flags, with the
 /// incidence it sees, on the frame of `p`'s racquet), and back to the court frame.
 pub fn hit(p: &Params) -> Result<Contact, ShotError> {
-    hit_by(p, &Hold::of(p)?)
+    hit_by(p, &Hold::of(p)?, &SolveOptions::default())
 }
 
 /// The bounce the strings see, as the core's parameters: `p` with the incidence of the frame change and
@@ -186,11 +186,11 @@ fn on_strings(p: &Params, racquet: &Hold) -> Result<Params, ShotError> {
     })
 }
 
-/// [`hit`] by `racquet`.
-fn hit_by(p: &Params, racquet: &Hold) -> Result<Contact, ShotError> {
+/// [`hit`] by `racquet`, solved on `options`' terms.
+fn hit_by(p: &Params, racquet: &Hold, options: &SolveOptions) -> Result<Contact, ShotError> {
     let strings = strings(p);
     let incidence = incidence(p)?;
-    let bounce = solve(&on_strings(p, racquet)?).map_err(ShotError::Strings)?;
+    let bounce = solve_with(&on_strings(p, racquet)?, options).map_err(ShotError::Strings)?;
     let o = &bounce.outcome;
     let (velocity, omega_z) = strings.rebound(&incidence, o.vx2, o.vy2, o.omega2);
     Ok(Contact {
@@ -202,11 +202,27 @@ fn hit_by(p: &Params, racquet: &Hold) -> Result<Contact, ShotError> {
 
 /// Plays the shot of `p` in still air; with `trajectory`, samples its path.
 pub fn play(p: &Params, trajectory: bool) -> Result<Shot, ShotError> {
-    play_in(p, Air::STILL, trajectory)
+    play_with(p, trajectory, &SolveOptions::default())
+}
+
+/// [`play`] with its two bounces (strings and court) solved on `options`' terms: a command's Ctrl-C
+/// stops the shot within one phase of either.
+pub fn play_with(p: &Params, trajectory: bool, options: &SolveOptions) -> Result<Shot, ShotError> {
+    play_in_with(p, Air::STILL, trajectory, options)
 }
 
 /// Plays the shot of `p` in `air`.
 pub fn play_in(p: &Params, air: Air, trajectory: bool) -> Result<Shot, ShotError> {
+    play_in_with(p, air, trajectory, &SolveOptions::default())
+}
+
+/// [`play_in`] on `options`' terms.
+fn play_in_with(
+    p: &Params,
+    air: Air,
+    trajectory: bool,
+    options: &SolveOptions,
+) -> Result<Shot, ShotError> {
     if p.height <= p.radius {
         return Err(ShotError::BelowRadius {
             height: p.height,
@@ -214,7 +230,7 @@ pub fn play_in(p: &Params, air: Air, trajectory: bool) -> Result<Shot, ShotError
         });
     }
     let racquet = Hold::of(p)?;
-    let strings = hit_by(p, &racquet)?;
+    let strings = hit_by(p, &racquet, options)?;
     let r = p.radius;
     let projectile = |m: &Motion| Projectile {
         mass: p.mass,
@@ -269,7 +285,7 @@ pub fn play_in(p: &Params, air: Air, trajectory: bool) -> Result<Shot, ShotError
             velocity: Vector2::new(end.state[2], end.state[3]),
             omega_z: launch.omega_z,
         };
-        let court = bounce_on_court(p, &arriving)?;
+        let court = bounce_on_court(p, &arriving, options)?;
         let leaving = court.leaving;
         shot.court = Some(court);
         if x < BASELINE_X && leaving.velocity.y > 0.0 {
@@ -306,12 +322,16 @@ fn shift(points: &mut [Point], t: f64) {
 }
 
 /// The bounce on the court of a ball arriving with `arriving` (the court at rest, normal up).
-fn bounce_on_court(p: &Params, arriving: &Motion) -> Result<Contact, ShotError> {
+fn bounce_on_court(
+    p: &Params,
+    arriving: &Motion,
+    options: &SolveOptions,
+) -> Result<Contact, ShotError> {
     let floor = Surface::at_rest(Vector2::new(0.0, 1.0));
     let incidence = floor
         .incidence(arriving.velocity, arriving.omega_z)
         .ok_or(ShotError::Grazes)?;
-    let bounce = court::bounce(p, &incidence).map_err(ShotError::Court)?;
+    let bounce = court::bounce_with(p, &incidence, options).map_err(ShotError::Court)?;
     let o = &bounce.outcome;
     let (velocity, omega_z) = floor.rebound(&incidence, o.vx2, o.vy2, o.omega2);
     Ok(Contact {

@@ -112,6 +112,7 @@ impl Lab {
                 progress: &|p| {
                     job.send(FitEvent::Progress(p));
                 },
+                work: None,
             };
             let result =
                 fit::fit_watched(&fit.base, &fit.free, &measured, &Options::default(), &watch);

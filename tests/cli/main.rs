@@ -18,6 +18,7 @@ mod figure_params;
 mod fit;
 mod fuzz;
 mod hostile;
+mod interrupt;
 mod readme;
 mod scenario;
 mod scenario_input;

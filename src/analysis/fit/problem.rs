@@ -57,7 +57,7 @@ impl Model<'_> {
         let options = SolveOptions {
             cancelled: &cancelled,
             max_phases: self.phase_limit.unwrap_or(MAX_TRANSITIONS),
-            work: None,
+            work: self.tally.work(),
         };
         self.tally.solved();
         let bounce = solve_with(&params, &options).ok()?;

@@ -6,6 +6,8 @@
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use crate::model::{SolveOptions, Work};
+
 /// The steps of a fit, in order.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Stage {
@@ -36,14 +38,28 @@ pub struct Watch<'a> {
     pub cancelled: &'a (dyn Fn() -> bool + Sync),
     /// Told where the fit has got to after each evaluation of the model.
     pub progress: &'a (dyn Fn(Progress) + Sync),
+    /// The work the fit's solves share with the caller's, which counts them too; `None`: each solve's
+    /// own budget only.
+    pub work: Option<&'a Work>,
 }
 
-impl Watch<'_> {
+impl<'a> Watch<'a> {
     /// A watch that never stops the fit and is told nothing.
     pub fn none() -> Watch<'static> {
         Watch {
             cancelled: &|| false,
             progress: &|_| {},
+            work: None,
+        }
+    }
+
+    /// A watch on a command's terms: stopped by `options`' cancellation (its Ctrl-C), its solves under
+    /// and counted by `options`' work; told nothing. The fit keeps its own phase caps.
+    pub fn of(options: &SolveOptions<'a>) -> Watch<'a> {
+        Watch {
+            cancelled: options.cancelled,
+            progress: &|_| {},
+            work: options.work,
         }
     }
 }
@@ -66,6 +82,11 @@ impl<'a> Tally<'a> {
 
     pub fn cancelled(&self) -> bool {
         (self.watch.cancelled)()
+    }
+
+    /// The work the fit's solves share with the caller's.
+    pub fn work(&self) -> Option<&'a Work> {
+        self.watch.work
     }
 
     /// One more bounce solved (or tried).
@@ -124,6 +145,7 @@ mod tests {
         let watch = Watch {
             cancelled: &|| false,
             progress: &|p| seen.lock().unwrap().push(p),
+            work: None,
         };
         let watched = fit_watched(&base, &free, &data, &Options::default(), &watch).unwrap();
         assert_eq!(
@@ -155,6 +177,7 @@ mod tests {
                 reports.fetch_add(1, Ordering::Relaxed);
                 solves.store(p.solves, Ordering::Relaxed);
             },
+            work: None,
         };
         let result = fit_watched(
             &Params::default(),
