@@ -44,7 +44,7 @@ use ratatui::widgets::{Block, Widget};
 
 use super::charts::fixed;
 use crate::model::quadrature::integrate;
-use crate::model::{Bounce, PhaseKind};
+use crate::model::{Bounce, FrameKind, ModelKind, PhaseKind, SupportKind};
 use crate::tui::app::App;
 use crate::tui::solved::Solved;
 
@@ -91,8 +91,10 @@ pub struct Scene {
     pub cart_height: f64,
     /// The wall the spring is fixed to, or the free frame (the racquet in the hand), moved as the cart is.
     pub wall: f64,
-    /// True when the spring's end is a free frame: drawn moving, without the wall's hatching.
-    pub frame_free: bool,
+    /// The model of the bounce drawn, as it says of itself ([`crate::model::Params::model`]): on a chain,
+    /// its other masses are drawn; tied to a free frame, the spring's end moves without the wall's
+    /// hatching.
+    pub model: ModelKind,
     /// With a chain of N > 1 masses, masses 2 to N (left and right edges, at rest), from the one next to
     /// the cart to the one next to the wall; empty for the single cart.
     pub links: Vec<(f64, f64)>,
@@ -113,7 +115,7 @@ pub struct Scene {
 /// How far the free frame has moved along the surface by `t`, m: the integral of its velocity over the
 /// phases (0 on a clamped frame).
 fn frame_travel(bounce: &Bounce, t: f64) -> f64 {
-    if bounce.setup.frame_mass.is_none() {
+    if bounce.params.model().frame == FrameKind::Clamped {
         return 0.0;
     }
     bounce
@@ -158,6 +160,7 @@ impl Scene {
     /// The picture of `app`'s bounce at its time cursor.
     pub fn at(app: &App, solved: &Solved) -> Scene {
         let bounce = &solved.bounce;
+        let model = bounce.params.model();
         let r = bounce.setup.r * 1e3;
         let sample = solved.sample_at(app.cursor);
         let (travel, angle) = solved.travel.at(bounce, app.cursor);
@@ -191,8 +194,12 @@ impl Scene {
         // The room the cart's spring needs beside its shortest length as drawn, so that it keeps that
         // length even when the cart moves towards the wall.
         let toward_wall = -x_scale * x_low.min(0.0) * 1e3;
-        // A chain's other masses at rest, spaced evenly from the cart's spring to the wall's.
-        let others = (app.params.chain as usize).saturating_sub(1);
+        // A chain's other masses (all but the first, which is drawn as the cart) at rest, spaced
+        // evenly from the cart's spring to the wall's.
+        let others = match model.support {
+            SupportKind::Cart => 0,
+            SupportKind::Chain => bounce.params.chain as usize - 1,
+        };
         let (width, spring) = if others == 0 {
             (0.0, SPRING_LENGTH * r)
         } else {
@@ -219,7 +226,7 @@ impl Scene {
             cart: (rest_left + shift, rest_right + shift),
             cart_height: CART_HEIGHT * r,
             wall: wall + frame_shift,
-            frame_free: bounce.setup.frame_mass.is_some(),
+            model,
             links,
             x_scale,
             force: sample.friction,
@@ -311,7 +318,7 @@ fn paint(ctx: &mut Context, scene: &Scene, app: &App, x_bounds: [f64; 2], dot: (
     ctx.draw(&Segment::new(scene.wall, -h, scene.wall, wall_top, guide));
     let hatch = 0.2 * r;
     let mut y = -h;
-    while !scene.frame_free && y + hatch <= wall_top {
+    while scene.model.frame == FrameKind::Clamped && y + hatch <= wall_top {
         ctx.draw(&Segment::new(
             scene.wall,
             y + hatch,
@@ -323,12 +330,9 @@ fn paint(ctx: &mut Context, scene: &Scene, app: &App, x_bounds: [f64; 2], dot: (
     }
     // The springs: wall to cart, or along a chain from the wall through masses N to 2 to the cart. A
     // chain's springs zigzag as much as their length in dots allows, down to a straight line.
-    let coils = |from: f64, to: f64| {
-        if scene.links.is_empty() {
-            COILS
-        } else {
-            (((to - from) / dot.0 / DOTS_PER_COIL) as usize).min(LINK_COILS)
-        }
+    let coils = |from: f64, to: f64| match scene.model.support {
+        SupportKind::Cart => COILS,
+        SupportKind::Chain => (((to - from) / dot.0 / DOTS_PER_COIL) as usize).min(LINK_COILS),
     };
     let mut from = scene.wall;
     for &(left, right) in scene.links.iter().rev() {
@@ -441,7 +445,7 @@ pub fn render(frame: &mut Frame, area: Rect, app: &App, solved: &Solved) {
         ),
         Span::raw(format!("{} ", app.speed.label())),
     ]);
-    let caption = if wide && !scene.links.is_empty() {
+    let caption = if wide && scene.model.support == SupportKind::Chain {
         // A chain: X, the one displacement drawn, is the first mass's.
         format!(
             " mass 1: X {} · F: {} N per r ",
