@@ -292,6 +292,20 @@ fn label(fit: &Fit, f: &Fitted) -> String {
     }
 }
 
+/// The widths of the first columns of `rows`: each its widest cell (in characters), at least `least`.
+fn column_widths<const N: usize, const M: usize>(
+    rows: &[[String; M]],
+    least: [usize; N],
+) -> [usize; N] {
+    let mut widths = least;
+    for row in rows {
+        for (width, cell) in widths.iter_mut().zip(row) {
+            *width = (*width).max(cell.chars().count());
+        }
+    }
+    widths
+}
+
 /// `n` and the noun, singular for one.
 fn count(n: usize, noun: &str) -> String {
     if n == 1 {
@@ -367,46 +381,51 @@ pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Int
             None => format!("{} ({})", s.flag, s.symbol),
         }
     };
-    let width = fit
+    let mut differing = Vec::new();
+    let rows: Vec<[String; 5]> = fit
         .free
         .iter()
-        .map(|f| name_of(f).chars().count())
-        .fold(22, usize::max);
+        .map(|f| {
+            let stderr = f.stderr.map_or("-".into(), |se| shown(f.id, se, Some(se)));
+            let mut interval = match (profile, f.profile95, f.ci95) {
+                (true, Some((lo, hi)), _) => {
+                    format!("[{}, {}]", end_text(f, lo, false), end_text(f, hi, true))
+                }
+                (false, _, Some((lo, hi))) => format!(
+                    "[{}, {}]",
+                    shown(f.id, lo, f.stderr),
+                    shown(f.id, hi, f.stderr)
+                ),
+                _ => "not determined by the data".into(),
+            };
+            if intervals == Intervals::Both && differ(f) && f.ci95.is_some() {
+                interval.push_str(" *");
+                differing.push(f);
+            }
+            let note = if f.poorly_determined() && f.stderr.is_some() {
+                "  poorly determined"
+            } else {
+                ""
+            };
+            [
+                name_of(f),
+                shown(f.id, f.value, f.stderr),
+                stderr,
+                interval,
+                format!("{}{note}", spec(f.id).display_unit),
+            ]
+        })
+        .collect();
+    // Each column as wide as its widest cell, and at least as wide as usual.
+    let widths = column_widths(&rows, [22, 12, 10, 28]);
+    let [name, value, stderr, interval] = widths;
     let _ = writeln!(
         out,
-        "\n  {:<width$} {:>12} {:>10}  {heading:<28} unit",
+        "\n  {:<name$} {:>value$} {:>stderr$}  {heading:<interval$} unit",
         "parameter", "value", "stderr"
     );
-    let mut differing = Vec::new();
-    for f in &fit.free {
-        let s = spec(f.id);
-        let name = name_of(f);
-        let stderr = f.stderr.map_or("-".into(), |se| shown(f.id, se, Some(se)));
-        let mut interval = match (profile, f.profile95, f.ci95) {
-            (true, Some((lo, hi)), _) => {
-                format!("[{}, {}]", end_text(f, lo, false), end_text(f, hi, true))
-            }
-            (false, _, Some((lo, hi))) => format!(
-                "[{}, {}]",
-                shown(f.id, lo, f.stderr),
-                shown(f.id, hi, f.stderr)
-            ),
-            _ => "not determined by the data".into(),
-        };
-        if intervals == Intervals::Both && differ(f) && f.ci95.is_some() {
-            interval.push_str(" *");
-            differing.push(f);
-        }
-        let note = if f.poorly_determined() && f.stderr.is_some() {
-            "  poorly determined"
-        } else {
-            ""
-        };
-        let line = format!(
-            "  {name:<width$} {:>12} {stderr:>10}  {interval:<28} {}{note}",
-            shown(f.id, f.value, f.stderr),
-            s.display_unit
-        );
+    for [n, v, e, i, unit] in &rows {
+        let line = format!("  {n:<name$} {v:>value$} {e:>stderr$}  {i:<interval$} {unit}");
         let _ = writeln!(out, "{}", line.trim_end());
     }
     for f in differing {
@@ -526,27 +545,38 @@ pub fn table(fit: &Fit, data: &data::Dataset, sources: &[String], intervals: Int
             out.push('\n');
         }
     }
+    let measured: Vec<[String; 5]> = fit
+        .rows
+        .iter()
+        .flat_map(|row| {
+            row.values.iter().map(move |c| {
+                let label = match c.quantity.unit() {
+                    "" => c.quantity.name().to_string(),
+                    unit => format!("{} {unit}", c.quantity.name()),
+                };
+                [
+                    row.line.to_string(),
+                    label,
+                    units::brief(c.measured, 5),
+                    units::brief(c.model, 5),
+                    units::brief(c.model - c.measured, 3),
+                ]
+            })
+        })
+        .collect();
+    let [line, quantity, value, model, residual] = column_widths(&measured, [5, 11, 10, 10, 9]);
     let _ = writeln!(
         out,
-        "\n  {:>5}  {:<11} {:>10} {:>10} {:>9} {:>7}",
+        "\n  {:>line$}  {:<quantity$} {:>value$} {:>model$} {:>residual$} {:>7}",
         "line", "quantity", "measured", "model", "residual", "z"
     );
-    for row in &fit.rows {
-        for c in &row.values {
-            let label = match c.quantity.unit() {
-                "" => c.quantity.name().to_string(),
-                unit => format!("{} {unit}", c.quantity.name()),
-            };
-            let _ = writeln!(
-                out,
-                "  {:>5}  {label:<11} {:>10} {:>10} {:>9} {:>7.2}",
-                row.line,
-                units::brief(c.measured, 5),
-                units::brief(c.model, 5),
-                units::brief(c.model - c.measured, 3),
-                c.standardised
-            );
-        }
+    let z = fit.rows.iter().flat_map(|row| &row.values);
+    for ([l, q, m, y, r], c) in measured.iter().zip(z) {
+        let _ = writeln!(
+            out,
+            "  {l:>line$}  {q:<quantity$} {m:>value$} {y:>model$} {r:>residual$} {:>7.2}",
+            c.standardised
+        );
     }
     out
 }

@@ -619,3 +619,56 @@ fn the_shipped_string_table_fits_one_friction_per_material() {
     assert_eq!(doc["verdict"], "unjudged");
     assert_eq!(doc["dof"], 11);
 }
+
+/// The columns of the table section that starts at the line beginning with `heading`: each heading word
+/// in `right` ends where every row's cell ends (counted in characters), however long the labels.
+fn aligned(table: &str, heading: &str, right: &[&str]) {
+    let lines: Vec<&str> = table.lines().collect();
+    let at = lines
+        .iter()
+        .position(|l| l.starts_with(heading))
+        .unwrap_or_else(|| panic!("no {heading:?} in\n{table}"));
+    let head: Vec<char> = lines[at].chars().collect();
+    let rows: Vec<&str> = lines[at + 1..]
+        .iter()
+        .take_while(|l| !l.is_empty() && !l.starts_with("  *"))
+        .copied()
+        .collect();
+    assert!(!rows.is_empty(), "{table}");
+    for word in right {
+        let start = lines[at].find(word).unwrap();
+        let end = lines[at][..start].chars().count() + word.chars().count();
+        for row in &rows {
+            let cells: Vec<char> = row.chars().collect();
+            assert!(
+                cells[end - 1] != ' ' && cells.get(end).is_none_or(|c| *c == ' '),
+                "{word:?} is not aligned in\n{}\n{row}",
+                String::from_iter(&head)
+            );
+        }
+    }
+}
+
+#[test]
+fn a_long_group_label_keeps_the_table_aligned() {
+    let table = std::fs::read_to_string("assets/data/twu-string-movement-and-spin.csv")
+        .unwrap()
+        .replace(",polyester,", ",polyester co-polymère monofilament,");
+    let out = snapback()
+        .args(["fit", "--data", "-", "--preset", "polyester-strings"])
+        .args(["--group", "material", "--free-per-group", "cart-friction"])
+        .args([
+            "--ignore",
+            "company,string,gauge,tension_lb,angle_article_deg",
+        ])
+        .write_stdin(table)
+        .assert()
+        .success();
+    let text = String::from_utf8(out.get_output().stdout.clone()).unwrap();
+    assert!(
+        text.contains("[polyester co-polymère monofilament]"),
+        "{text}"
+    );
+    aligned(&text, "  parameter", &["value", "stderr"]);
+    aligned(&text, "   line", &["line", "measured", "model", "residual"]);
+}
