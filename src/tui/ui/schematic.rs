@@ -33,6 +33,11 @@
 //! displacement X alone, so masses 2 to N are drawn at their rest positions, not moving, and the spring
 //! between the first and the second takes up X. Their widths are a drawing's, not their masses' (all N
 //! are M/N); a long chain is drawn closer together and its short springs straight.
+//!
+//! Which picture it is, the single cart or a chain, tied to the wall or to a free frame, the solved
+//! bounce's model says ([`crate::model::Params::model`]); the schematic counts and checks nothing of
+//! its own. A free frame (`--frame-mass`, the racquet in the hand) carries the spring's end, drawn
+//! moving by the frame's travel and without the wall's hatching.
 
 use ratatui::Frame;
 use ratatui::layout::Rect;
