@@ -7,6 +7,7 @@ use crate::support::rng::Rng;
 
 use assert_cmd::Command;
 use levenberg_marquardt::LevenbergMarquardt;
+use predicates::prelude::*;
 use rand::SeedableRng;
 use rand::rngs::StdRng;
 use rand_distr::{Distribution, Normal};
@@ -671,4 +672,54 @@ fn a_long_group_label_keeps_the_table_aligned() {
     );
     aligned(&text, "  parameter", &["value", "stderr"]);
     aligned(&text, "   line", &["line", "measured", "model", "residual"]);
+}
+
+#[test]
+fn a_fit_refused_by_its_cost_limit_names_the_limit() {
+    // A 0.1 g cart on 1000 kN/m swings 159 half-periods in the contact: beyond the search's 100.
+    snapback()
+        .args([
+            "fit",
+            "--data",
+            "assets/data/synthetic-strings.csv",
+            "--free",
+            "mu",
+        ])
+        .args(["--cart-mass", "0.1g", "--stiffness", "1000kN/m"])
+        .assert()
+        .code(2)
+        .stderr(
+            predicates::str::contains("cannot be solved at any starting point (line 4:")
+                .and(predicates::str::contains("159 half-periods"))
+                .and(predicates::str::contains(
+                    "more than the 100 a fit allows while it searches",
+                )),
+        );
+}
+
+#[test]
+fn a_bounce_over_the_phase_limit_is_refused_naming_the_limit() {
+    let data = synthetic(1, true);
+    let free = free::parse_list("mu", &data.conditions).unwrap();
+    let watch = Watch::none();
+    let tally = Tally::new(&watch);
+    let model = Model {
+        base: Params::default(),
+        free: &free,
+        data: &data,
+        phase_limit: Some(60),
+        swing_limit: Some(100.0),
+        tally: &tally,
+    };
+    // A stiff ball chatters on the paper's cart: thousands of phases, refused at the 61st.
+    let chattering = Params {
+        ball_stiffness: 1e12,
+        ..Params::default()
+    };
+    let why = model.refusal(&chattering, "while it searches").unwrap();
+    assert!(
+        why.contains("more than 60 times, the most a fit allows while it searches"),
+        "{why}"
+    );
+    assert_eq!(model.refusal(&Params::default(), "while it searches"), None);
 }

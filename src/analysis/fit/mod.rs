@@ -32,14 +32,14 @@ use rayon::prelude::*;
 use statrs::distribution::{ChiSquared, ContinuousCDF, Normal, StudentsT};
 
 use self::data::{Dataset, Quantity};
-use self::free::{Free, Scale, coordinates, place};
+use self::free::{Free, Scale, coordinates, place, place_for};
 use self::problem::{Model, Problem};
 use self::profile::{Axis, Side};
 use self::search::Point;
 use self::watch::{Stage, Tally, Watch};
 use super::AnalysisError;
 use crate::model::params::{ParamId, spec};
-use crate::model::{Params, solve, units};
+use crate::model::{Params, units};
 
 /// Levenberg-Marquardt's evaluation budget, in evaluations per free parameter and one: for the short
 /// runs from the starting points, and for the runs to convergence.
@@ -295,12 +295,16 @@ pub fn fit_watched(
         return stopped;
     }
     if starts.is_empty() {
-        let row = &data.rows[0];
-        let err = solve(&row.params(base)).err();
+        // Why, at the parameters given: the first row the search refuses there, and the limit.
+        let why = data.rows.iter().find_map(|row| {
+            explore
+                .refusal(&row.params(base), "while it searches")
+                .map(|why| format!(" (line {}: {why})", row.line))
+        });
         return Err(AnalysisError::Input(format!(
             "{}: the model cannot be solved at any starting point{}",
             data.origin,
-            err.map_or(String::new(), |e| format!(" (line {}: {e})", row.line))
+            why.unwrap_or_default()
         )));
     }
     // A short run from each starting point, in parallel; their ends, one per basin, to convergence.
@@ -322,10 +326,7 @@ pub fn fit_watched(
         return stopped;
     }
     if minima.is_empty() {
-        return Err(AnalysisError::Input(format!(
-            "{}: the model cannot be solved at the fitted parameters",
-            data.origin
-        )));
+        return Err(unsolved_at(&model, ends.first().map(|p| p.u.as_slice())));
     }
     let mut fit = summarise(&model, &minima[0].u, minima[0].converged)?;
     if options.profile {
@@ -474,16 +475,29 @@ fn profile_all(model: &Model, best: &Point, fit: &mut Fit, tally: &Tally) -> Opt
     lower
 }
 
+/// The error of a fit whose `model` cannot be solved at `u`: the first row it refuses there, and the
+/// limit (at most [`FINAL_PHASES`] phases and [`FINAL_SWINGS`] half-periods of the cart).
+fn unsolved_at(model: &Model, u: Option<&[f64]>) -> AnalysisError {
+    let why = u.and_then(|u| {
+        model.data.rows.iter().find_map(|row| {
+            let params = row.params(&place_for(&model.base, model.free, u, row.group));
+            model
+                .refusal(&params, "as it converges")
+                .map(|why| format!(" (line {}: {why})", row.line))
+        })
+    });
+    AnalysisError::Input(format!(
+        "{}: the model cannot be solved at the fitted parameters{}",
+        model.data.origin,
+        why.unwrap_or_default()
+    ))
+}
+
 /// The statistics at the optimum `u`.
 fn summarise(model: &Model, u: &[f64], converged: bool) -> Result<Fit, AnalysisError> {
     let (free, data) = (model.free, model.data);
     let (n, k) = (data.measurements(), free.len());
-    let failed = || {
-        AnalysisError::Input(format!(
-            "{}: the model cannot be solved at the fitted parameters",
-            data.origin
-        ))
-    };
+    let failed = || unsolved_at(model, Some(u));
     let residuals = model.residuals(u).ok_or_else(failed)?;
     let all: Vec<usize> = (0..k).collect();
     let jacobian = DMatrix::from_row_slice(n, k, &model.jacobian(u, &all).ok_or_else(failed)?);

@@ -11,7 +11,7 @@ use super::data::{Dataset, Row};
 use super::free::{Free, place_for};
 use super::watch::Tally;
 use crate::model::error::MAX_TRANSITIONS;
-use crate::model::{Params, SolveOptions, solve_with};
+use crate::model::{Params, SolveError, SolveOptions, solve_with, units};
 
 /// The residual given to the optimiser where the model cannot be solved, so that it steps back.
 const UNSOLVABLE: f64 = 1e100;
@@ -65,6 +65,31 @@ impl Model<'_> {
             .iter()
             .map(|m| m.quantity.of(&bounce))
             .collect()
+    }
+
+    /// Why this stage of the fit counts the bounce of `params` as one it cannot solve, naming the limit
+    /// that refused it (`stage` says when the limit holds: "while it searches"); `None` when it solves.
+    /// For the message of a fit that fails, never on the fit's path.
+    pub fn refusal(&self, params: &Params, stage: &str) -> Option<String> {
+        let swung = swings(params);
+        if let Some(limit) = self.swing_limit.filter(|&limit| swung > limit) {
+            return Some(format!(
+                "the cart swings {} half-periods within the contact time, more than the {limit} a fit \
+                 allows {stage}: a heavier --cart-mass or a softer --stiffness swings fewer",
+                units::brief(swung, 3)
+            ));
+        }
+        let options = SolveOptions {
+            max_phases: self.phase_limit.unwrap_or(MAX_TRANSITIONS),
+            ..SolveOptions::default()
+        };
+        solve_with(params, &options).err().map(|e| match e {
+            SolveError::TooManyPhases { limit, .. } => format!(
+                "the bounce switched between sliding and gripping more than {limit} times, the most a \
+                 fit allows {stage}"
+            ),
+            e => e.to_string(),
+        })
     }
 
     fn row_residuals(&self, row: &Row, u: &[f64]) -> Option<Vec<f64>> {
