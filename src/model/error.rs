@@ -66,8 +66,7 @@ pub enum SolveError {
     CommandBudget,
     /// A combination not yet solved on a free frame (`--frame-mass`).
     #[error(
-        "{what} on a free frame is not solved yet: a free frame (--frame-mass) takes the rigid ball on \
-         the single cart without string friction (use --frame-mass clamped)"
+        "{what} on a free frame is not solved yet (use --frame-mass clamped)"
     )]
     FreeFrame { what: &'static str },
     #[error(

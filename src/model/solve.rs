@@ -161,7 +161,7 @@ fn solve_model(
             })?;
             Ok((setup, last))
         }
-        (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped) => {
+        (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped | FrameKind::Free) => {
             let setup = Setup::new(params);
             let last = run(
                 &ChainOfMasses::new(params, &setup)?,
@@ -182,9 +182,6 @@ fn solve_model(
             let last = run(&model, &setup, options, phases)?;
             Ok((setup, last))
         }
-        (BallKind::Rigid, SupportKind::Chain, FrameKind::Free) => Err(SolveError::FreeFrame {
-            what: "a chain (--chain)",
-        }),
         (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Free) => {
             Err(SolveError::FreeFrame {
                 what: "a compliant ball (--ball-stiffness)",

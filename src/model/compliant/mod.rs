@@ -366,7 +366,7 @@ impl PhaseMotion for CompliantMotion {
 thread_local! {
     /// The grip's modes of the last bounce on this thread, by its chain and the ball's spring and
     /// dashpot.
-    static LAST_GRIP_MODES: Slot<([u64; 4], u64, u64), Arc<GripModes>> =
+    static LAST_GRIP_MODES: Slot<([u64; 5], u64, u64), Arc<GripModes>> =
         const { RefCell::new(None) };
 }
 

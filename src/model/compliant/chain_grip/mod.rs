@@ -403,6 +403,7 @@ impl ChainGrip {
             omega,
             x: slide.expand(&q),
             v: slide.expand(&dq),
+            frame: self.start.frame,
         }
     }
 }
