@@ -238,14 +238,6 @@ fn what_a_free_frame_does_not_solve_yet_is_refused_by_name() {
         (
             Params {
                 frame_mass: 0.3,
-                chain: 3.0,
-                ..Params::default()
-            },
-            "--chain",
-        ),
-        (
-            Params {
-                frame_mass: 0.3,
                 ball_stiffness: 1e5,
                 ..Params::default()
             },

@@ -26,6 +26,7 @@ mod compliant;
 mod compliant_string;
 mod critical;
 mod frame;
+mod frame_chain;
 mod golden;
 mod numerical;
 mod paper;

@@ -79,7 +79,8 @@ impl Chain {
         let n = params.chain as usize;
         let link_mass = params.cart_mass / n as f64;
         let link_stiffness = params.stiffness * n as f64;
-        let frame = setup.frame_mass;
+        // Without springs the frame never moves: the chain is then solved as on the wall.
+        let frame = setup.frame_mass.filter(|_| params.stiffness > 0.0);
         Chain {
             n,
             link_mass,

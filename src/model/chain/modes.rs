@@ -265,6 +265,39 @@ mod tests {
     }
 
     #[test]
+    fn framed_modes_diagonalise_mass_and_stiffness_and_hold_the_rigid_translation() {
+        for links in [1, 2, 5, 15] {
+            for (extra, frame) in [(0.0, 0.32), (0.03, 0.005), (30.0, 1e6)] {
+                let (m, kappa) = (0.01 / links as f64, 15000.0 * links as f64);
+                let modes = Modes::framed(links, m, kappa, extra, frame);
+                let n = links + 1;
+                assert_eq!(modes.n, n);
+                assert_eq!(modes.mass[links], frame);
+                // The free chain: the frame's row has its one spring, and no spring goes to the wall.
+                let mut k = stiffness(n, kappa);
+                k[(links, links)] = kappa;
+                let phi = DMatrix::from_fn(n, n, |i, j| modes.shape[i][j]);
+                let d = DMatrix::from_fn(n, n, |i, j| if i == j { modes.mass[i] } else { 0.0 });
+                let identity = phi.transpose() * &d * &phi;
+                let spectral = phi.transpose() * k * &phi;
+                let scale = modes.fastest.powi(2);
+                for i in 0..n {
+                    for j in 0..n {
+                        let want = if i == j { 1.0 } else { 0.0 };
+                        let what = format!("links {links} frame {frame} I {i} {j}");
+                        assert!((identity[(i, j)] - want).abs() < 1e-10, "{what}");
+                        let want = if i == j { modes.omega[i].powi(2) } else { 0.0 };
+                        assert!((spectral[(i, j)] - want).abs() < 1e-12 * scale, "{what} K");
+                    }
+                }
+                let rigid: Vec<usize> = (0..n).filter(|&j| modes.omega[j] == 0.0).collect();
+                assert_eq!(rigid.len(), 1, "links {links} frame {frame}");
+                assert_eq!(modes.first_stiff[rigid[0]], 0.0);
+            }
+        }
+    }
+
+    #[test]
     fn one_link_is_the_single_cart() {
         let modes = Modes::new(1, 0.01, 15000.0, 0.0);
         assert_eq!(modes.omega[0], (15000.0f64 / 0.01).sqrt());
