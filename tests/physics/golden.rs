@@ -316,6 +316,24 @@ fn cases() -> Vec<Case> {
         }
         out.push(case(&pairs));
     }
+    // The chain on a free frame (issue 23), appended after the single cart's frames: the typical
+    // racquet's frame and a light one under short and long chains, and seeded random framed chains.
+    for chain in ["2", "8", "15"] {
+        for frame in ["320g", "20g"] {
+            out.push(case(&[
+                ("chain", chain.into()),
+                ("frame-mass", frame.into()),
+                ("frame-normal-mass", "181g".into()),
+                ("ey", "0.85".into()),
+            ]));
+        }
+    }
+    for _ in 0..20 {
+        let mut pairs = rigid(&mut rng);
+        pairs.push(("chain", (2 + rng.below(14)).to_string()));
+        pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
+        out.push(case(&pairs));
+    }
     out
 }
 
