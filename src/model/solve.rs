@@ -149,7 +149,11 @@ fn solve_model(
 ) -> Result<(Setup, State), SolveError> {
     let kind = params.model();
     match (kind.ball, kind.support, kind.frame) {
-        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Clamped) => {
+        (
+            BallKind::Compliant,
+            SupportKind::Cart | SupportKind::Chain,
+            FrameKind::Clamped | FrameKind::Free,
+        ) => {
             let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
             let last = run(&model, &setup, options, phases).map_err(|e| match e {
                 SolveError::TooManyPhases { limit, .. } => SolveError::TooManyPhases {
@@ -181,11 +185,6 @@ fn solve_model(
             let model = FramedCart::new(params, &setup, params.frame_mass)?;
             let last = run(&model, &setup, options, phases)?;
             Ok((setup, last))
-        }
-        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Free) => {
-            Err(SolveError::FreeFrame {
-                what: "a compliant ball (--ball-stiffness)",
-            })
         }
     }
 }

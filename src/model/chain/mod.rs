@@ -93,6 +93,25 @@ impl Chain {
         }
     }
 
+    /// Refuses on a free frame what is not solved there yet: string friction, and the longest chain (its
+    /// modes and the frame's would exceed [`MAX`]).
+    pub fn solvable_on_frame(params: &Params, setup: &Setup) -> Result<(), SolveError> {
+        if setup.frame_mass.is_none() {
+            return Ok(());
+        }
+        if params.cart_friction > 0.0 {
+            return Err(SolveError::FreeFrame {
+                what: "string friction (--cart-friction) on a chain or under a compliant ball",
+            });
+        }
+        if params.chain as usize >= MAX {
+            return Err(SolveError::FreeFrame {
+                what: "a chain of 16 masses (--chain 16)",
+            });
+        }
+        Ok(())
+    }
+
     /// The modes of `n` links with `extra` on the first, tied to the wall or to a free `frame`.
     fn modes_with(n: usize, link: f64, kappa: f64, extra: f64, frame: Option<f64>) -> Modes {
         match frame {
@@ -281,21 +300,9 @@ pub struct ChainOfMasses {
 
 impl ChainOfMasses {
     /// The model for `params`, refused when the chain oscillates too fast to resolve, and on a free
-    /// frame with string friction (not solved there yet) or with the longest chain (its modes and the
-    /// frame's would exceed [`MAX`]).
+    /// frame where [`Chain::solvable_on_frame`] says so.
     pub fn new(params: &Params, setup: &Setup) -> Result<Self, SolveError> {
-        if setup.frame_mass.is_some() {
-            if params.cart_friction > 0.0 {
-                return Err(SolveError::FreeFrame {
-                    what: "string friction (--cart-friction) on a chain",
-                });
-            }
-            if params.chain as usize >= MAX {
-                return Err(SolveError::FreeFrame {
-                    what: "a chain of 16 masses (--chain 16)",
-                });
-            }
-        }
+        Chain::solvable_on_frame(params, setup)?;
         let chain = Chain::shared(params, setup);
         let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
         if radians > MAX_RADIANS {
