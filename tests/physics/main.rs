@@ -27,6 +27,7 @@ mod compliant_string;
 mod critical;
 mod frame;
 mod frame_chain;
+mod frame_compliant;
 mod golden;
 mod numerical;
 mod paper;
