@@ -142,7 +142,10 @@ fn momentum_along_the_surface_is_conserved_through_every_phase() {
             for t in [0.5 * (state.t + end), end] {
                 let s = model.state_at(&setup, &motion, t, None);
                 let drift = (momentum(&p, &setup, &s) - p0).abs();
-                assert!(drift <= 1e-12 * scale, "case {case} at {t}: {drift} ({p:?})");
+                assert!(
+                    drift <= 1e-12 * scale,
+                    "case {case} at {t}: {drift} ({p:?})"
+                );
             }
             let Some((t, next_cause)) = found.event else {
                 break;

@@ -42,7 +42,10 @@ fn disagreements(p: &Params, b: &Bounce, r: &Reference) -> [(&'static str, f64);
             "omega2",
             p.radius * (b.outcome.omega2 - r.omega2).abs() / speed,
         ),
-        ("X1 - Xf", (b.final_state.x - x1).abs() / (speed * p.duration)),
+        (
+            "X1 - Xf",
+            (b.final_state.x - x1).abs() / (speed * p.duration),
+        ),
         ("V1", (b.final_state.v - r.v[0]).abs() / speed),
         ("Vf", (b.frame_velocity() - r.frame_v).abs() / speed),
         (

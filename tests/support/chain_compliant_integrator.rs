@@ -137,7 +137,10 @@ impl Model {
         let links = p.chain as usize;
         assert!((1..=MAX_LINKS).contains(&links) && links as f64 == p.chain);
         let framed = p.frame_mass > 0.0;
-        assert!(!framed || p.cart_friction == 0.0, "string friction on a frame");
+        assert!(
+            !framed || p.cart_friction == 0.0,
+            "string friction on a frame"
+        );
         let n = links + usize::from(framed);
         let vy1 = p.speed * (90.0 - p.angle_deg).to_radians().cos();
         let m_eff = p.mass * p.alpha / (1.0 + p.alpha);

@@ -283,7 +283,10 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     let theta = p.angle_deg.to_radians();
     let n = p.chain as usize;
     let framed = p.frame_mass > 0.0;
-    assert!(!framed || p.cart_friction == 0.0, "string friction on a frame");
+    assert!(
+        !framed || p.cart_friction == 0.0,
+        "string friction on a frame"
+    );
     let dof = n + usize::from(framed);
     // The apparent restitution on a frame of normal mass M_n (M_t unless given).
     let normal_mass = if p.frame_normal_mass > 0.0 {
@@ -307,8 +310,7 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         kappa: p.stiffness * n as f64,
         mu: p.mu,
         fc: p.cart_friction,
-        n0: (1.0 + ey) * std::f64::consts::PI * p.mass * p.speed * theta.sin()
-            / (2.0 * p.duration),
+        n0: (1.0 + ey) * std::f64::consts::PI * p.mass * p.speed * theta.sin() / (2.0 * p.duration),
         w: std::f64::consts::PI / p.duration,
     };
     let end = p.duration;

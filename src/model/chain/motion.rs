@@ -237,7 +237,9 @@ impl Motion {
         let frame = self.start.frame;
         if frame > 0 {
             // The first mass's displacement is reported relative to the free frame.
-            x -= (0..modes.n).map(|j| modes.shape[frame][j] * q[j]).sum::<f64>();
+            x -= (0..modes.n)
+                .map(|j| modes.shape[frame][j] * q[j])
+                .sum::<f64>();
         }
         let s0 = &self.start;
         // The spring and string forces on the first mass over its mass: Σ Φ_1j Ω_j² q_j less push/m_1.

@@ -306,7 +306,10 @@ impl ChainGrip {
             Some(tr) => {
                 let (y, dy) = (tr.c * q[tr.index], tr.c * dq[tr.index]);
                 // G = u - (M/(m_eff + M)) r.
-                centre = Some((u0 - tr.ball_share * (u0 - y), du0 - tr.ball_share * (du0 - dy)));
+                centre = Some((
+                    u0 - tr.ball_share * (u0 - y),
+                    du0 - tr.ball_share * (du0 - dy),
+                ));
                 (z0[0], z0[n + 1]) = (u0 - y, du0 - dy);
                 for (k, &j) in modes.flexible.iter().enumerate().take(n) {
                     (z0[1 + k], z0[n + 2 + k]) = (q[j], dq[j]);
@@ -395,55 +398,55 @@ impl ChainGrip {
         // The contact quantities alone need only one exponential per mode.
         let framed = g.translation.is_some();
         // On a free frame also r'' and X_f - Y (otherwise 0).
-        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, xf) = match (&g.modes, &self.coefficients)
-        {
-            (Some(list), Some(c)) => {
-                let zero = C64::new(0.0, 0.0);
-                let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde, mut a1) =
-                    (zero, zero, zero, zero, zero, zero, zero, zero);
-                let (mut ddu, mut xf) = (zero, zero);
-                for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
-                    let (a, da) = self.term(mode, ci, i, tau);
-                    u += a * mode.u;
-                    du += da * mode.u;
-                    f += a * mode.force;
-                    df += da * mode.force;
-                    e += a * mode.e;
-                    de += da * mode.e;
-                    dde += da * mode.s * mode.e;
-                    a1 += da * mode.s * (mode.u - mode.e);
-                    if framed {
-                        ddu += da * mode.s * mode.u;
-                        xf += a * g.frame_shares[i];
+        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, xf) =
+            match (&g.modes, &self.coefficients) {
+                (Some(list), Some(c)) => {
+                    let zero = C64::new(0.0, 0.0);
+                    let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde, mut a1) =
+                        (zero, zero, zero, zero, zero, zero, zero, zero);
+                    let (mut ddu, mut xf) = (zero, zero);
+                    for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
+                        let (a, da) = self.term(mode, ci, i, tau);
+                        u += a * mode.u;
+                        du += da * mode.u;
+                        f += a * mode.force;
+                        df += da * mode.force;
+                        e += a * mode.e;
+                        de += da * mode.e;
+                        dde += da * mode.s * mode.e;
+                        a1 += da * mode.s * (mode.u - mode.e);
+                        if framed {
+                            ddu += da * mode.s * mode.u;
+                            xf += a * g.frame_shares[i];
+                        }
                     }
+                    let (u, du, e, de) = (u.re, du.re, e.re, de.re);
+                    let (dd, x) = (ddu.re, xf.re);
+                    (du, f.re, df.re, e, de, dde.re, u - e, du - de, a1.re, dd, x)
                 }
-                let (u, du, e, de) = (u.re, du.re, e.re, de.re);
-                let (dd, x) = (ddu.re, xf.re);
-                (du, f.re, df.re, e, de, dde.re, u - e, du - de, a1.re, dd, x)
-            }
-            _ => {
-                let (z, dz) = self.propagate(t);
-                let x1: f64 = (0..n).map(|j| g.phi1[j] * z[j + 1]).sum();
-                let v1: f64 = (0..n).map(|j| g.phi1[j] * z[n + 2 + j]).sum();
-                let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
-                let xf: f64 = (0..n).map(|j| g.frame_row[j] * z[j + 1]).sum();
-                let (e, de, dde) = (z[0] - x1, z[n + 1] - v1, dz[n + 1] - a1);
-                let force = g.kb * e + g.cb * de;
-                (
-                    z[n + 1],
-                    force,
-                    g.kb * de + g.cb * dde,
-                    e,
-                    de,
-                    dde,
-                    x1,
-                    v1,
-                    a1,
-                    dz[n + 1],
-                    xf,
-                )
-            }
-        };
+                _ => {
+                    let (z, dz) = self.propagate(t);
+                    let x1: f64 = (0..n).map(|j| g.phi1[j] * z[j + 1]).sum();
+                    let v1: f64 = (0..n).map(|j| g.phi1[j] * z[n + 2 + j]).sum();
+                    let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
+                    let xf: f64 = (0..n).map(|j| g.frame_row[j] * z[j + 1]).sum();
+                    let (e, de, dde) = (z[0] - x1, z[n + 1] - v1, dz[n + 1] - a1);
+                    let force = g.kb * e + g.cb * de;
+                    (
+                        z[n + 1],
+                        force,
+                        g.kb * de + g.cb * dde,
+                        e,
+                        de,
+                        dde,
+                        x1,
+                        v1,
+                        a1,
+                        dz[n + 1],
+                        xf,
+                    )
+                }
+            };
         // On a free frame: X_1 - X_f = (X_1 - Y) - (X_f - Y), and the translation's rate
         // Y' = G' - (m_eff/(m_eff + M)) r' and Y'' added to the first mass's.
         let (du, x1, v1, a1) = match (g.translation, self.centre) {
