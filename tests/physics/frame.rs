@@ -235,14 +235,6 @@ fn what_a_free_frame_does_not_solve_yet_is_refused_by_name() {
             },
             "--cart-friction",
         ),
-        (
-            Params {
-                frame_mass: 0.3,
-                ball_stiffness: 1e5,
-                ..Params::default()
-            },
-            "--ball-stiffness",
-        ),
     ] {
         let err = solve(&params).unwrap_err();
         assert!(matches!(err, SolveError::FreeFrame { .. }), "{err:?}");
