@@ -101,7 +101,7 @@ impl Chain {
         }
         if params.cart_friction > 0.0 {
             return Err(SolveError::FreeFrame {
-                what: "string friction (--cart-friction) on a chain or under a compliant ball",
+                what: "string friction (--cart-friction)",
             });
         }
         if params.chain as usize >= MAX {
