@@ -65,10 +65,7 @@ pub enum SolveError {
     )]
     CommandBudget,
     /// A combination not yet solved on a free frame (`--frame-mass`).
-    #[error(
-        "{what} on a free frame is not solved yet: a free frame (--frame-mass) takes the rigid ball on \
-         the single cart without string friction (use --frame-mass clamped)"
-    )]
+    #[error("{what} on a free frame is not solved yet (use --frame-mass clamped)")]
     FreeFrame { what: &'static str },
     #[error(
         "{quantity} is not a finite number: the parameters are beyond what f64 carries through"

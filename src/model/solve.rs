@@ -149,7 +149,11 @@ fn solve_model(
 ) -> Result<(Setup, State), SolveError> {
     let kind = params.model();
     match (kind.ball, kind.support, kind.frame) {
-        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Clamped) => {
+        (
+            BallKind::Compliant,
+            SupportKind::Cart | SupportKind::Chain,
+            FrameKind::Clamped | FrameKind::Free,
+        ) => {
             let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
             let last = run(&model, &setup, options, phases).map_err(|e| match e {
                 SolveError::TooManyPhases { limit, .. } => SolveError::TooManyPhases {
@@ -161,7 +165,7 @@ fn solve_model(
             })?;
             Ok((setup, last))
         }
-        (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped) => {
+        (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped | FrameKind::Free) => {
             let setup = Setup::new(params);
             let last = run(
                 &ChainOfMasses::new(params, &setup)?,
@@ -181,14 +185,6 @@ fn solve_model(
             let model = FramedCart::new(params, &setup, params.frame_mass)?;
             let last = run(&model, &setup, options, phases)?;
             Ok((setup, last))
-        }
-        (BallKind::Rigid, SupportKind::Chain, FrameKind::Free) => Err(SolveError::FreeFrame {
-            what: "a chain (--chain)",
-        }),
-        (BallKind::Compliant, SupportKind::Cart | SupportKind::Chain, FrameKind::Free) => {
-            Err(SolveError::FreeFrame {
-                what: "a compliant ball (--ball-stiffness)",
-            })
         }
     }
 }

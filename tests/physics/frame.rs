@@ -226,36 +226,14 @@ fn the_energy_budget_balances_and_nothing_is_created() {
 
 #[test]
 fn what_a_free_frame_does_not_solve_yet_is_refused_by_name() {
-    for (params, flag) in [
-        (
-            Params {
-                frame_mass: 0.3,
-                cart_friction: 5.0,
-                ..Params::default()
-            },
-            "--cart-friction",
-        ),
-        (
-            Params {
-                frame_mass: 0.3,
-                chain: 3.0,
-                ..Params::default()
-            },
-            "--chain",
-        ),
-        (
-            Params {
-                frame_mass: 0.3,
-                ball_stiffness: 1e5,
-                ..Params::default()
-            },
-            "--ball-stiffness",
-        ),
-    ] {
-        let err = solve(&params).unwrap_err();
-        assert!(matches!(err, SolveError::FreeFrame { .. }), "{err:?}");
-        assert!(err.to_string().contains(flag), "{err}");
-    }
+    let err = solve(&Params {
+        frame_mass: 0.3,
+        cart_friction: 5.0,
+        ..Params::default()
+    })
+    .unwrap_err();
+    assert!(matches!(err, SolveError::FreeFrame { .. }), "{err:?}");
+    assert!(err.to_string().contains("--cart-friction"), "{err}");
 }
 
 proptest! {

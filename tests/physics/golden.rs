@@ -316,6 +316,46 @@ fn cases() -> Vec<Case> {
         }
         out.push(case(&pairs));
     }
+    // The chain on a free frame (issue 23), appended after the single cart's frames: the typical
+    // racquet's frame and a light one under short and long chains, and seeded random framed chains.
+    for chain in ["2", "8", "15"] {
+        for frame in ["320g", "20g"] {
+            out.push(case(&[
+                ("chain", chain.into()),
+                ("frame-mass", frame.into()),
+                ("frame-normal-mass", "181g".into()),
+                ("ey", "0.85".into()),
+            ]));
+        }
+    }
+    for _ in 0..20 {
+        let mut pairs = rigid(&mut rng);
+        pairs.push(("chain", (2 + rng.below(14)).to_string()));
+        pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
+        out.push(case(&pairs));
+    }
+    // The compliant ball on a free frame (issue 23): on the single cart and on a chain, the typical
+    // racquet's frame and a light one, and seeded random ones.
+    for chain in ["1", "4"] {
+        for frame in ["320g", "20g"] {
+            out.push(case(&[
+                ("chain", chain.into()),
+                ("ball-stiffness", "100kN/m".into()),
+                ("ball-damping", "0.3".into()),
+                ("frame-mass", frame.into()),
+                ("frame-normal-mass", "181g".into()),
+                ("ey", "0.85".into()),
+            ]));
+        }
+    }
+    for _ in 0..20 {
+        let mut pairs = rigid(&mut rng);
+        pairs.push(("chain", (1 + rng.below(15)).to_string()));
+        pairs.push(("ball-stiffness", num(rng.log_uniform(1e4, 1e7))));
+        pairs.push(("ball-damping", num(rng.uniform(0.05, 2.0))));
+        pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
+        out.push(case(&pairs));
+    }
     out
 }
 

@@ -26,6 +26,8 @@ mod compliant;
 mod compliant_string;
 mod critical;
 mod frame;
+mod frame_chain;
+mod frame_compliant;
 mod golden;
 mod numerical;
 mod paper;

@@ -23,6 +23,10 @@
 //! F - S_1 pushes it. It starts held when F_c > 0 (and the ball's first force cannot push it free).
 //! While it is held the patch grips or slides on a still surface and the masses behind swing against it.
 //!
+//! On a free frame (`frame_mass` > 0, issue 23) the last spring goes to one more mass, the frame M_t,
+//! and nothing to the wall; the normal impulse carries the apparent restitution
+//! e_A = (e_y M_n - m)/(M_n + m) (M_n = M_t unless given). Not with string friction.
+//!
 //! Three more components ride along as quadratures of the energy budget: the friction loss
 //! ∫ F (patch slip) dt over the slides, the dashpot loss ∫ c_b e'² dt and the string friction's loss
 //! ∫ F_c |V_1| dt.
@@ -32,9 +36,9 @@ use std::f64::consts::PI;
 
 /// The longest chain.
 const MAX_LINKS: usize = 16;
-/// v_x, omega, X_1..X_N, V_1..V_N, e, friction loss, dashpot loss, string friction loss (the first
-/// 2N + 6 are used).
-const DIM: usize = 2 * MAX_LINKS + 6;
+/// v_x, omega, X_1..X_N (and X_f), V_1..V_N (and V_f), e, friction loss, dashpot loss, string friction
+/// loss (the first 2N + 6, or 2N + 8 on a frame, are used).
+const DIM: usize = 2 * (MAX_LINKS + 1) + 6;
 type Y = [f64; DIM];
 
 /// At most this many phases; a chattering bounce stops there (and says so in `capped`).
@@ -47,7 +51,7 @@ pub struct Budget {
     pub initial: f64,
     /// The ball's tangential kinetic energy at T.
     pub ball: f64,
-    /// Kinetic plus spring energy of the whole chain at T.
+    /// Kinetic plus spring energy of the whole chain at T (the frame's kinetic energy apart).
     pub chain: f64,
     /// k_b e(T)²/2.
     pub ball_spring: f64,
@@ -79,10 +83,14 @@ impl Budget {
 pub struct Reference {
     pub vx2: f64,
     pub omega2: f64,
-    /// Every mass's displacement at T, the first (the one the ball touches) first.
+    /// Every mass's displacement at T, the first (the one the ball touches) first, the frame last.
     pub x: Vec<f64>,
     /// Every mass's velocity at T.
     pub v: Vec<f64>,
+    /// The frame's velocity at T (0 clamped).
+    pub frame_v: f64,
+    /// m v_x and every mass's momentum along the surface at T.
+    pub momentum: f64,
     /// The stretch of the ball's spring at T.
     pub e: f64,
     /// The number of phases.
@@ -100,7 +108,11 @@ pub struct Reference {
 }
 
 struct Model {
+    /// The masses: the N links, and the frame when it is free.
     n: usize,
+    links: usize,
+    /// The frame's mass M_t (0: the wall).
+    frame: f64,
     m: f64,
     r: f64,
     inertia: f64,
@@ -122,19 +134,37 @@ type Cart = Option<f64>;
 
 impl Model {
     fn new(p: &Params) -> Model {
-        let n = p.chain as usize;
-        assert!((1..=MAX_LINKS).contains(&n) && n as f64 == p.chain);
+        let links = p.chain as usize;
+        assert!((1..=MAX_LINKS).contains(&links) && links as f64 == p.chain);
+        let framed = p.frame_mass > 0.0;
+        assert!(
+            !framed || p.cart_friction == 0.0,
+            "string friction on a frame"
+        );
+        let n = links + usize::from(framed);
         let vy1 = p.speed * (90.0 - p.angle_deg).to_radians().cos();
         let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+        let normal_mass = if p.frame_normal_mass > 0.0 {
+            p.frame_normal_mass
+        } else {
+            p.frame_mass
+        };
+        let ey = if framed {
+            (p.ey * normal_mass - p.mass) / (normal_mass + p.mass)
+        } else {
+            p.ey
+        };
         Model {
             n,
+            links,
+            frame: p.frame_mass,
             m: p.mass,
             r: p.radius,
             inertia: p.alpha * p.mass * p.radius * p.radius,
-            link: p.cart_mass / n as f64,
-            kappa: p.stiffness * n as f64,
+            link: p.cart_mass / links as f64,
+            kappa: p.stiffness * links as f64,
             mu: p.mu,
-            n0: (1.0 + p.ey) * PI * p.mass * vy1 / (2.0 * p.duration),
+            n0: (1.0 + ey) * PI * p.mass * vy1 / (2.0 * p.duration),
             w: PI / p.duration,
             kb: p.ball_stiffness,
             cb: 2.0 * p.ball_damping * (p.ball_stiffness * m_eff).sqrt(),
@@ -187,10 +217,21 @@ impl Model {
         let behind = if i > 0 { x(i) - x(i - 1) } else { 0.0 };
         let ahead = if i + 1 < self.n {
             x(i) - x(i + 1)
-        } else {
+        } else if i < self.links {
             x(i)
+        } else {
+            0.0
         };
         self.kappa * (behind + ahead)
+    }
+
+    /// Mass i: a link, or the frame.
+    fn mass(&self, i: usize) -> f64 {
+        if i < self.links {
+            self.link
+        } else {
+            self.frame
+        }
     }
 
     /// The first mass's own spring, kappa (X_1 - X_2) (kappa X_1 for one mass).
@@ -210,7 +251,7 @@ impl Model {
                 (0, Some(d)) => f - d * self.fc,
                 _ => 0.0,
             };
-            out[self.vi(i)] = (push - self.spring(y, i)) / self.link;
+            out[self.vi(i)] = (push - self.spring(y, i)) / self.mass(i);
         }
         if cart.is_none() {
             out[self.xi(0)] = 0.0;
@@ -278,10 +319,10 @@ impl Model {
     }
 
     fn budget(&self, vx1: f64, omega1: f64, y: &Y) -> Budget {
-        let n = self.n;
+        let (n, links) = (self.n, self.links);
         let ball = |vx: f64, omega: f64| 0.5 * (self.m * vx * vx + self.inertia * omega * omega);
-        let kinetic: f64 = (0..n).map(|i| y[self.vi(i)].powi(2)).sum::<f64>() * self.link;
-        let stretch: f64 = (0..n)
+        let kinetic: f64 = (0..links).map(|i| y[self.vi(i)].powi(2)).sum::<f64>() * self.link;
+        let stretch: f64 = (0..links)
             .map(|i| {
                 let d = if i + 1 < n {
                     y[self.xi(i)] - y[self.xi(i + 1)]
@@ -312,7 +353,11 @@ fn rates(p: &Params) -> (f64, f64) {
     let model = Model::new(p);
     let m_eff = 1.0 / (1.0 / model.m + model.r * model.r / model.inertia);
     let both = 1.0 / m_eff + 1.0 / model.link;
-    let oscillation = (4.0 * model.kappa / model.link + 2.0 * model.kb * both).sqrt();
+    let mut springs = 4.0 * model.kappa / model.link;
+    if model.frame > 0.0 {
+        springs = springs.max(2.0 * model.kappa / model.frame);
+    }
+    let oscillation = (springs + 2.0 * model.kb * both).sqrt();
     let decay = if model.cb > 0.0 {
         (model.cb * both).max(model.kb / model.cb)
     } else {
@@ -438,6 +483,12 @@ pub fn integrate(p: &Params, max_step: f64) -> Reference {
         omega2: y[1],
         x: (0..n).map(|i| y[model.xi(i)]).collect(),
         v: (0..n).map(|i| y[model.vi(i)]).collect(),
+        frame_v: if model.frame > 0.0 {
+            y[model.vi(n - 1)]
+        } else {
+            0.0
+        },
+        momentum: model.m * y[0] + (0..n).map(|i| model.mass(i) * y[model.vi(i)]).sum::<f64>(),
         e: y[model.ei()],
         phases: kinds.len(),
         kinds,

@@ -4,6 +4,8 @@
 //! modes, no closed forms) but the equations: masses M/N, springs N k from the first mass through the
 //! last to the wall, the ball's friction F on the first mass; sliding F = dir mu N, gripping the static
 //! friction that keeps the contact point moving with the first mass, F_s = m_eff (K X)_1 / (M/N + m_eff).
+//! On a free frame (`frame_mass` > 0, issue 23) the last spring goes to one more mass, the frame M_t, and
+//! nothing to the wall; the normal impulse carries the apparent restitution e_A = (e_y M_n - m)/(M_n + m).
 //! Its own plain rules decide what follows each transition: at zero slip, grip if |F_s| <= mu N, else the
 //! friction reverses; a broken grip slides the way F_s pulled.
 //!
@@ -20,10 +22,14 @@ pub struct Numerical {
     pub omega2: f64,
     /// The first mass's velocity at the end.
     pub v2: f64,
-    /// Kinetic plus spring energy of the chain at the end.
+    /// Kinetic plus spring energy of the chain at the end (the frame's kinetic energy apart).
     pub chain_energy: f64,
-    /// The first mass's displacement at the end.
+    /// The first mass's displacement at the end, relative to the frame.
     pub x1: f64,
+    /// The frame's velocity at the end (0 clamped).
+    pub frame_v: f64,
+    /// The momentum along the surface at the end of the ball (m v_x), the chain and the frame.
+    pub momentum: f64,
     pub phases: usize,
     /// Phases of the ball alone: a change of the first mass's motion under a ball that slides on does
     /// not count.
@@ -49,6 +55,10 @@ enum Cart {
 
 struct Model {
     n: usize,
+    /// The masses: the N links, then the frame when it is free.
+    dof: usize,
+    /// The frame's mass M_t (0: the wall).
+    frame: f64,
     m: f64,
     r: f64,
     inertia: f64,
@@ -63,7 +73,7 @@ struct Model {
     w: f64,
 }
 
-/// v_x, omega, then X_1..X_N, then V_1..V_N.
+/// v_x, omega, then X_1..X_N (and X_f), then V_1..V_N (and V_f).
 type Y = Vec<f64>;
 
 impl Model {
@@ -79,12 +89,19 @@ impl Model {
     fn spring(&self, y: &Y, i: usize) -> f64 {
         let x = |j: usize| y[2 + j];
         let left = if i > 0 { x(i) - x(i - 1) } else { 0.0 };
-        let right = if i + 1 < self.n {
+        let right = if i + 1 < self.dof {
             x(i) - x(i + 1)
-        } else {
+        } else if i < self.n {
             x(i)
+        } else {
+            0.0
         };
         self.kappa * (left + right)
+    }
+
+    /// Mass i: a link, or the frame.
+    fn mass(&self, i: usize) -> f64 {
+        if i < self.n { self.link } else { self.frame }
     }
 
     /// The static friction that keeps the contact point moving with a first mass moving in `dir`.
@@ -102,7 +119,7 @@ impl Model {
 
     fn rate(&self, ball: Ball, cart: Cart, t: f64, y: &Y) -> Y {
         let f = self.friction(ball, cart, t, y);
-        let n = self.n;
+        let n = self.dof;
         let mut out = vec![0.0; 2 + 2 * n];
         out[0] = -f / self.m;
         out[1] = f * self.r / self.inertia;
@@ -112,7 +129,7 @@ impl Model {
                 (0, Cart::Moving(dir)) => f - dir * self.fc,
                 _ => 0.0,
             };
-            out[2 + n + i] = (push - self.spring(y, i)) / self.link;
+            out[2 + n + i] = (push - self.spring(y, i)) / self.mass(i);
         }
         if cart == Cart::Stuck {
             (out[2], out[2 + n]) = (0.0, 0.0);
@@ -132,7 +149,7 @@ impl Model {
     }
 
     fn slip(&self, y: &Y) -> f64 {
-        y[0] - self.r * y[1] - y[2 + self.n]
+        y[0] - self.r * y[1] - y[2 + self.dof]
     }
 
     /// Whether the ball's event (the slip reached zero, or the grip broke) and the first mass's (it
@@ -144,7 +161,7 @@ impl Model {
             Ball::Grip => f.abs() > self.mu * self.normal(t),
         };
         let cart_event = match cart {
-            Cart::Moving(dir) => self.fc > 0.0 && -dir * y[2 + self.n] > 0.0,
+            Cart::Moving(dir) => self.fc > 0.0 && -dir * y[2 + self.dof] > 0.0,
             Cart::Stuck => (f - self.spring(y, 0)).abs() > self.fc,
         };
         (ball_event, cart_event)
@@ -188,7 +205,7 @@ impl Model {
         t: f64,
         y: &mut Y,
     ) -> (Ball, Cart) {
-        let n = self.n;
+        let n = self.dof;
         let spring = self.spring(y, 0);
         match (ball, cart, ball_fired) {
             (Ball::Slide(_), Cart::Moving(dir), true) => {
@@ -224,12 +241,13 @@ impl Model {
         }
     }
 
+    /// The links' kinetic energy and every spring's (the frame's kinetic energy apart).
     fn energy(&self, y: &Y) -> f64 {
-        let n = self.n;
-        let kinetic: f64 = (0..n).map(|i| y[2 + n + i].powi(2)).sum::<f64>() * self.link;
+        let (n, dof) = (self.n, self.dof);
+        let kinetic: f64 = (0..n).map(|i| y[2 + dof + i].powi(2)).sum::<f64>() * self.link;
         let stretch: f64 = (0..n)
             .map(|i| {
-                let e = if i + 1 < n {
+                let e = if i + 1 < dof {
                     y[2 + i] - y[3 + i]
                 } else {
                     y[2 + i]
@@ -240,14 +258,23 @@ impl Model {
             * self.kappa;
         0.5 * (kinetic + stretch)
     }
+
+    /// m v_x and every mass's momentum along the surface.
+    fn momentum(&self, y: &Y) -> f64 {
+        let dof = self.dof;
+        self.m * y[0] + (0..dof).map(|i| self.mass(i) * y[2 + dof + i]).sum::<f64>()
+    }
 }
 
 /// A step small against the contact time and the fastest mode, which is below 2 sqrt(N k / (M/N))
-/// (Gershgorin: the eigenvalues of K/m are at most 4 N k / (M/N)).
+/// (Gershgorin: the eigenvalues of K/m are at most 4 N k / (M/N), and 2 N k / M_t on the frame's row).
 pub fn step_for(p: &Params) -> f64 {
     let n = p.chain;
-    let fastest =
+    let mut fastest =
         (std::f64::consts::PI / p.duration).max(2.0 * n * (p.stiffness / p.cart_mass).sqrt());
+    if p.frame_mass > 0.0 {
+        fastest = fastest.max((2.0 * n * p.stiffness / p.frame_mass).sqrt());
+    }
     (p.duration / 20_000.0).min(0.004 / fastest)
 }
 
@@ -255,8 +282,27 @@ pub fn step_for(p: &Params) -> f64 {
 pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     let theta = p.angle_deg.to_radians();
     let n = p.chain as usize;
+    let framed = p.frame_mass > 0.0;
+    assert!(
+        !framed || p.cart_friction == 0.0,
+        "string friction on a frame"
+    );
+    let dof = n + usize::from(framed);
+    // The apparent restitution on a frame of normal mass M_n (M_t unless given).
+    let normal_mass = if p.frame_normal_mass > 0.0 {
+        p.frame_normal_mass
+    } else {
+        p.frame_mass
+    };
+    let ey = if framed {
+        (p.ey * normal_mass - p.mass) / (normal_mass + p.mass)
+    } else {
+        p.ey
+    };
     let model = Model {
         n,
+        dof,
+        frame: p.frame_mass,
         m: p.mass,
         r: p.radius,
         inertia: p.alpha * p.mass * p.radius * p.radius,
@@ -264,12 +310,11 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
         kappa: p.stiffness * n as f64,
         mu: p.mu,
         fc: p.cart_friction,
-        n0: (1.0 + p.ey) * std::f64::consts::PI * p.mass * p.speed * theta.sin()
-            / (2.0 * p.duration),
+        n0: (1.0 + ey) * std::f64::consts::PI * p.mass * p.speed * theta.sin() / (2.0 * p.duration),
         w: std::f64::consts::PI / p.duration,
     };
     let end = p.duration;
-    let mut y: Y = vec![0.0; 2 + 2 * n];
+    let mut y: Y = vec![0.0; 2 + 2 * dof];
     y[0] = p.speed * theta.cos();
     y[1] = p.spin;
     let slip0 = model.slip(&y);
@@ -330,9 +375,11 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     Numerical {
         vx2: y[0],
         omega2: y[1],
-        v2: y[2 + n],
+        v2: y[2 + dof],
         chain_energy: model.energy(&y),
-        x1: y[2],
+        x1: if framed { y[2] - y[2 + n] } else { y[2] },
+        frame_v: if framed { y[2 + dof + n] } else { 0.0 },
+        momentum: model.momentum(&y),
         phases,
         ball_phases,
         stuck,

@@ -41,6 +41,9 @@ pub struct Chain {
     pub link_mass: f64,
     /// N k, N/m.
     pub link_stiffness: f64,
+    /// The frame's mass M_t when the last spring is tied to a free frame (`None`: the wall). The frame
+    /// is then the last of the modes' masses, after the links.
+    pub frame: Option<f64>,
     pub slide: Modes,
     /// The gripping modes, computed when first needed (a compliant ball never needs them).
     grip: OnceLock<Modes>,
@@ -50,7 +53,7 @@ pub struct Chain {
 }
 
 thread_local! {
-    static LAST_CHAIN: Slot<[u64; 4], Arc<Chain>> = const { RefCell::new(None) };
+    static LAST_CHAIN: Slot<[u64; 5], Arc<Chain>> = const { RefCell::new(None) };
 }
 
 impl Chain {
@@ -62,12 +65,13 @@ impl Chain {
     }
 
     /// Everything a chain is built from, exactly.
-    pub fn key(params: &Params, setup: &Setup) -> [u64; 4] {
+    pub fn key(params: &Params, setup: &Setup) -> [u64; 5] {
         [
             params.chain.to_bits(),
             params.cart_mass.to_bits(),
             params.stiffness.to_bits(),
             setup.m_eff.to_bits(),
+            params.frame_mass.to_bits(),
         ]
     }
 
@@ -75,21 +79,64 @@ impl Chain {
         let n = params.chain as usize;
         let link_mass = params.cart_mass / n as f64;
         let link_stiffness = params.stiffness * n as f64;
+        // Without springs the frame never moves: the chain is then solved as on the wall.
+        let frame = setup.frame_mass.filter(|_| params.stiffness > 0.0);
         Chain {
             n,
             link_mass,
             link_stiffness,
-            slide: Modes::new(n, link_mass, link_stiffness, 0.0),
+            frame,
+            slide: Chain::modes_with(n, link_mass, link_stiffness, 0.0, frame),
             grip: OnceLock::new(),
             clamped: OnceLock::new(),
             m_eff: setup.m_eff,
         }
     }
 
+    /// Refuses on a free frame what is not solved there yet: string friction, and the longest chain (its
+    /// modes and the frame's would exceed [`MAX`]).
+    pub fn solvable_on_frame(params: &Params, setup: &Setup) -> Result<(), SolveError> {
+        if setup.frame_mass.is_none() {
+            return Ok(());
+        }
+        if params.cart_friction > 0.0 {
+            return Err(SolveError::FreeFrame {
+                what: "string friction (--cart-friction)",
+            });
+        }
+        if params.chain as usize >= MAX {
+            return Err(SolveError::FreeFrame {
+                what: "a chain of 16 masses (--chain 16)",
+            });
+        }
+        Ok(())
+    }
+
+    /// The modes of `n` links with `extra` on the first, tied to the wall or to a free `frame`.
+    fn modes_with(n: usize, link: f64, kappa: f64, extra: f64, frame: Option<f64>) -> Modes {
+        match frame {
+            None => Modes::new(n, link, kappa, extra),
+            Some(frame) => Modes::framed(n, link, kappa, extra, frame),
+        }
+    }
+
     /// The modes of the chain with the ball's m_eff riding on its first mass.
     pub fn grip(&self) -> &Modes {
-        self.grip
-            .get_or_init(|| Modes::new(self.n, self.link_mass, self.link_stiffness, self.m_eff))
+        self.grip.get_or_init(|| {
+            Chain::modes_with(
+                self.n,
+                self.link_mass,
+                self.link_stiffness,
+                self.m_eff,
+                self.frame,
+            )
+        })
+    }
+
+    /// Where the frame's displacement and velocity sit in a [`ChainState`]: after the links (0 when
+    /// the chain is tied to the wall, which has no entry).
+    pub fn frame_index(&self) -> usize {
+        if self.frame.is_some() { self.n } else { 0 }
     }
 
     /// The modes of the masses behind a held first mass.
@@ -98,9 +145,10 @@ impl Chain {
             .get_or_init(|| Modes::clamped(self.n - 1, self.link_mass, self.link_stiffness))
     }
 
-    /// The spring force holding the first mass back, N k (X_1 - X_2) (k X_1 for one mass).
+    /// The spring force holding the first mass back, N k (X_1 - X_2) (k X_1 for one mass on the wall,
+    /// k (X_1 - X_f) for one on a frame).
     pub fn link_force(&self, s: &ChainState) -> f64 {
-        let behind = if self.n > 1 { s.x[1] } else { 0.0 };
+        let behind = if self.slide.n > 1 { s.x[1] } else { 0.0 };
         self.link_stiffness * (s.x[0] - behind)
     }
 
@@ -109,16 +157,18 @@ impl Chain {
         if dir == 0.0 { self.grip() } else { &self.slide }
     }
 
-    /// Kinetic plus spring energy of the whole chain.
+    /// Kinetic plus spring energy of the whole chain (the last spring's stretch measured from the
+    /// frame when it is free; the frame's own kinetic energy is apart, [`Setup::frame_energy`]).
     pub fn energy(&self, s: &ChainState) -> f64 {
         let n = self.n;
+        let anchor = if self.frame.is_some() { s.x[n] } else { 0.0 };
         let kinetic: f64 = s.v[..n].iter().map(|v| v * v).sum::<f64>() * self.link_mass;
         let stretch: f64 = (0..n)
             .map(|i| {
                 let e = if i + 1 < n {
                     s.x[i] - s.x[i + 1]
                 } else {
-                    s.x[i]
+                    s.x[i] - anchor
                 };
                 e * e
             })
@@ -134,9 +184,12 @@ pub struct ChainState {
     pub t: f64,
     pub vx: f64,
     pub omega: f64,
-    /// Displacements of the masses, the first touching the ball (only the first `n` are used).
+    /// Displacements of the masses, the first touching the ball (only the first `n` are used), and
+    /// after them the free frame's.
     pub x: [f64; MAX],
     pub v: [f64; MAX],
+    /// Where the frame's entry is in `x` and `v` ([`Chain::frame_index`]; 0: tied to the wall).
+    pub frame: usize,
 }
 
 impl ChainState {
@@ -148,19 +201,25 @@ impl ChainState {
             omega: s.omega,
             x: [0.0; MAX],
             v: [0.0; MAX],
+            frame: 0,
         };
         chain.x[0] = s.x;
         chain.v[0] = s.v;
         chain
     }
 
-    /// The ball and the first mass.
+    /// The ball and the first mass: its displacement relative to the frame, its own velocity.
     pub fn contact(&self) -> State {
+        let anchor = if self.frame > 0 {
+            self.x[self.frame]
+        } else {
+            0.0
+        };
         State {
             t: self.t,
             vx: self.vx,
             omega: self.omega,
-            x: self.x[0],
+            x: self.x[0] - anchor,
             v: self.v[0],
         }
     }
@@ -219,9 +278,12 @@ impl PhaseMotion for Motion {
         0.0
     }
 
-    /// The strings are tied to a clamped frame.
-    fn frame_velocity(&self, _: &Setup, _: f64) -> f64 {
-        0.0
+    /// The frame's velocity along the surface (0 clamped).
+    fn frame_velocity(&self, setup: &Setup, t: f64) -> f64 {
+        match self.chain().frame_index() {
+            0 => 0.0,
+            frame => self.full(setup, t).v[frame],
+        }
     }
 }
 
@@ -237,8 +299,10 @@ pub struct ChainOfMasses {
 }
 
 impl ChainOfMasses {
-    /// The model for `params`, refused when the chain oscillates too fast to resolve.
+    /// The model for `params`, refused when the chain oscillates too fast to resolve, and on a free
+    /// frame where [`Chain::solvable_on_frame`] says so.
     pub fn new(params: &Params, setup: &Setup) -> Result<Self, SolveError> {
+        Chain::solvable_on_frame(params, setup)?;
         let chain = Chain::shared(params, setup);
         let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
         if radians > MAX_RADIANS {
@@ -266,6 +330,7 @@ impl Contact for ChainOfMasses {
             omega: first.omega,
             x: [0.0; MAX],
             v: [0.0; MAX],
+            frame: self.chain.frame_index(),
         };
         let slip0 = setup.slip(&first);
         let rolling = slip0.abs() <= ROLLING * self.incoming;

@@ -37,12 +37,48 @@ impl Modes {
     /// (T = BᵀB): a sum of squares, accurate relative to λ_j even for a slow mode that QR resolves only to
     /// rounding of the largest eigenvalue.
     pub fn new(n: usize, link_mass: f64, link_stiffness: f64, extra: f64) -> Modes {
+        Modes::build(n, link_mass, link_stiffness, extra, None)
+    }
+
+    /// `links` links as in [`Modes::new`], the last spring tied to a free frame of mass `frame` in place
+    /// of the wall: `links` + 1 masses (the frame last) and no spring to the world. T then has 1 at both
+    /// ends of its diagonal, S ends in `frame`/link_mass, and one mode is the rigid translation of the
+    /// whole, written exactly: Ω = 0 and Φ_i = 1/sqrt(Σ masses) for every mass.
+    pub fn framed(
+        links: usize,
+        link_mass: f64,
+        link_stiffness: f64,
+        extra: f64,
+        frame: f64,
+    ) -> Modes {
+        Modes::build(links + 1, link_mass, link_stiffness, extra, Some(frame))
+    }
+
+    /// `n` masses; with a `frame`, the last of them is the frame and no spring goes to the wall.
+    fn build(
+        n: usize,
+        link_mass: f64,
+        link_stiffness: f64,
+        extra: f64,
+        frame: Option<f64>,
+    ) -> Modes {
         assert!((1..=MAX).contains(&n), "chain of {n} masses");
         let mut scale = [1.0; MAX];
         scale[0] = (1.0 + extra / link_mass).sqrt().recip();
+        if let Some(frame) = frame {
+            scale[n - 1] = (frame / link_mass).sqrt().recip();
+        }
+        // The last mass's springs: a link and the wall's, or the frame's one link.
+        let last = if frame.is_some() { 1.0 } else { 2.0 };
         let mut a = DMatrix::<f64>::zeros(n, n);
         for i in 0..n {
-            let diagonal = if i == 0 { 1.0 } else { 2.0 };
+            let diagonal = if i == 0 {
+                1.0
+            } else if i + 1 == n {
+                last
+            } else {
+                2.0
+            };
             a[(i, i)] = diagonal * scale[i] * scale[i];
             if i + 1 < n {
                 let off = -scale[i] * scale[i + 1];
@@ -56,6 +92,15 @@ impl Modes {
         for (i, m) in mass.iter_mut().enumerate().take(n) {
             *m = if i == 0 { link_mass + extra } else { link_mass };
         }
+        if let Some(frame) = frame {
+            mass[n - 1] = frame;
+        }
+        // The rigid translation (framed): the mode of the smallest eigenvalue, replaced by its exact form.
+        let rigid = frame.map(|_| {
+            let values = &eigen.eigenvalues;
+            (0..n).fold(0, |best, j| if values[j] < values[best] { j } else { best })
+        });
+        let total: f64 = mass[..n].iter().sum();
         let mut modes = Modes {
             n,
             mass,
@@ -67,9 +112,19 @@ impl Modes {
         };
         let root_mass = link_mass.sqrt();
         for j in 0..n {
+            if rigid == Some(j) {
+                let phi = total.sqrt().recip();
+                for row in modes.shape.iter_mut().take(n) {
+                    row[j] = phi;
+                }
+                modes.largest[j] = phi;
+                continue;
+            }
             let u = eigen.eigenvectors.column(j);
             let z: Vec<f64> = (0..n).map(|i| scale[i] * u[i]).collect();
-            let stretch: f64 = (0..n)
+            // The springs' extensions: between neighbours, and the last mass's to the wall if clamped.
+            let springs = if frame.is_some() { n - 1 } else { n };
+            let stretch: f64 = (0..springs)
                 .map(|i| {
                     let e = if i + 1 < n { z[i] - z[i + 1] } else { z[i] };
                     e * e
@@ -205,6 +260,39 @@ mod tests {
                     let want = if i == j { modes.omega[i].powi(2) } else { 0.0 };
                     assert!((spectral[(i, j)] - want).abs() < 1e-12 * scale, "n {n} K");
                 }
+            }
+        }
+    }
+
+    #[test]
+    fn framed_modes_diagonalise_mass_and_stiffness_and_hold_the_rigid_translation() {
+        for links in [1, 2, 5, 15] {
+            for (extra, frame) in [(0.0, 0.32), (0.03, 0.005), (30.0, 1e6)] {
+                let (m, kappa) = (0.01 / links as f64, 15000.0 * links as f64);
+                let modes = Modes::framed(links, m, kappa, extra, frame);
+                let n = links + 1;
+                assert_eq!(modes.n, n);
+                assert_eq!(modes.mass[links], frame);
+                // The free chain: the frame's row has its one spring, and no spring goes to the wall.
+                let mut k = stiffness(n, kappa);
+                k[(links, links)] = kappa;
+                let phi = DMatrix::from_fn(n, n, |i, j| modes.shape[i][j]);
+                let d = DMatrix::from_fn(n, n, |i, j| if i == j { modes.mass[i] } else { 0.0 });
+                let identity = phi.transpose() * &d * &phi;
+                let spectral = phi.transpose() * k * &phi;
+                let scale = modes.fastest.powi(2);
+                for i in 0..n {
+                    for j in 0..n {
+                        let want = if i == j { 1.0 } else { 0.0 };
+                        let what = format!("links {links} frame {frame} I {i} {j}");
+                        assert!((identity[(i, j)] - want).abs() < 1e-10, "{what}");
+                        let want = if i == j { modes.omega[i].powi(2) } else { 0.0 };
+                        assert!((spectral[(i, j)] - want).abs() < 1e-12 * scale, "{what} K");
+                    }
+                }
+                let rigid: Vec<usize> = (0..n).filter(|&j| modes.omega[j] == 0.0).collect();
+                assert_eq!(rigid.len(), 1, "links {links} frame {frame}");
+                assert_eq!(modes.first_stiff[rigid[0]], 0.0);
             }
         }
     }

@@ -234,6 +234,13 @@ impl Motion {
             stiff += modes.first_stiff[j] * q[j];
             stiff_rate += modes.first_stiff[j] * dq[j];
         }
+        let frame = self.start.frame;
+        if frame > 0 {
+            // The first mass's displacement is reported relative to the free frame.
+            x -= (0..modes.n)
+                .map(|j| modes.shape[frame][j] * q[j])
+                .sum::<f64>();
+        }
         let s0 = &self.start;
         // The spring and string forces on the first mass over its mass: Σ Φ_1j Ω_j² q_j less push/m_1.
         let held_back = if self.push == 0.0 {
@@ -328,6 +335,7 @@ impl Motion {
             omega: contact.omega,
             x,
             v,
+            frame: self.start.frame,
         }
     }
 

@@ -357,16 +357,29 @@ impl PhaseMotion for CompliantMotion {
         }
     }
 
-    /// The strings are tied to a clamped frame.
-    fn frame_velocity(&self, _: &Setup, _: f64) -> f64 {
-        0.0
+    /// The frame's velocity along the surface: the last entry of a chain on a free frame (the single
+    /// cart on one is such a chain), 0 clamped.
+    fn frame_velocity(&self, setup: &Setup, t: f64) -> f64 {
+        let full = match self {
+            CompliantMotion::Slide(CompliantSlide {
+                rigid: Rigid::Chain(chain),
+                ..
+            }) => chain.full(setup, t),
+            CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
+            CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
+            CompliantMotion::Slide(_) | CompliantMotion::Grip(_) => return 0.0,
+        };
+        match full.frame {
+            0 => 0.0,
+            frame => full.v[frame],
+        }
     }
 }
 
 thread_local! {
     /// The grip's modes of the last bounce on this thread, by its chain and the ball's spring and
     /// dashpot.
-    static LAST_GRIP_MODES: Slot<([u64; 4], u64, u64), Arc<GripModes>> =
+    static LAST_GRIP_MODES: Slot<([u64; 5], u64, u64), Arc<GripModes>> =
         const { RefCell::new(None) };
 }
 
@@ -421,6 +434,7 @@ impl CompliantBall {
         } else {
             Setup::new(params)
         };
+        Chain::solvable_on_frame(params, &setup)?;
         let spring = BallSpring::new(params, &setup);
         let support = if modal && (!string || links > 1.0) {
             let chain = Chain::shared(params, &setup);
@@ -650,9 +664,13 @@ impl Contact for CompliantBall {
         } else {
             Ball::Slide(slip0.signum())
         };
+        let mut full = ChainState::from_contact(&state);
+        if let Support::Chain { chain, .. } = &self.support {
+            full.frame = chain.frame_index();
+        }
         let carried = CompliantState {
             contact: state,
-            full: ChainState::from_contact(&state),
+            full,
             e: 0.0,
         };
         // With string friction the cart starts at rest under the ball's first force (0 sliding, as

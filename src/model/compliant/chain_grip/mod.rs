@@ -28,6 +28,15 @@
 //! β_i the push's coefficient by the same orthogonality (accepted by the same checks as the start
 //! state's); the fallback exponentiates the state matrix augmented with the push's column.
 //!
+//! On a free frame (issue 23) the chain's modes include the rigid translation of chain and frame (Ω = 0,
+//! Φ_i0 = c = 1/sqrt(M) with M the chain's and the frame's mass), so K above is singular. That mode and
+//! the ball's u are written instead as the centre of mass G of ball, chain and frame, which moves
+//! uniformly (the grip's force is internal), and the ball's position relative to the rigid translation
+//! Y = c Q_0, r = u - Y: from m_eff u'' = -F and Y'' = c² F, μ r'' = -F with the reduced mass
+//! 1/μ = 1/m_eff + 1/M, and e = r - Σ' Φ_1j Q_j over the other modes. The grip is then the clamped
+//! chain's system with μ for m_eff and the flexible modes alone, solved as above; u = G + (M/(m_eff + M)) r
+//! and Y = G - (m_eff/(m_eff + M)) r give the ball and the chain back.
+//!
 //! By job: this file holds the modes and a grip's evaluation; [`roots`] finds the roots, [`coefficients`]
 //! writes a start state in the modes, [`search`] bounds |F''| for the event search, and [`fallback`] is
 //! the matrix exponential.
@@ -89,18 +98,40 @@ struct Mode {
     size: f64,
 }
 
+/// The rigid translation of a chain on a free frame, taken out of the grip's system.
+#[derive(Clone, Copy, Debug)]
+struct Translation {
+    /// Its index among the chain's slide modes.
+    index: usize,
+    /// Φ_i0 = c = 1/sqrt(M).
+    c: f64,
+    /// M/(m_eff + M), r's share of u.
+    ball_share: f64,
+    /// m_eff/(m_eff + M), r's share of -Y.
+    chain_share: f64,
+}
+
 /// The modes of the ball gripping a chain: computed once per bounce and shared by its grip phases.
 #[derive(Debug)]
 pub struct GripModes {
     chain: Arc<Chain>,
+    /// The flexible modes (all of the chain's on the wall; all but the translation on a free frame).
     n: usize,
     kb: f64,
     cb: f64,
+    /// The mass the ball's spring pulls: m_eff, or on a free frame the reduced mass μ.
     m_eff: f64,
-    /// Φ_1j of the chain's slide modes.
+    /// Φ_1j of the chain's flexible slide modes.
     phi1: [f64; MAX],
-    /// Ω_j² of the chain's slide modes.
+    /// Ω_j² of the chain's flexible slide modes.
     omega2: [f64; MAX],
+    /// Which slide mode each flexible one is.
+    flexible: [usize; MAX],
+    /// On a free frame: the translation, and the frame's Φ_fj over the flexible modes.
+    translation: Option<Translation>,
+    frame_row: [f64; MAX],
+    /// On a free frame, per grip mode, X_f - Y of the mode, Σ' Φ_fj Q_j (for X_1 - X_f).
+    frame_shares: Vec<C64>,
     /// `None` where the roots could not all be found distinct: the grips then use the exponential.
     modes: Option<Vec<Mode>>,
     /// The state matrix in energy coordinates z̃ = T z, T = blockdiag(Lᵀ, D^(1/2)) with K = L Lᵀ, where
@@ -121,13 +152,38 @@ pub struct GripModes {
 impl GripModes {
     pub fn new(chain: Arc<Chain>, setup: &Setup, kb: f64, cb: f64) -> GripModes {
         let modes = &chain.slide;
-        let n = modes.n;
-        let m_eff = setup.m_eff;
+        let frame = chain.frame_index();
+        let translation = (frame > 0).then(|| {
+            let index = (0..modes.n)
+                .find(|&j| modes.omega[j] == 0.0)
+                .expect("a chain on a free frame has its translation");
+            let total: f64 = modes.mass[..modes.n].iter().sum();
+            Translation {
+                index,
+                c: modes.shape[0][index],
+                ball_share: total / (setup.m_eff + total),
+                chain_share: setup.m_eff / (setup.m_eff + total),
+            }
+        });
+        let mut flexible = [0; MAX];
+        let mut n = 0;
+        for j in 0..modes.n {
+            if translation.is_none_or(|tr| tr.index != j) {
+                flexible[n] = j;
+                n += 1;
+            }
+        }
+        let m_eff = match translation {
+            None => setup.m_eff,
+            Some(tr) => setup.m_eff * tr.ball_share,
+        };
         let mut phi1 = [0.0; MAX];
         let mut omega2 = [0.0; MAX];
-        for j in 0..n {
-            phi1[j] = modes.shape[0][j];
-            omega2[j] = modes.omega[j] * modes.omega[j];
+        let mut frame_row = [0.0; MAX];
+        for (k, &j) in flexible.iter().enumerate().take(n) {
+            phi1[k] = modes.shape[0][j];
+            omega2[k] = modes.omega[j] * modes.omega[j];
+            frame_row[k] = modes.shape[frame][j];
         }
         let dof = n + 1;
         // K = diag(0, Ω²) + k_b g gᵀ and C = c_b g gᵀ with g = (1, -Φ_1j): e = g · y.
@@ -163,6 +219,10 @@ impl GripModes {
             m_eff,
             phi1,
             omega2,
+            flexible,
+            translation,
+            frame_row,
+            frame_shares: Vec::new(),
             modes: None,
             a,
             lower,
@@ -172,6 +232,14 @@ impl GripModes {
         };
         if grip.lower.is_some() {
             grip.modes = grip.find_modes();
+        }
+        if grip.translation.is_some()
+            && let Some(list) = &grip.modes
+        {
+            grip.frame_shares = list
+                .iter()
+                .map(|mode| (0..n).map(|k| mode.q[k] * grip.frame_row[k]).sum())
+                .collect();
         }
         grip
     }
@@ -193,8 +261,13 @@ impl GripModes {
 pub struct ChainGrip {
     pub modes: Arc<GripModes>,
     pub start: ChainState,
-    /// z0 = (u, Q, u', Q') at the start, u = X_1 + e.
+    /// z0 = (u, Q, u', Q') at the start, u = X_1 + e (on a free frame (r, Q', r', Q'') of the
+    /// flexible modes).
     z0: Vec<f64>,
+    /// The contact point's velocity u' at the start.
+    du0: f64,
+    /// On a free frame, the centre of mass's position and velocity at the start, G0 and G'.
+    centre: Option<(f64, f64)>,
     /// The weighted modal coefficients of z0, when the modes reproduce it.
     coefficients: Option<Vec<C64>>,
     /// The string friction's push on the moving first mass, P = -d F_c (0 without).
@@ -221,10 +294,28 @@ impl ChainGrip {
         let q = slide.project(&start.x);
         let dq = slide.project(&start.v);
         let mut z0 = vec![0.0; 2 * n + 2];
-        z0[0] = start.x[0] + e;
-        z0[n + 1] = start.vx - setup.r * start.omega;
-        z0[1..=n].copy_from_slice(&q[..n]);
-        z0[n + 2..].copy_from_slice(&dq[..n]);
+        let (u0, du0) = (start.x[0] + e, start.vx - setup.r * start.omega);
+        z0[0] = u0;
+        z0[n + 1] = du0;
+        let mut centre = None;
+        match modes.translation {
+            None => {
+                z0[1..=n].copy_from_slice(&q[..n]);
+                z0[n + 2..].copy_from_slice(&dq[..n]);
+            }
+            Some(tr) => {
+                let (y, dy) = (tr.c * q[tr.index], tr.c * dq[tr.index]);
+                // G = u - (M/(m_eff + M)) r.
+                centre = Some((
+                    u0 - tr.ball_share * (u0 - y),
+                    du0 - tr.ball_share * (du0 - dy),
+                ));
+                (z0[0], z0[n + 1]) = (u0 - y, du0 - dy);
+                for (k, &j) in modes.flexible.iter().enumerate().take(n) {
+                    (z0[1 + k], z0[n + 2 + k]) = (q[j], dq[j]);
+                }
+            }
+        }
         let mut coefficients = modes
             .modes
             .as_ref()
@@ -248,6 +339,8 @@ impl ChainGrip {
             modes,
             start,
             z0,
+            du0,
+            centre,
             coefficients,
             push,
             beta,
@@ -303,44 +396,67 @@ impl ChainGrip {
         let tau = t - self.start.t;
         let n = g.n;
         // The contact quantities alone need only one exponential per mode.
-        let (du, force, dforce, e, de, dde, x1, v1, a1) = match (&g.modes, &self.coefficients) {
-            (Some(list), Some(c)) => {
-                let zero = C64::new(0.0, 0.0);
-                let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde, mut a1) =
-                    (zero, zero, zero, zero, zero, zero, zero, zero);
-                for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
-                    let (a, da) = self.term(mode, ci, i, tau);
-                    u += a * mode.u;
-                    du += da * mode.u;
-                    f += a * mode.force;
-                    df += da * mode.force;
-                    e += a * mode.e;
-                    de += da * mode.e;
-                    dde += da * mode.s * mode.e;
-                    a1 += da * mode.s * (mode.u - mode.e);
+        let framed = g.translation.is_some();
+        // On a free frame also r'' and X_f - Y (otherwise 0).
+        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, xf) =
+            match (&g.modes, &self.coefficients) {
+                (Some(list), Some(c)) => {
+                    let zero = C64::new(0.0, 0.0);
+                    let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde, mut a1) =
+                        (zero, zero, zero, zero, zero, zero, zero, zero);
+                    let (mut ddu, mut xf) = (zero, zero);
+                    for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
+                        let (a, da) = self.term(mode, ci, i, tau);
+                        u += a * mode.u;
+                        du += da * mode.u;
+                        f += a * mode.force;
+                        df += da * mode.force;
+                        e += a * mode.e;
+                        de += da * mode.e;
+                        dde += da * mode.s * mode.e;
+                        a1 += da * mode.s * (mode.u - mode.e);
+                        if framed {
+                            ddu += da * mode.s * mode.u;
+                            xf += a * g.frame_shares[i];
+                        }
+                    }
+                    let (u, du, e, de) = (u.re, du.re, e.re, de.re);
+                    let (dd, x) = (ddu.re, xf.re);
+                    (du, f.re, df.re, e, de, dde.re, u - e, du - de, a1.re, dd, x)
                 }
-                let (u, du, e, de) = (u.re, du.re, e.re, de.re);
-                (du, f.re, df.re, e, de, dde.re, u - e, du - de, a1.re)
-            }
-            _ => {
-                let (z, dz) = self.propagate(t);
-                let x1: f64 = (0..n).map(|j| g.phi1[j] * z[j + 1]).sum();
-                let v1: f64 = (0..n).map(|j| g.phi1[j] * z[n + 2 + j]).sum();
-                let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
-                let (e, de, dde) = (z[0] - x1, z[n + 1] - v1, dz[n + 1] - a1);
-                let force = g.kb * e + g.cb * de;
-                (
-                    z[n + 1],
-                    force,
-                    g.kb * de + g.cb * dde,
-                    e,
-                    de,
-                    dde,
-                    x1,
-                    v1,
-                    a1,
-                )
-            }
+                _ => {
+                    let (z, dz) = self.propagate(t);
+                    let x1: f64 = (0..n).map(|j| g.phi1[j] * z[j + 1]).sum();
+                    let v1: f64 = (0..n).map(|j| g.phi1[j] * z[n + 2 + j]).sum();
+                    let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
+                    let xf: f64 = (0..n).map(|j| g.frame_row[j] * z[j + 1]).sum();
+                    let (e, de, dde) = (z[0] - x1, z[n + 1] - v1, dz[n + 1] - a1);
+                    let force = g.kb * e + g.cb * de;
+                    (
+                        z[n + 1],
+                        force,
+                        g.kb * de + g.cb * dde,
+                        e,
+                        de,
+                        dde,
+                        x1,
+                        v1,
+                        a1,
+                        dz[n + 1],
+                        xf,
+                    )
+                }
+            };
+        // On a free frame: X_1 - X_f = (X_1 - Y) - (X_f - Y), and the translation's rate
+        // Y' = G' - (m_eff/(m_eff + M)) r' and Y'' added to the first mass's.
+        let (du, x1, v1, a1) = match (g.translation, self.centre) {
+            (Some(tr), Some((_, dg))) => (
+                dg + tr.ball_share * du,
+                x1 - xf,
+                v1 + dg - tr.chain_share * du,
+                a1 - tr.chain_share * ddu,
+            ),
+            _ => (du, x1, v1, a1),
         };
         let (vx, omega) = self.ball(setup, du);
         Point {
@@ -381,7 +497,7 @@ impl ChainGrip {
     /// The ball and the whole chain at `t`, and the stretch there.
     /// The ball's (v_x, omega) once its contact point moves at `du`: m_eff (u' - u0') = -∫F dt.
     fn ball(&self, setup: &Setup, du: f64) -> (f64, f64) {
-        let impulse = -setup.m_eff * (du - self.z0[self.modes.n + 1]);
+        let impulse = -setup.m_eff * (du - self.du0);
         (
             self.start.vx - impulse / setup.m,
             self.start.omega + impulse * setup.r / setup.inertia,
@@ -394,15 +510,32 @@ impl ChainGrip {
         let n = self.modes.n;
         let slide = &self.modes.chain.slide;
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
-        q[..n].copy_from_slice(&z[1..=n]);
-        dq[..n].copy_from_slice(&z[n + 2..]);
-        let (vx, omega) = self.ball(setup, z[n + 1]);
+        let du = match (self.modes.translation, self.centre) {
+            (Some(tr), Some((g0, dg))) => {
+                for (k, &j) in self.modes.flexible.iter().enumerate().take(n) {
+                    (q[j], dq[j]) = (z[1 + k], z[n + 2 + k]);
+                }
+                // Y = G - (m_eff/(m_eff + M)) r, and Q_0 = Y/c.
+                let tau = t - self.start.t;
+                let y = g0 + dg * tau - tr.chain_share * z[0];
+                let dy = dg - tr.chain_share * z[n + 1];
+                (q[tr.index], dq[tr.index]) = (y / tr.c, dy / tr.c);
+                dg + tr.ball_share * z[n + 1]
+            }
+            _ => {
+                q[..n].copy_from_slice(&z[1..=n]);
+                dq[..n].copy_from_slice(&z[n + 2..]);
+                z[n + 1]
+            }
+        };
+        let (vx, omega) = self.ball(setup, du);
         ChainState {
             t,
             vx,
             omega,
             x: slide.expand(&q),
             v: slide.expand(&dq),
+            frame: self.start.frame,
         }
     }
 }
