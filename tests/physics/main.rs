@@ -26,6 +26,7 @@ mod compliant;
 mod compliant_string;
 mod critical;
 mod frame;
+mod frame_string;
 mod golden;
 mod numerical;
 mod paper;
