@@ -123,7 +123,10 @@ fn the_energy_budget_balances_with_string_friction_and_nothing_is_created() {
         assert!(e.final_ball + e.final_cart + e.frame <= e.initial * (1.0 + 1e-12));
         worked += usize::from(e.cart_friction_loss > 1e-6 * e.initial);
     }
-    assert!(worked >= 10, "only {worked} bounces lost energy to string friction");
+    assert!(
+        worked >= 10,
+        "only {worked} bounces lost energy to string friction"
+    );
 }
 
 #[test]
@@ -148,11 +151,19 @@ fn a_heavy_frame_approaches_the_clamped_cart_with_string_friction() {
             close(h.outcome.omega2, c.outcome.omega2, 1e-5, p.speed / p.radius),
             "{what}"
         );
-        assert!(close(h.final_state.v, c.final_state.v, 1e-5, p.speed), "{what}");
+        assert!(
+            close(h.final_state.v, c.final_state.v, 1e-5, p.speed),
+            "{what}"
+        );
         assert!(h.frame_velocity().abs() < 1e-5 * p.speed);
         let (eh, ec) = (h.energy(), c.energy());
         assert!(
-            close(eh.cart_friction_loss, ec.cart_friction_loss, 1e-4, 1e-6 * ec.initial),
+            close(
+                eh.cart_friction_loss,
+                ec.cart_friction_loss,
+                1e-4,
+                1e-6 * ec.initial
+            ),
             "{eh:?} vs {ec:?}"
         );
     }
@@ -254,7 +265,11 @@ fn a_stiff_compliant_ball_on_a_free_frame_approaches_the_rigid_one() {
             .into_iter()
             .fold(0.0, f64::max)
         });
-        assert!(errors[1] < 2e-3, "{errors:?} ({p:?}, {})", rigid.phase_summary());
+        assert!(
+            errors[1] < 2e-3,
+            "{errors:?} ({p:?}, {})",
+            rigid.phase_summary()
+        );
         assert!(errors[1] < 0.5 * errors[0], "{errors:?} ({p:?})");
         checked += 1;
     }

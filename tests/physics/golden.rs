@@ -319,7 +319,12 @@ fn cases() -> Vec<Case> {
     // String friction on the free frame (issue 23), appended after it, with its own seed so that its
     // lines do not depend on the blocks before: the typical racquet's frame, a light and a heavy one,
     // and seeded random frames.
-    for (frame, fc) in [("188g", "30"), ("320g", "3"), ("50g", "100"), ("10kg", "30")] {
+    for (frame, fc) in [
+        ("188g", "30"),
+        ("320g", "3"),
+        ("50g", "100"),
+        ("10kg", "30"),
+    ] {
         out.push(case(&[
             ("frame-mass", frame.into()),
             ("cart-friction", fc.into()),

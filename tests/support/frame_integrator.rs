@@ -204,7 +204,10 @@ impl Model {
             (Ball::Grip, Cart::Held)
         } else {
             let dir = (-spring).signum();
-            (self.ball_on_moving_cart(t, y, dir, before), Cart::Moving(dir))
+            (
+                self.ball_on_moving_cart(t, y, dir, before),
+                Cart::Moving(dir),
+            )
         }
     }
 

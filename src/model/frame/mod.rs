@@ -93,12 +93,16 @@ struct Point {
     friction_rate: f64,
     /// The cart's acceleration.
     accel: f64,
-    /// The stretch's, y''.
-    stretch_accel: f64,
 }
 
 impl FrameMotion {
-    fn new(setup: &Setup, frame: &FramedCart, start: FrameState, dir: f64, cart_mode: Cart) -> Self {
+    fn new(
+        setup: &Setup,
+        frame: &FramedCart,
+        start: FrameState,
+        dir: f64,
+        cart_mode: Cart,
+    ) -> Self {
         let (sin_wt0, cos_wt0) = (setup.w * start.s.t).sin_cos();
         let (omega, cart) = if dir == 0.0 {
             (frame.omega_grip, setup.cart_mass + setup.m_eff)
@@ -161,7 +165,6 @@ impl FrameMotion {
                 friction: 0.0,
                 friction_rate: 0.0,
                 accel: 0.0,
-                stretch_accel: 0.0,
             };
         }
         let (impulse, friction) = self.slide_impulse(setup, (setup.w * (t - s0.t)).sin_cos());
@@ -181,7 +184,6 @@ impl FrameMotion {
             friction,
             friction_rate: self.dir * setup.friction_limit_rate(t),
             accel: friction / body,
-            stretch_accel: 0.0,
         }
     }
 
@@ -202,8 +204,6 @@ impl FrameMotion {
         let (z0, dy0) = (s0.x + self.string, s0.v - self.start.vf);
         let (sin_omega_tau, cos_omega_tau) = (self.omega * tau).sin_cos();
         let (z_free, dy_free) = free_given(z0, dy0, self.omega, tau, sin_omega_tau, cos_omega_tau);
-        // The frame's acceleration k z/M_t (the spring and the string friction on it).
-        let frame_accel = setup.k * z_free / self.frame;
         if self.dir == 0.0 {
             let v = self.cart_velocity(self.p0, dy_free);
             let impulse = -setup.m_eff * (v - self.v1_start);
@@ -224,7 +224,6 @@ impl FrameMotion {
                 friction: gain * z_free,
                 friction_rate: gain * dy_free,
                 accel,
-                stretch_accel: accel - frame_accel,
             };
         }
         let w = setup.w;
@@ -266,7 +265,6 @@ impl FrameMotion {
             friction,
             friction_rate: self.dir * setup.friction_limit_rate(t),
             accel,
-            stretch_accel: accel - setup.k * z / self.frame,
         }
     }
 
@@ -451,12 +449,17 @@ impl Contact for FramedCart {
             + state.vf.abs()
             + stretch_speed;
         let forces = peak + setup.k * s.x.abs() + setup.cart_friction;
-        // Without string friction the cart's stopping changes nothing: a constant stands in for it.
+        // Without string friction the cart's stopping changes nothing: a constant stands in for it,
+        // and the searches leave it out.
         let string = setup.cart_friction > 0.0;
         let stop = |p: &Point, cart_dir: f64| {
             if string {
                 let dy = p.state.s.v - p.state.vf;
-                (-cart_dir * (dy - dy_offset), -cart_dir * p.stretch_accel)
+                // y'' = V' less the frame's acceleration k z/M_t (the spring and the string
+                // friction on it).
+                let z = p.state.s.x + motion.string;
+                let stretch_accel = p.accel - setup.k * z / motion.frame;
+                (-cart_dir * (dy - dy_offset), -cart_dir * stretch_accel)
             } else {
                 (-1.0, 0.0)
             }
@@ -481,17 +484,21 @@ impl Contact for FramedCart {
                     0.0
                 };
                 let step = setup.event_step(motion.omega);
-                let noise = [ROUNDING * speeds; 2];
-                first_rise(f, t0, end, step, [curvature, stop_curvature], noise).map(
-                    |(t, branch)| {
-                        let cause = if branch == 0 {
-                            Cause::SlipZero
-                        } else {
-                            Cause::CartStop
-                        };
-                        (t, cause)
-                    },
-                )
+                let noise = ROUNDING * speeds;
+                let found = if string {
+                    first_rise(f, t0, end, step, [curvature, stop_curvature], [noise; 2])
+                } else {
+                    // The stand-in costs a search branch: leave it out.
+                    first_rise(|t| [f(t)[0]], t0, end, step, [curvature], [noise])
+                };
+                found.map(|(t, branch)| {
+                    let cause = if branch == 0 {
+                        Cause::SlipZero
+                    } else {
+                        Cause::CartStop
+                    };
+                    (t, cause)
+                })
             }
             (_, Cart::Moving(cart_dir)) => {
                 let cart_dir = f64::from(cart_dir);
@@ -513,7 +520,16 @@ impl Contact for FramedCart {
                 let step = setup.event_step(motion.omega);
                 let noise = [ROUNDING * forces, ROUNDING * forces, ROUNDING * speeds];
                 let curvatures = [curvature, curvature, stop_curvature];
-                first_rise(f, t0, end, step, curvatures, noise).map(|(t, branch)| {
+                let found = if string {
+                    first_rise(f, t0, end, step, curvatures, noise)
+                } else {
+                    let margins = |t| {
+                        let [forward, backward, _] = f(t);
+                        [forward, backward]
+                    };
+                    first_rise(margins, t0, end, step, [curvature; 2], [noise[0]; 2])
+                };
+                found.map(|(t, branch)| {
                     let cause = match branch {
                         0 => Cause::GripBreak(1.0),
                         1 => Cause::GripBreak(-1.0),
