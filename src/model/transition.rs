@@ -33,6 +33,22 @@ pub fn next(
     cart: Cart,
     cause: Cause,
 ) -> (Ball, Cart) {
+    next_on(setup, touched, 1.0, ball, cart, cause)
+}
+
+/// [`next`] for a touched mass whose string friction acts against a support that recoils: `share` is
+/// the part of the ball's friction that pushes the mass relative to its support, M_t/(M + M_t) on a
+/// free frame of mass M_t (1 on a clamped one). Held to the frame, the cart and the frame accelerate
+/// together at F/(M + M_t), so the string friction must hold M_t F/(M + M_t) - k y (a rolling ball
+/// pushes nothing, and a moving cart's static friction is the clamped one's).
+pub fn next_on(
+    setup: &Setup,
+    touched: &Touched,
+    share: f64,
+    ball: Ball,
+    cart: Cart,
+    cause: Cause,
+) -> (Ball, Cart) {
     match cause {
         Cause::GripBreak(sign) => return (Ball::Slide(sign), cart),
         Cause::Unstick(dir) => return (ball, Cart::Moving(dir)),
@@ -59,6 +75,7 @@ pub fn next(
         limit: setup.mu * setup.normal(touched.t),
         mass: touched.mass,
         spring: touched.spring,
+        share,
         slip_at_rest,
         cart_at_rest,
     };
@@ -77,12 +94,13 @@ pub fn next(
     (best.1, best.2)
 }
 
-/// The forces at a transition: mu N, the touched mass and the spring force on it, and which contacts
-/// are at rest.
+/// The forces at a transition: mu N, the touched mass and the spring force on it, the part of the
+/// ball's friction that pushes it relative to its support, and which contacts are at rest.
 struct At {
     limit: f64,
     mass: f64,
     spring: f64,
+    share: f64,
     slip_at_rest: bool,
     cart_at_rest: bool,
 }
@@ -93,6 +111,7 @@ fn violation(setup: &Setup, at: &At, ball: Ball, cart: Cart) -> f64 {
         limit,
         mass,
         spring,
+        share,
         slip_at_rest,
         cart_at_rest,
     } = *at;
@@ -113,7 +132,7 @@ fn violation(setup: &Setup, at: &At, ball: Ball, cart: Cart) -> f64 {
         }
         (Ball::Slide(dir), Cart::Stuck) => {
             let friction = dir * limit;
-            let mut v = ((friction - spring).abs() - setup.cart_friction).max(0.0);
+            let mut v = ((share * friction - spring).abs() - setup.cart_friction).max(0.0);
             if slip_at_rest {
                 // On a still cart the friction only ever brings the slip back to zero.
                 v += limit;
@@ -122,10 +141,12 @@ fn violation(setup: &Setup, at: &At, ball: Ball, cart: Cart) -> f64 {
         }
         (Ball::Slide(dir), Cart::Moving(cart_dir)) => {
             let friction = dir * limit;
-            let push = friction - spring - f64::from(cart_dir) * setup.cart_friction;
+            let string = f64::from(cart_dir) * setup.cart_friction;
+            let push = friction - spring - string;
             let mut v = 0.0;
             if cart_at_rest {
-                v += (-f64::from(cart_dir) * push).max(0.0);
+                // Relative to its support: M_t/(M + M_t) times M y'' on a free frame.
+                v += (-f64::from(cart_dir) * (share * friction - spring - string)).max(0.0);
             }
             if slip_at_rest {
                 // slip' = -F/m_eff - V' must carry the slip the way `dir` says.

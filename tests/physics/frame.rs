@@ -10,7 +10,7 @@ use snapback::model::params::spec;
 use snapback::model::setup::apparent_restitution;
 use snapback::model::{FrameKind, ParamId, Params, PhaseKind, SolveError, solve};
 
-fn random_frame(rng: &mut Rng) -> Params {
+pub(crate) fn random_frame(rng: &mut Rng) -> Params {
     Params {
         angle_deg: rng.uniform(3.0, 90.0),
         speed: rng.uniform(2.0, 40.0),
@@ -39,14 +39,14 @@ fn random_frame(rng: &mut Rng) -> Params {
 }
 
 /// Step of the reference integration: small against the contact time and the fastest swing.
-fn step_for(p: &Params) -> f64 {
+pub(crate) fn step_for(p: &Params) -> f64 {
     let reduced = p.cart_mass * p.frame_mass / (p.cart_mass + p.frame_mass);
     let fastest = (std::f64::consts::PI / p.duration).max((p.stiffness / reduced).sqrt());
     (p.duration / 40_000.0).min(0.002 / fastest)
 }
 
 /// |a - b| within `rel` of the larger of |a| and `scale`.
-fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
+pub(crate) fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
     (a - b).abs() <= rel * a.abs().max(scale)
 }
 
@@ -226,14 +226,30 @@ fn the_energy_budget_balances_and_nothing_is_created() {
 
 #[test]
 fn what_a_free_frame_does_not_solve_yet_is_refused_by_name() {
-    let err = solve(&Params {
-        frame_mass: 0.3,
-        cart_friction: 5.0,
-        ..Params::default()
-    })
-    .unwrap_err();
-    assert!(matches!(err, SolveError::FreeFrame { .. }), "{err:?}");
-    assert!(err.to_string().contains("--cart-friction"), "{err}");
+    for (params, flag) in [
+        (
+            Params {
+                frame_mass: 0.3,
+                cart_friction: 5.0,
+                chain: 3.0,
+                ..Params::default()
+            },
+            "--cart-friction",
+        ),
+        (
+            Params {
+                frame_mass: 0.3,
+                cart_friction: 5.0,
+                ball_stiffness: 1e5,
+                ..Params::default()
+            },
+            "--cart-friction",
+        ),
+    ] {
+        let err = solve(&params).unwrap_err();
+        assert!(matches!(err, SolveError::FreeFrame { .. }), "{err:?}");
+        assert!(err.to_string().contains(flag), "{err}");
+    }
 }
 
 proptest! {

@@ -356,6 +356,27 @@ fn cases() -> Vec<Case> {
         pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
         out.push(case(&pairs));
     }
+    // String friction on the free frame (issue 23), appended after it, with its own seed so that its
+    // lines do not depend on the blocks before: the typical racquet's frame, a light and a heavy one,
+    // and seeded random frames.
+    for (frame, fc) in [
+        ("188g", "30"),
+        ("320g", "3"),
+        ("50g", "100"),
+        ("10kg", "30"),
+    ] {
+        out.push(case(&[
+            ("frame-mass", frame.into()),
+            ("cart-friction", fc.into()),
+        ]));
+    }
+    let mut rng = Rng(0x5791_f4a3_0023);
+    for _ in 0..20 {
+        let mut pairs = rigid(&mut rng);
+        pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
+        pairs.push(("cart-friction", num(rng.log_uniform(0.1, 300.0))));
+        out.push(case(&pairs));
+    }
     out
 }
 

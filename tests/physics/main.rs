@@ -28,6 +28,7 @@ mod critical;
 mod frame;
 mod frame_chain;
 mod frame_compliant;
+mod frame_string;
 mod golden;
 mod numerical;
 mod paper;

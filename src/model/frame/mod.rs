@@ -15,9 +15,20 @@
 //!   y'' + Ω_g² y = 0 with Ω_g² = k (1/(M + m_eff) + 1/M_t), P constant, and the static friction is
 //!   F_s = -m_eff x1'' = m_eff k y/(M + m_eff) (Eq. (5) with y for X).
 //!
-//! Transitions follow the paper's rules ([`transition::next`], the cart's spring force k y), located by
-//! [`first_rise`] on the exact expressions. The cart's displacement reported is the spring's stretch y,
-//! relative to the frame; its velocity is the cart's own (the slip is measured against it).
+//!
+//! String friction F_c (Sec. IV's enhancement) acts between the cart and the frame its strings cross:
+//! -d F_c on the cart and +d F_c on the frame while the cart moves relative to the frame in direction d.
+//! It is internal, so P is as above, and it only shifts the stretch's centre: with
+//! z = y + d F_c/k, z'' + Ω² z = F/M sliding (the same with Ω_g and no drive gripping), since
+//! d F_c (1/M + 1/M_t) = Ω² d F_c/k. The moving phase also ends when y' reaches zero. Held (stuck), the
+//! cart and the frame move as one body: y is constant, a sliding ball's friction accelerates both at
+//! F/(M + M_t) while the string friction holds the cart with M_t F/(M + M_t) - k y, and the phase also
+//! ends when that reaches ±F_c; a rolling ball on a held cart needs no friction and all coast.
+//!
+//! Transitions follow the paper's rules ([`transition::next_on`], the cart's spring force k y, the
+//! ball's friction's share M_t/(M + M_t) on the held cart), located by [`first_rise`] on the exact
+//! expressions. The cart's displacement reported is the spring's stretch y, relative to the frame; its
+//! velocity is the cart's own (the slip is measured against it).
 
 use std::cell::Cell;
 
@@ -38,11 +49,17 @@ pub struct FrameState {
     pub vf: f64,
 }
 
-/// One phase on the free frame: a slide (`dir` ±1) or a grip (`dir` 0).
+/// One phase on the free frame: a slide (`dir` ±1) or a grip (`dir` 0), the cart moving relative to
+/// the frame or held to it.
 #[derive(Clone, Copy, Debug)]
 pub struct FrameMotion {
     pub start: FrameState,
     pub dir: f64,
+    /// The cart held to the frame by string friction.
+    held: bool,
+    /// The stretch's centre moved by the string friction on a moving cart: z = y + `string` with
+    /// `string` = d F_c/k (0 held or without string friction).
+    string: f64,
     sin_wt0: f64,
     cos_wt0: f64,
     /// Ω (sliding) or Ω_g (gripping), rad/s.
@@ -79,16 +96,25 @@ struct Point {
 }
 
 impl FrameMotion {
-    fn new(setup: &Setup, frame: &FramedCart, start: FrameState, dir: f64) -> Self {
+    fn new(
+        setup: &Setup,
+        frame: &FramedCart,
+        start: FrameState,
+        dir: f64,
+        cart_mode: Cart,
+    ) -> Self {
         let (sin_wt0, cos_wt0) = (setup.w * start.s.t).sin_cos();
         let (omega, cart) = if dir == 0.0 {
             (frame.omega_grip, setup.cart_mass + setup.m_eff)
         } else {
             (frame.omega_slide, setup.cart_mass)
         };
+        let string = -cart_mode.friction(setup) / setup.k;
         let mut motion = FrameMotion {
             start,
             dir,
+            held: cart_mode == Cart::Stuck,
+            string,
             sin_wt0,
             cos_wt0,
             omega,
@@ -98,7 +124,7 @@ impl FrameMotion {
             v1_start: start.s.v,
             amplitude: None,
         };
-        if dir != 0.0 {
+        if dir != 0.0 && !motion.held {
             let w = setup.w;
             let amplitude = dir * setup.peak_friction() / (cart * (omega * omega - w * w));
             let s0 = &start.s;
@@ -106,8 +132,59 @@ impl FrameMotion {
             motion.amplitude =
                 ((amplitude * w).abs() <= DETUNED_GAIN * speeds).then_some(amplitude);
         }
-        motion.v1_start = motion.cart_velocity(motion.p0, start.s.v - start.vf);
+        if !motion.held {
+            motion.v1_start = motion.cart_velocity(motion.p0, start.s.v - start.vf);
+        }
         motion
+    }
+
+    /// The ball's impulse ∫ F dt since the start of a slide, F0 (cos w t0 - cos w t)/w (Eqs. (1), (2)),
+    /// and the friction F, given sin(w τ) and cos(w τ).
+    #[inline]
+    fn slide_impulse(&self, setup: &Setup, (sin_w_tau, cos_w_tau): (f64, f64)) -> (f64, f64) {
+        let force_amplitude = self.dir * setup.peak_friction();
+        let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
+        let impulse = force_amplitude
+            * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau)
+            / setup.w;
+        (impulse, force_amplitude * sin_wt.max(0.0))
+    }
+
+    /// The cart held to the frame at `t`: the stretch stays, and cart and frame move as one body of
+    /// mass M + M_t, pushed by a sliding ball's friction (a rolling ball's is zero).
+    #[inline]
+    fn held_at(&self, setup: &Setup, t: f64) -> Point {
+        let s0 = &self.start.s;
+        if self.dir == 0.0 {
+            let state = FrameState {
+                s: State { t, ..*s0 },
+                vf: s0.v,
+            };
+            return Point {
+                state,
+                friction: 0.0,
+                friction_rate: 0.0,
+                accel: 0.0,
+            };
+        }
+        let (impulse, friction) = self.slide_impulse(setup, (setup.w * (t - s0.t)).sin_cos());
+        let body = self.cart + self.frame;
+        let v = s0.v + impulse / body;
+        Point {
+            state: FrameState {
+                s: State {
+                    t,
+                    vx: s0.vx - impulse / setup.m,
+                    omega: s0.omega + impulse * setup.r / setup.inertia,
+                    x: s0.x,
+                    v,
+                },
+                vf: v,
+            },
+            friction,
+            friction_rate: self.dir * setup.friction_limit_rate(t),
+            accel: friction / body,
+        }
     }
 
     /// The cart's velocity from the momentum `p` and the stretch's rate `dy`: (P + M_t y')/(M + M_t).
@@ -116,42 +193,45 @@ impl FrameMotion {
         (p + self.frame * dy) / (self.cart + self.frame)
     }
 
+    /// Everything at `t`; on a moving cart the stretch is solved as z = y + `string` (see the module).
     #[inline]
     fn at(&self, setup: &Setup, t: f64) -> Point {
+        if self.held {
+            return self.held_at(setup, t);
+        }
         let s0 = &self.start.s;
         let tau = t - s0.t;
-        let (y0, dy0) = (s0.x, s0.v - self.start.vf);
+        let (z0, dy0) = (s0.x + self.string, s0.v - self.start.vf);
         let (sin_omega_tau, cos_omega_tau) = (self.omega * tau).sin_cos();
-        let (y_free, dy_free) = free_given(y0, dy0, self.omega, tau, sin_omega_tau, cos_omega_tau);
+        let (z_free, dy_free) = free_given(z0, dy0, self.omega, tau, sin_omega_tau, cos_omega_tau);
         if self.dir == 0.0 {
             let v = self.cart_velocity(self.p0, dy_free);
             let impulse = -setup.m_eff * (v - self.v1_start);
+            // Eq. (5) with the string friction beside the spring force: m_eff (k y + d F_c)/(M + m_eff).
             let gain = setup.m_eff * setup.k / self.cart;
+            let accel = -setup.k * z_free / self.cart;
             return Point {
                 state: FrameState {
                     s: State {
                         t,
                         vx: s0.vx - impulse / setup.m,
                         omega: s0.omega + impulse * setup.r / setup.inertia,
-                        x: y_free,
+                        x: z_free - self.string,
                         v,
                     },
                     vf: v - dy_free,
                 },
-                friction: gain * y_free,
+                friction: gain * z_free,
                 friction_rate: gain * dy_free,
-                accel: -setup.k * y_free / self.cart,
+                accel,
             };
         }
         let w = setup.w;
         let force_amplitude = self.dir * setup.peak_friction();
         let (sin_w_tau, cos_w_tau) = (w * tau).sin_cos();
-        let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
-        // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w, which is also what the cart
-        // and the frame together gain.
-        let impulse =
-            force_amplitude * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / w;
-        let (y, dy) = match self.amplitude {
+        // The ball's impulse is also what the cart and the frame together gain.
+        let (impulse, friction) = self.slide_impulse(setup, (sin_w_tau, cos_w_tau));
+        let (z, dy) = match self.amplitude {
             Some(amplitude) => {
                 let (g, dg) = detuned(
                     self.omega,
@@ -161,30 +241,30 @@ impl FrameMotion {
                     (sin_w_tau, cos_w_tau),
                     (sin_omega_tau, cos_omega_tau),
                 );
-                (y_free + amplitude * g, dy_free + amplitude * dg)
+                (z_free + amplitude * g, dy_free + amplitude * dg)
             }
             None => {
                 let (g, dg) = forced(self.omega, w, self.sin_wt0, self.cos_wt0, tau);
                 let drive = force_amplitude / self.cart;
-                (y_free + drive * g, dy_free + drive * dg)
+                (z_free + drive * g, dy_free + drive * dg)
             }
         };
         let v = self.cart_velocity(self.p0 + impulse, dy);
-        let friction = force_amplitude * sin_wt.max(0.0);
+        let accel = (friction - setup.k * z) / self.cart;
         Point {
             state: FrameState {
                 s: State {
                     t,
                     vx: s0.vx - impulse / setup.m,
                     omega: s0.omega + impulse * setup.r / setup.inertia,
-                    x: y,
+                    x: z - self.string,
                     v,
                 },
                 vf: v - dy,
             },
             friction,
             friction_rate: self.dir * setup.friction_limit_rate(t),
-            accel: (friction - setup.k * y) / self.cart,
+            accel,
         }
     }
 
@@ -192,16 +272,19 @@ impl FrameMotion {
     /// most by the drive's impulse per unit mass; away from resonance, also the free swing about the
     /// particular response A sin(w t) plus that response's speed |A| w, whichever is smaller.
     fn stretch_speed(&self, setup: &Setup) -> f64 {
+        if self.held {
+            return 0.0;
+        }
         let s0 = &self.start.s;
-        let dy0 = s0.v - self.start.vf;
-        let free = dy0.hypot(self.omega * s0.x);
+        let (z0, dy0) = (s0.x + self.string, s0.v - self.start.vf);
+        let free = dy0.hypot(self.omega * z0);
         if self.dir == 0.0 {
             return free;
         }
         let fed = free + setup.peak_friction() * (setup.duration - s0.t) / self.cart;
         self.amplitude.map_or(fed, |a| {
             let w = setup.w;
-            let swing = (dy0 - a * w * self.cos_wt0).hypot(self.omega * (s0.x - a * self.sin_wt0));
+            let swing = (dy0 - a * w * self.cos_wt0).hypot(self.omega * (z0 - a * self.sin_wt0));
             fed.min(swing + a.abs() * w)
         })
     }
@@ -270,14 +353,9 @@ pub struct FramedCart {
 }
 
 impl FramedCart {
-    /// The model for `params` on a frame of mass `frame` (kg), refused with string friction (not yet
-    /// solved on a free frame) and when the cart oscillates too fast to resolve.
+    /// The model for `params` on a frame of mass `frame` (kg), refused when the cart oscillates too fast
+    /// to resolve.
     pub fn new(params: &Params, setup: &Setup, frame: f64) -> Result<Self, SolveError> {
-        if setup.cart_friction > 0.0 {
-            return Err(SolveError::FreeFrame {
-                what: "string friction (--cart-friction)",
-            });
-        }
         let omega_slide = (setup.k * (1.0 / setup.cart_mass + 1.0 / frame)).sqrt();
         let omega_grip = (setup.k * (1.0 / (setup.cart_mass + setup.m_eff) + 1.0 / frame)).sqrt();
         let radians = omega_slide.max(omega_grip) * setup.duration;
@@ -311,9 +389,10 @@ impl Contact for FramedCart {
         } else {
             Ball::Slide(slip0.signum())
         };
-        let mode = transition::next(
+        let mode = transition::next_on(
             setup,
-            &touched(setup, &state.s),
+            &touched(setup, &state),
+            self.mass / (setup.cart_mass + self.mass),
             arriving,
             Cart::Moving(1),
             Cause::Start,
@@ -329,12 +408,12 @@ impl Contact for FramedCart {
         state.s
     }
 
-    fn motion(&self, setup: &Setup, state: &FrameState, (ball, _): Mode) -> FrameMotion {
+    fn motion(&self, setup: &Setup, state: &FrameState, (ball, cart): Mode) -> FrameMotion {
         let dir = match ball {
             Ball::Slide(dir) => dir,
             Ball::Grip => 0.0,
         };
-        FrameMotion::new(setup, self, *state, dir)
+        FrameMotion::new(setup, self, *state, dir, cart)
     }
 
     fn first_event(
@@ -342,7 +421,7 @@ impl Contact for FramedCart {
         setup: &Setup,
         motion: &FrameMotion,
         state: &FrameState,
-        _: Mode,
+        (_, cart): Mode,
         cause: Cause,
     ) -> Found<FrameState> {
         let (t0, end) = (state.s.t, setup.duration);
@@ -350,50 +429,150 @@ impl Contact for FramedCart {
         let peak = setup.peak_friction();
         let stretch_speed = motion.stretch_speed(setup);
         let last = Cell::new(*state);
-        let event = if motion.dir != 0.0 {
-            let dir = motion.dir;
-            // A slip that starts on its zero is measured from its start value.
-            let offset = if matches!(cause, Cause::SlipZero | Cause::GripBreak(_)) {
-                setup.slip(s)
-            } else {
-                0.0
-            };
-            let f = |t: f64| {
-                let p = motion.at(setup, t);
-                last.set(p.state);
-                let rate = -p.friction / setup.m_eff - p.accel;
-                [(-dir * (setup.slip(&p.state.s) - offset), -dir * rate)]
-            };
-            // slip'' = -F'/m_eff - V'', V'' = (F' - k y')/M.
-            let force_rate = peak * setup.w;
-            let curvature =
-                force_rate / setup.m_eff + (force_rate + setup.k * stretch_speed) / motion.cart;
-            let speeds = self.incoming
-                + s.vx.abs()
-                + setup.r * s.omega.abs()
-                + s.v.abs()
-                + state.vf.abs()
-                + stretch_speed;
-            let step = setup.event_step(motion.omega);
-            first_rise(f, t0, end, step, [curvature], [ROUNDING * speeds])
-                .map(|(t, _)| (t, Cause::SlipZero))
+        // Event functions that start on their own zero (the slip after a grip broke or the friction
+        // reversed, the stretch's rate after the cart stopped or came unstuck) are measured from their
+        // start value, so rounding can never fake a crossing at the start.
+        let slip_offset = if matches!(cause, Cause::SlipZero | Cause::GripBreak(_)) {
+            setup.slip(s)
         } else {
-            let f = |t: f64| {
-                let p = motion.at(setup, t);
-                last.set(p.state);
-                setup.grip_margins(t, p.friction, p.friction_rate)
-            };
-            // F_s'' = m_eff k y''/(M + m_eff), |y''| <= Ω_g sqrt(Ω_g² y0² + y0'²); mu N'' <= mu N0 w².
-            let gain = setup.m_eff * setup.k / motion.cart;
-            let curvature = gain * motion.omega * stretch_speed + peak * setup.w * setup.w;
-            let forces = peak + setup.k * s.x.abs();
-            let step = setup.event_step(motion.omega);
-            first_rise(f, t0, end, step, [curvature; 2], [ROUNDING * forces; 2]).map(
-                |(t, branch)| {
-                    let sign = if branch == 0 { 1.0 } else { -1.0 };
-                    (t, Cause::GripBreak(sign))
-                },
-            )
+            0.0
+        };
+        let dy_offset = if matches!(cause, Cause::Start | Cause::CartStop | Cause::Unstick(_)) {
+            s.v - state.vf
+        } else {
+            0.0
+        };
+        let speeds = self.incoming
+            + s.vx.abs()
+            + setup.r * s.omega.abs()
+            + s.v.abs()
+            + state.vf.abs()
+            + stretch_speed;
+        let forces = peak + setup.k * s.x.abs() + setup.cart_friction;
+        // Without string friction the cart's stopping changes nothing: a constant stands in for it,
+        // and the searches leave it out.
+        let string = setup.cart_friction > 0.0;
+        let stop = |p: &Point, cart_dir: f64| {
+            if string {
+                let dy = p.state.s.v - p.state.vf;
+                // y'' = V' less the frame's acceleration k z/M_t (the spring and the string
+                // friction on it).
+                let z = p.state.s.x + motion.string;
+                let stretch_accel = p.accel - setup.k * z / motion.frame;
+                (-cart_dir * (dy - dy_offset), -cart_dir * stretch_accel)
+            } else {
+                (-1.0, 0.0)
+            }
+        };
+        let event = match (motion.dir, cart) {
+            (dir, Cart::Moving(cart_dir)) if dir != 0.0 => {
+                let cart_dir = f64::from(cart_dir);
+                let f = |t: f64| {
+                    let p = motion.at(setup, t);
+                    last.set(p.state);
+                    let rate = -p.friction / setup.m_eff - p.accel;
+                    let slip = (-dir * (setup.slip(&p.state.s) - slip_offset), -dir * rate);
+                    [slip, stop(&p, cart_dir)]
+                };
+                // slip'' = -F'/m_eff - V'', V'' = (F' - k y')/M; y''' = F'/M - Ω² y'.
+                let force_rate = peak * setup.w;
+                let curvature =
+                    force_rate / setup.m_eff + (force_rate + setup.k * stretch_speed) / motion.cart;
+                let stop_curvature = if string {
+                    force_rate / motion.cart + motion.omega * motion.omega * stretch_speed
+                } else {
+                    0.0
+                };
+                let step = setup.event_step(motion.omega);
+                let noise = ROUNDING * speeds;
+                let found = if string {
+                    first_rise(f, t0, end, step, [curvature, stop_curvature], [noise; 2])
+                } else {
+                    // The stand-in costs a search branch: leave it out.
+                    first_rise(|t| [f(t)[0]], t0, end, step, [curvature], [noise])
+                };
+                found.map(|(t, branch)| {
+                    let cause = if branch == 0 {
+                        Cause::SlipZero
+                    } else {
+                        Cause::CartStop
+                    };
+                    (t, cause)
+                })
+            }
+            (_, Cart::Moving(cart_dir)) => {
+                let cart_dir = f64::from(cart_dir);
+                let f = |t: f64| {
+                    let p = motion.at(setup, t);
+                    last.set(p.state);
+                    let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
+                    [forward, backward, stop(&p, cart_dir)]
+                };
+                // F_s'' = m_eff k y''/(M + m_eff), |y''| = Ω_g² |z| <= Ω_g sqrt(Ω_g² z0² + y0'²);
+                // mu N'' <= mu N0 w²; y''' = -Ω_g² y'.
+                let gain = setup.m_eff * setup.k / motion.cart;
+                let curvature = gain * motion.omega * stretch_speed + peak * setup.w * setup.w;
+                let stop_curvature = if string {
+                    motion.omega * motion.omega * stretch_speed
+                } else {
+                    0.0
+                };
+                let step = setup.event_step(motion.omega);
+                let noise = [ROUNDING * forces, ROUNDING * forces, ROUNDING * speeds];
+                let curvatures = [curvature, curvature, stop_curvature];
+                let found = if string {
+                    first_rise(f, t0, end, step, curvatures, noise)
+                } else {
+                    let margins = |t| {
+                        let [forward, backward, _] = f(t);
+                        [forward, backward]
+                    };
+                    first_rise(margins, t0, end, step, [curvature; 2], [noise[0]; 2])
+                };
+                found.map(|(t, branch)| {
+                    let cause = match branch {
+                        0 => Cause::GripBreak(1.0),
+                        1 => Cause::GripBreak(-1.0),
+                        _ => Cause::CartStop,
+                    };
+                    (t, cause)
+                })
+            }
+            (dir, Cart::Stuck) if dir != 0.0 => {
+                // Held, the cart and the frame take F/(M + M_t) together; the string friction holds
+                // the cart with M_t F/(M + M_t) - k y.
+                let body = setup.cart_mass + self.mass;
+                let share = self.mass / body;
+                let f = |t: f64| {
+                    let p = motion.at(setup, t);
+                    last.set(p.state);
+                    let rate = -p.friction / setup.m_eff - p.accel;
+                    let slip = (-dir * (setup.slip(&p.state.s) - slip_offset), -dir * rate);
+                    let push = share * p.friction - setup.k * p.state.s.x;
+                    let push_rate = share * p.friction_rate;
+                    [
+                        slip,
+                        (push - setup.cart_friction, push_rate),
+                        (-push - setup.cart_friction, -push_rate),
+                    ]
+                };
+                let force_rate = peak * setup.w;
+                let slip_curvature = force_rate * (1.0 / setup.m_eff + 1.0 / body);
+                let push_curvature = share * force_rate * setup.w;
+                let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
+                let step = setup.event_step(0.0);
+                let curvature = [slip_curvature, push_curvature, push_curvature];
+                first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                    let cause = match branch {
+                        0 => Cause::SlipZero,
+                        1 => Cause::Unstick(1),
+                        _ => Cause::Unstick(-1),
+                    };
+                    (t, cause)
+                })
+            }
+            // A rolling ball on a held cart: ball, cart and frame coast until the ball leaves.
+            (_, Cart::Stuck) => None,
         };
         Found {
             event,
@@ -414,6 +593,7 @@ impl Contact for FramedCart {
         }
     }
 
+    /// The cart that stops relative to the frame joins it (its velocity set to the frame's).
     fn next(
         &self,
         setup: &Setup,
@@ -421,16 +601,21 @@ impl Contact for FramedCart {
         (ball, cart): Mode,
         cause: Cause,
     ) -> Mode {
-        transition::next(setup, &touched(setup, &state.s), ball, cart, cause)
+        if cause == Cause::CartStop {
+            state.s.v = state.vf;
+        }
+        let share = self.mass / (setup.cart_mass + self.mass);
+        transition::next_on(setup, &touched(setup, state), share, ball, cart, cause)
     }
 }
 
-/// The cart as the transition rules see it: its spring force is k y.
-fn touched(setup: &Setup, state: &State) -> Touched {
+/// The cart as the transition rules see it: its spring force is k y, and it is at rest when it moves
+/// with the frame.
+fn touched(setup: &Setup, state: &FrameState) -> Touched {
     Touched {
-        t: state.t,
+        t: state.s.t,
         mass: setup.cart_mass,
-        spring: setup.k * state.x,
-        v: state.v,
+        spring: setup.k * state.s.x,
+        v: state.s.v - state.vf,
     }
 }

@@ -1,0 +1,318 @@
+//! String-on-string friction on a free frame (issue 23): the friction F_c acts between the cart and the
+//! frame, holding the cart to the frame while it can. The exact solver against the independent
+//! integration, momentum along the surface (the friction is internal), the energy budget, the heavy
+//! frame against the clamped cart with string friction; and the integration itself (which also takes a
+//! compliant ball) against the exact clamped solvers and its own limits.
+
+use proptest::prelude::*;
+
+use crate::frame::{close, random_frame, step_for};
+use crate::support::frame_integrator::{FrameNumerical, integrate_frame};
+use crate::support::rng::Rng;
+use snapback::model::{Bounce, Cart, Params, PhaseKind, solve};
+
+/// A random frame with string friction from a light touch to one that holds the cart throughout.
+fn random_string_frame(rng: &mut Rng) -> Params {
+    let p = random_frame(rng);
+    Params {
+        cart_friction: rng.log_uniform(0.05, 200.0),
+        ..p
+    }
+}
+
+/// The exact bounce against the integration, to `tol` relative; the phases must match too.
+fn check_against(p: &Params, exact: &Bounce, reference: &FrameNumerical, tol: f64, what: &str) {
+    let o = &exact.outcome;
+    let summary = exact.phase_summary();
+    let speeds = p.speed;
+    let pairs = [
+        ("vx2", o.vx2, reference.vx2, speeds),
+        ("omega2", o.omega2, reference.omega2, speeds / p.radius),
+        ("V", exact.final_state.v, reference.v2, speeds),
+        ("V_f", exact.frame_velocity(), reference.vf2, speeds),
+        (
+            "y",
+            exact.final_state.x,
+            reference.stretch2,
+            speeds * p.duration,
+        ),
+    ];
+    for (name, a, b, scale) in pairs {
+        assert!(
+            close(a, b, tol, scale),
+            "{what}: {name} {a} vs {b} ({p:?}, {summary})"
+        );
+    }
+    assert_eq!(
+        exact.phases.len(),
+        reference.phases,
+        "{what}: {summary} ({p:?})"
+    );
+    let held = exact.phases.iter().any(|ph| ph.cart == Cart::Stuck);
+    assert_eq!(held, reference.held, "{what}: {summary}");
+}
+
+/// Whether a bounce's cart came unstuck from the frame and whether it stopped on it again.
+fn regimes(b: &Bounce) -> (bool, bool) {
+    let carts: Vec<Cart> = b.phases.iter().map(|ph| ph.cart).collect();
+    let unstuck = carts
+        .windows(2)
+        .any(|w| w[0] == Cart::Stuck && w[1] != Cart::Stuck);
+    let restuck = carts
+        .windows(2)
+        .any(|w| w[0] != Cart::Stuck && w[1] == Cart::Stuck);
+    (unstuck, restuck)
+}
+
+#[test]
+fn string_friction_on_a_free_frame_agrees_with_an_independent_integration() {
+    let mut rng = Rng(0x5791_f4a3_c0de_0023);
+    let (mut unstuck, mut restuck, mut held_throughout) = (0, 0, 0);
+    for case in 0..60 {
+        let p = random_string_frame(&mut rng);
+        let exact = solve(&p).expect("string friction on a free frame solves");
+        let reference = integrate_frame(&p, step_for(&p));
+        check_against(&p, &exact, &reference, 1e-9, &format!("case {case}"));
+        let (u, r) = regimes(&exact);
+        unstuck += usize::from(u);
+        restuck += usize::from(r);
+        held_throughout += usize::from(exact.phases.iter().all(|ph| ph.cart == Cart::Stuck));
+    }
+    assert!(
+        unstuck >= 10 && restuck >= 5 && held_throughout >= 2,
+        "regimes: {unstuck} came unstuck, {restuck} stuck again, {held_throughout} held throughout"
+    );
+}
+
+#[test]
+fn momentum_along_the_surface_is_conserved_with_string_friction() {
+    let mut rng = Rng(0x30e5_7a11_0023_0002);
+    for _ in 0..40 {
+        let p = random_string_frame(&mut rng);
+        let b = solve(&p).unwrap();
+        let total = |vx: f64, v: f64, vf: f64| p.mass * vx + p.cart_mass * v + p.frame_mass * vf;
+        let before = total(b.setup.vx1, 0.0, 0.0);
+        let scale = p.mass * p.speed;
+        for (index, phase) in b.phases.iter().enumerate() {
+            for t in [phase.start, 0.5 * (phase.start + phase.end), phase.end] {
+                let s = b.sample_in(index, t);
+                let vf = phase.motion().frame_velocity(&b.setup, t);
+                let now = total(s.vx, s.v, vf);
+                assert!(
+                    (now - before).abs() <= 1e-11 * scale,
+                    "{now} vs {before} at {t} ({p:?}, {})",
+                    b.phase_summary()
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn the_energy_budget_balances_with_string_friction_and_nothing_is_created() {
+    let mut rng = Rng(0xe4e5_9100_0023_0003);
+    let mut worked = 0;
+    for _ in 0..40 {
+        let p = random_string_frame(&mut rng);
+        let b = solve(&p).unwrap();
+        let e = b.energy();
+        assert!(e.residual.abs() < 1e-9, "{e:?} ({p:?})");
+        for loss in [e.friction_loss, e.normal_loss, e.cart_friction_loss] {
+            assert!(loss >= -1e-12 * e.initial, "{e:?}");
+        }
+        assert!(e.final_ball + e.final_cart + e.frame <= e.initial * (1.0 + 1e-12));
+        worked += usize::from(e.cart_friction_loss > 1e-6 * e.initial);
+    }
+    assert!(
+        worked >= 10,
+        "only {worked} bounces lost energy to string friction"
+    );
+}
+
+#[test]
+fn a_heavy_frame_approaches_the_clamped_cart_with_string_friction() {
+    let mut rng = Rng(0x4ea5_f4a3_0023_0004);
+    for _ in 0..20 {
+        let p = random_string_frame(&mut rng);
+        let heavy = Params {
+            frame_mass: 1e6,
+            frame_normal_mass: 0.0,
+            ..p
+        };
+        let clamped = Params {
+            frame_mass: 0.0,
+            frame_normal_mass: 0.0,
+            ..p
+        };
+        let (h, c) = (solve(&heavy).unwrap(), solve(&clamped).unwrap());
+        let what = format!("{} vs {} ({p:?})", h.phase_summary(), c.phase_summary());
+        assert!(close(h.outcome.vx2, c.outcome.vx2, 1e-5, p.speed), "{what}");
+        assert!(
+            close(h.outcome.omega2, c.outcome.omega2, 1e-5, p.speed / p.radius),
+            "{what}"
+        );
+        assert!(
+            close(h.final_state.v, c.final_state.v, 1e-5, p.speed),
+            "{what}"
+        );
+        assert!(h.frame_velocity().abs() < 1e-5 * p.speed);
+        let (eh, ec) = (h.energy(), c.energy());
+        assert!(
+            close(
+                eh.cart_friction_loss,
+                ec.cart_friction_loss,
+                1e-4,
+                1e-6 * ec.initial
+            ),
+            "{eh:?} vs {ec:?}"
+        );
+    }
+}
+
+/// The integration's step on a free or a clamped frame, for a compliant ball as well: small against
+/// its contact mode too.
+fn compliant_step(p: &Params) -> f64 {
+    let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+    let ball = (p.ball_stiffness / m_eff).sqrt();
+    let on_frame = if p.frame_mass > 0.0 {
+        step_for(p)
+    } else {
+        step_for(&Params {
+            frame_mass: 1e300,
+            ..*p
+        })
+    };
+    on_frame.min(0.002 / ball)
+}
+
+/// A moderately stiff compliant ball on a random frame (string friction in half the cases).
+fn random_compliant_frame(rng: &mut Rng) -> Params {
+    let p = random_frame(rng);
+    Params {
+        ball_stiffness: rng.log_uniform(1e4, 3e5),
+        ball_damping: if rng.unit() < 0.2 {
+            0.0
+        } else {
+            rng.uniform(0.05, 1.5)
+        },
+        cart_friction: if rng.unit() < 0.5 {
+            0.0
+        } else {
+            rng.log_uniform(0.05, 200.0)
+        },
+        ..p
+    }
+}
+
+#[test]
+fn the_integration_on_a_clamped_frame_is_the_exact_clamped_solvers() {
+    let mut rng = Rng(0xc1a4_bed0_0023_0005);
+    for case in 0..30 {
+        // The rigid ball with string friction, and the compliant ball with and without.
+        let rigid = Params {
+            frame_mass: 0.0,
+            frame_normal_mass: 0.0,
+            ..random_string_frame(&mut rng)
+        };
+        let compliant = Params {
+            frame_mass: 0.0,
+            frame_normal_mass: 0.0,
+            ..random_compliant_frame(&mut rng)
+        };
+        for p in [rigid, compliant] {
+            let exact = solve(&p).unwrap();
+            let reference = integrate_frame(&p, compliant_step(&p));
+            check_against(&p, &exact, &reference, 1e-8, &format!("case {case}"));
+            assert_eq!(reference.vf2, 0.0);
+        }
+    }
+}
+
+/// The compliant ball on a free frame, integrated, for `ball_stiffness`.
+fn compliant_on_frame(p: &Params, ball_stiffness: f64) -> FrameNumerical {
+    let p = Params {
+        ball_stiffness,
+        ball_damping: 1.0,
+        ..*p
+    };
+    integrate_frame(&p, compliant_step(&p))
+}
+
+#[test]
+fn a_stiff_compliant_ball_on_a_free_frame_approaches_the_rigid_one() {
+    let mut rng = Rng(0x57f1_ff00_0023_0006);
+    let mut checked = 0;
+    while checked < 8 {
+        let p = Params {
+            duration: 5e-3,
+            ..random_string_frame(&mut rng)
+        };
+        let rigid = solve(&p).unwrap();
+        // A ball that slides throughout feels mu N whatever its compliance: only grips tell.
+        if rigid.phases.iter().all(|ph| ph.kind != PhaseKind::Grip) {
+            continue;
+        }
+        // The ball's spring takes up the slip within about sqrt(m_eff/k_b): the difference from the
+        // rigid ball shrinks with it.
+        let errors = [1e7, 1e9].map(|kb| {
+            let c = compliant_on_frame(&p, kb);
+            let speeds = p.speed;
+            [
+                (c.vx2 - rigid.outcome.vx2).abs() / speeds,
+                (c.omega2 - rigid.outcome.omega2).abs() * p.radius / speeds,
+                (c.vf2 - rigid.frame_velocity()).abs() / speeds,
+            ]
+            .into_iter()
+            .fold(0.0, f64::max)
+        });
+        assert!(
+            errors[1] < 2e-3,
+            "{errors:?} ({p:?}, {})",
+            rigid.phase_summary()
+        );
+        assert!(errors[1] < 0.5 * errors[0], "{errors:?} ({p:?})");
+        checked += 1;
+    }
+}
+
+#[test]
+fn the_compliant_ball_on_a_heavy_frame_approaches_the_clamped_compliant_solver() {
+    let mut rng = Rng(0xbea4_f4a3_0023_0007);
+    for _ in 0..12 {
+        let p = random_compliant_frame(&mut rng);
+        let clamped = solve(&Params {
+            frame_mass: 0.0,
+            frame_normal_mass: 0.0,
+            ..p
+        })
+        .unwrap();
+        let heavy = Params {
+            frame_mass: 1e6,
+            frame_normal_mass: 0.0,
+            ..p
+        };
+        let reference = integrate_frame(&heavy, compliant_step(&heavy));
+        let what = format!("{} ({p:?})", clamped.phase_summary());
+        let o = &clamped.outcome;
+        assert!(close(o.vx2, reference.vx2, 1e-5, p.speed), "{what}");
+        assert!(
+            close(o.omega2, reference.omega2, 1e-5, p.speed / p.radius),
+            "{what}"
+        );
+        assert!(reference.vf2.abs() < 1e-5 * p.speed, "{what}");
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn random_string_frames_agree_with_the_integration(seed in any::<u64>()) {
+        let mut rng = Rng(seed | 1);
+        let p = random_string_frame(&mut rng);
+        let exact = solve(&p).unwrap();
+        let reference = integrate_frame(&p, step_for(&p));
+        check_against(&p, &exact, &reference, 1e-9, "proptest");
+        prop_assert!(exact.energy().residual.abs() < 1e-9);
+    }
+}
