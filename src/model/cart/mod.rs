@@ -195,15 +195,15 @@ impl Contact for SingleCart {
         };
         let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
         let forces = setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
-        // The state at the last time an event function was evaluated.
-        let last = Cell::new(*state);
+        // The states at the last few times an event function was evaluated.
+        let last = Recent::new(*state);
         let event = match (motion, cart) {
             (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
                 let cart_dir = f64::from(cart_dir);
                 let string = setup.cart_friction > 0.0;
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(setup, t);
-                    last.set(s);
+                    last.record(s);
                     let slip = slide.slip_event(setup, &s, friction, slip_offset);
                     // Without string friction the cart's stopping changes nothing.
                     let stop = if string {
@@ -235,7 +235,7 @@ impl Contact for SingleCart {
             (CartMotion::Slide(slide), Cart::Stuck) => {
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(setup, t);
-                    last.set(s);
+                    last.record(s);
                     let slip = slide.slip_event(setup, &s, friction, slip_offset);
                     let push = friction - setup.k * s.x;
                     let push_rate = slide.dir * setup.friction_limit_rate(t);
@@ -263,7 +263,7 @@ impl Contact for SingleCart {
                 let string = setup.cart_friction > 0.0;
                 let f = |t: f64| {
                     let (s, [forward, backward]) = grip.evaluate(setup, t);
-                    last.set(s);
+                    last.record(s);
                     let stop = if string {
                         (
                             -cart_dir * (s.v - v_offset),
@@ -292,9 +292,12 @@ impl Contact for SingleCart {
             // Rolling on a still cart: nothing changes until the ball leaves.
             (CartMotion::Grip(_), Cart::Stuck) => None,
         };
+        // The search's last evaluations usually hold the state at the event (the crossing Newton
+        // found, before the evaluations that proved nothing rose earlier) or at the end of contact.
+        let last = last.at(event.map_or(end, |(t, _)| t));
         Found {
             event,
-            last: Some(last.get()),
+            last: Some(last),
         }
     }
 
@@ -311,6 +314,41 @@ impl Contact for SingleCart {
             state.v = 0.0;
         }
         transition::next(setup, &touched(setup, state), ball, cart, cause)
+    }
+}
+
+/// The states at the last [`Recent::SLOTS`] evaluations of a phase's event functions.
+struct Recent {
+    slots: [Cell<State>; Recent::SLOTS],
+    next: Cell<usize>,
+}
+
+impl Recent {
+    const SLOTS: usize = 4;
+
+    /// Every slot holds `start` until evaluations replace it.
+    fn new(start: State) -> Self {
+        Recent {
+            slots: std::array::from_fn(|_| Cell::new(start)),
+            next: Cell::new(0),
+        }
+    }
+
+    #[inline]
+    fn record(&self, s: State) {
+        let next = self.next.get();
+        self.slots[next % Self::SLOTS].set(s);
+        self.next.set(next.wrapping_add(1));
+    }
+
+    /// The latest state recorded at `t`, or else the latest recorded.
+    fn at(&self, t: f64) -> State {
+        let next = self.next.get();
+        let latest = |back: usize| self.slots[next.wrapping_sub(back) % Self::SLOTS].get();
+        (1..=Self::SLOTS)
+            .map(latest)
+            .find(|s| s.t == t)
+            .unwrap_or_else(|| latest(1))
     }
 }
 
