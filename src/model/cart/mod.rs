@@ -199,38 +199,42 @@ impl Contact for SingleCart {
         let last = Recent::new(*state);
         let event = match (motion, cart) {
             (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
-                let cart_dir = f64::from(cart_dir);
-                let string = setup.cart_friction > 0.0;
-                let f = |t: f64| {
-                    let (s, friction) = slide.evaluate(setup, t);
-                    last.record(s);
-                    let slip = slide.slip_event(setup, &s, friction, slip_offset);
-                    // Without string friction the cart's stopping changes nothing.
-                    let stop = if string {
-                        (
+                let (slip_curvature, cart_curvature) = slide.curvature(setup);
+                let slip_noise = ROUNDING * speeds;
+                let step = setup.event_step(setup.omega_slide);
+                if setup.cart_friction > 0.0 {
+                    let cart_dir = f64::from(cart_dir);
+                    let f = |t: f64| {
+                        let (s, friction) = slide.evaluate(setup, t);
+                        last.record(s);
+                        let slip = slide.slip_event(setup, &s, friction, slip_offset);
+                        let stop = (
                             -cart_dir * (s.v - v_offset),
                             -cart_dir * slide.cart_acceleration(setup, &s, friction),
-                        )
-                    } else {
-                        (-1.0, 0.0)
+                        );
+                        [slip, stop]
                     };
-                    [slip, stop]
-                };
-                let (slip_curvature, cart_curvature) = slide.curvature(setup);
-                // The stand-in for a cart that cannot stick is a constant: no curvature.
-                let cart_curvature = if string { cart_curvature } else { 0.0 };
-                let noise = [ROUNDING * speeds, ROUNDING * slide.cart_speed_scale(setup)];
-                let step = setup.event_step(setup.omega_slide);
-                first_rise(f, t0, end, step, [slip_curvature, cart_curvature], noise).map(
-                    |(t, branch)| {
+                    let noise = [slip_noise, ROUNDING * slide.cart_speed_scale(setup)];
+                    let curvature = [slip_curvature, cart_curvature];
+                    first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
                         let cause = if branch == 0 {
                             Cause::SlipZero
                         } else {
                             Cause::CartStop
                         };
                         (t, cause)
-                    },
-                )
+                    })
+                } else {
+                    // Without string friction the cart's stopping changes nothing: the slip alone is
+                    // watched.
+                    let f = |t: f64| {
+                        let (s, friction) = slide.evaluate(setup, t);
+                        last.record(s);
+                        [slide.slip_event(setup, &s, friction, slip_offset)]
+                    };
+                    first_rise(f, t0, end, step, [slip_curvature], [slip_noise])
+                        .map(|(t, _)| (t, Cause::SlipZero))
+                }
             }
             (CartMotion::Slide(slide), Cart::Stuck) => {
                 let f = |t: f64| {
@@ -259,35 +263,43 @@ impl Contact for SingleCart {
                 })
             }
             (CartMotion::Grip(grip), Cart::Moving(cart_dir)) => {
-                let cart_dir = f64::from(cart_dir);
-                let string = setup.cart_friction > 0.0;
-                let f = |t: f64| {
-                    let (s, [forward, backward]) = grip.evaluate(setup, t);
-                    last.record(s);
-                    let stop = if string {
-                        (
+                let (margin_curvature, cart_curvature) = grip.curvature(setup);
+                let margin_noise = ROUNDING * forces;
+                let step = setup.event_step(setup.omega_grip);
+                let broke = |branch: usize| Cause::GripBreak(if branch == 0 { 1.0 } else { -1.0 });
+                if setup.cart_friction > 0.0 {
+                    let cart_dir = f64::from(cart_dir);
+                    let f = |t: f64| {
+                        let (s, [forward, backward]) = grip.evaluate(setup, t);
+                        last.record(s);
+                        let stop = (
                             -cart_dir * (s.v - v_offset),
                             -cart_dir * grip.cart_acceleration(setup, &s),
-                        )
-                    } else {
-                        (-1.0, 0.0)
+                        );
+                        [forward, backward, stop]
                     };
-                    [forward, backward, stop]
-                };
-                let (margin_curvature, cart_curvature) = grip.curvature(setup);
-                let cart_curvature = if string { cart_curvature } else { 0.0 };
-                let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
-                let noise = [ROUNDING * forces, ROUNDING * forces, cart_noise];
-                let step = setup.event_step(setup.omega_grip);
-                let curvature = [margin_curvature, margin_curvature, cart_curvature];
-                first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
-                    let cause = match branch {
-                        0 => Cause::GripBreak(1.0),
-                        1 => Cause::GripBreak(-1.0),
-                        _ => Cause::CartStop,
+                    let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
+                    let noise = [margin_noise, margin_noise, cart_noise];
+                    let curvature = [margin_curvature, margin_curvature, cart_curvature];
+                    first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                        let cause = if branch == 2 {
+                            Cause::CartStop
+                        } else {
+                            broke(branch)
+                        };
+                        (t, cause)
+                    })
+                } else {
+                    // Without string friction only the margins are watched.
+                    let f = |t: f64| {
+                        let (s, margins) = grip.evaluate(setup, t);
+                        last.record(s);
+                        margins
                     };
-                    (t, cause)
-                })
+                    let curvature = [margin_curvature; 2];
+                    first_rise(f, t0, end, step, curvature, [margin_noise; 2])
+                        .map(|(t, branch)| (t, broke(branch)))
+                }
             }
             // Rolling on a still cart: nothing changes until the ball leaves.
             (CartMotion::Grip(_), Cart::Stuck) => None,
