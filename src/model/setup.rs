@@ -128,10 +128,6 @@ impl Setup {
     /// friction it drives, mu N0 sin(w t), and take its amplitude from [`Setup::peak_friction`].
     #[inline]
     pub fn normal(&self, t: f64) -> f64 {
-        // First contact (t = +0, where sin gives +0) is the first transition of every bounce.
-        if t.to_bits() == 0 {
-            return self.n0 * 0.0;
-        }
         if (0.0..=self.duration).contains(&t) {
             self.n0 * sin(self.w * t)
         } else {
