@@ -116,7 +116,7 @@ fn write_with_bands(
 ) -> Result<(), WriteError> {
     let rows = sweep::sweep_with(base, span, steps, options)?;
     let column = span.column();
-    let mut digits = ryu::Buffer::new();
+    let mut digits = zmij::Buffer::new();
     for (i, row) in rows.iter().enumerate() {
         let mut at = *base;
         at.set(span.spec.id, row.value);

@@ -72,7 +72,7 @@ pub fn next_on(
         std::slice::from_ref(&cart)
     };
     let at = At {
-        limit: setup.mu * setup.normal(touched.t),
+        limit: setup.mu * normal(setup, touched.t),
         mass: touched.mass,
         spring: touched.spring,
         share,
@@ -92,6 +92,17 @@ pub fn next_on(
         }
     }
     (best.1, best.2)
+}
+
+/// N(t); at first contact (t = +0), the first transition of every bounce, N0 x +0 without the series
+/// (sin(+0) is +0, so the same bits).
+#[inline]
+fn normal(setup: &Setup, t: f64) -> f64 {
+    if t.to_bits() == 0 {
+        setup.n0 * 0.0
+    } else {
+        setup.normal(t)
+    }
 }
 
 /// The forces at a transition: mu N, the touched mass and the spring force on it, the part of the

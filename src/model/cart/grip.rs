@@ -45,7 +45,13 @@ impl Grip {
     #[inline]
     pub fn evaluate(&self, setup: &Setup, t: f64) -> (State, [(f64, f64); 2]) {
         let (omega, tau) = (setup.omega_grip, t - self.start.t);
-        let (cart, normal) = sin_cos2(omega * tau, setup.w * t);
+        // At the phase's start, where the event search begins, the cart's angle is 0 (sin_cos2 gives
+        // exactly (0, 1) there, and its other lane is sin_cos's).
+        let (cart, normal) = if tau == 0.0 {
+            ((0.0, 1.0), sin_cos(setup.w * t))
+        } else {
+            sin_cos2(omega * tau, setup.w * t)
+        };
         let s = self.at_given(setup, t, cart);
         let margins = setup.grip_margins_given(
             normal,

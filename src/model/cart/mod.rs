@@ -195,47 +195,51 @@ impl Contact for SingleCart {
         };
         let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
         let forces = setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
-        // The state at the last time an event function was evaluated.
-        let last = Cell::new(*state);
+        // The states at the last few times an event function was evaluated.
+        let last = Recent::new(*state);
         let event = match (motion, cart) {
             (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
-                let cart_dir = f64::from(cart_dir);
-                let string = setup.cart_friction > 0.0;
-                let f = |t: f64| {
-                    let (s, friction) = slide.evaluate(setup, t);
-                    last.set(s);
-                    let slip = slide.slip_event(setup, &s, friction, slip_offset);
-                    // Without string friction the cart's stopping changes nothing.
-                    let stop = if string {
-                        (
+                let (slip_curvature, cart_curvature) = slide.curvature(setup);
+                let slip_noise = ROUNDING * speeds;
+                let step = setup.event_step(setup.omega_slide);
+                if setup.cart_friction > 0.0 {
+                    let cart_dir = f64::from(cart_dir);
+                    let f = |t: f64| {
+                        let (s, friction) = slide.evaluate(setup, t);
+                        last.record(s);
+                        let slip = slide.slip_event(setup, &s, friction, slip_offset);
+                        let stop = (
                             -cart_dir * (s.v - v_offset),
                             -cart_dir * slide.cart_acceleration(setup, &s, friction),
-                        )
-                    } else {
-                        (-1.0, 0.0)
+                        );
+                        [slip, stop]
                     };
-                    [slip, stop]
-                };
-                let (slip_curvature, cart_curvature) = slide.curvature(setup);
-                // The stand-in for a cart that cannot stick is a constant: no curvature.
-                let cart_curvature = if string { cart_curvature } else { 0.0 };
-                let noise = [ROUNDING * speeds, ROUNDING * slide.cart_speed_scale(setup)];
-                let step = setup.event_step(setup.omega_slide);
-                first_rise(f, t0, end, step, [slip_curvature, cart_curvature], noise).map(
-                    |(t, branch)| {
+                    let noise = [slip_noise, ROUNDING * slide.cart_speed_scale(setup)];
+                    let curvature = [slip_curvature, cart_curvature];
+                    first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
                         let cause = if branch == 0 {
                             Cause::SlipZero
                         } else {
                             Cause::CartStop
                         };
                         (t, cause)
-                    },
-                )
+                    })
+                } else {
+                    // Without string friction the cart's stopping changes nothing: the slip alone is
+                    // watched.
+                    let f = |t: f64| {
+                        let (s, friction) = slide.evaluate(setup, t);
+                        last.record(s);
+                        [slide.slip_event(setup, &s, friction, slip_offset)]
+                    };
+                    first_rise(f, t0, end, step, [slip_curvature], [slip_noise])
+                        .map(|(t, _)| (t, Cause::SlipZero))
+                }
             }
             (CartMotion::Slide(slide), Cart::Stuck) => {
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(setup, t);
-                    last.set(s);
+                    last.record(s);
                     let slip = slide.slip_event(setup, &s, friction, slip_offset);
                     let push = friction - setup.k * s.x;
                     let push_rate = slide.dir * setup.friction_limit_rate(t);
@@ -259,42 +263,53 @@ impl Contact for SingleCart {
                 })
             }
             (CartMotion::Grip(grip), Cart::Moving(cart_dir)) => {
-                let cart_dir = f64::from(cart_dir);
-                let string = setup.cart_friction > 0.0;
-                let f = |t: f64| {
-                    let (s, [forward, backward]) = grip.evaluate(setup, t);
-                    last.set(s);
-                    let stop = if string {
-                        (
+                let (margin_curvature, cart_curvature) = grip.curvature(setup);
+                let margin_noise = ROUNDING * forces;
+                let step = setup.event_step(setup.omega_grip);
+                let broke = |branch: usize| Cause::GripBreak(if branch == 0 { 1.0 } else { -1.0 });
+                if setup.cart_friction > 0.0 {
+                    let cart_dir = f64::from(cart_dir);
+                    let f = |t: f64| {
+                        let (s, [forward, backward]) = grip.evaluate(setup, t);
+                        last.record(s);
+                        let stop = (
                             -cart_dir * (s.v - v_offset),
                             -cart_dir * grip.cart_acceleration(setup, &s),
-                        )
-                    } else {
-                        (-1.0, 0.0)
+                        );
+                        [forward, backward, stop]
                     };
-                    [forward, backward, stop]
-                };
-                let (margin_curvature, cart_curvature) = grip.curvature(setup);
-                let cart_curvature = if string { cart_curvature } else { 0.0 };
-                let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
-                let noise = [ROUNDING * forces, ROUNDING * forces, cart_noise];
-                let step = setup.event_step(setup.omega_grip);
-                let curvature = [margin_curvature, margin_curvature, cart_curvature];
-                first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
-                    let cause = match branch {
-                        0 => Cause::GripBreak(1.0),
-                        1 => Cause::GripBreak(-1.0),
-                        _ => Cause::CartStop,
+                    let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
+                    let noise = [margin_noise, margin_noise, cart_noise];
+                    let curvature = [margin_curvature, margin_curvature, cart_curvature];
+                    first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                        let cause = if branch == 2 {
+                            Cause::CartStop
+                        } else {
+                            broke(branch)
+                        };
+                        (t, cause)
+                    })
+                } else {
+                    // Without string friction only the margins are watched.
+                    let f = |t: f64| {
+                        let (s, margins) = grip.evaluate(setup, t);
+                        last.record(s);
+                        margins
                     };
-                    (t, cause)
-                })
+                    let curvature = [margin_curvature; 2];
+                    first_rise(f, t0, end, step, curvature, [margin_noise; 2])
+                        .map(|(t, branch)| (t, broke(branch)))
+                }
             }
             // Rolling on a still cart: nothing changes until the ball leaves.
             (CartMotion::Grip(_), Cart::Stuck) => None,
         };
+        // The search's last evaluations usually hold the state at the event (the crossing Newton
+        // found, before the evaluations that proved nothing rose earlier) or at the end of contact.
+        let last = last.at(event.map_or(end, |(t, _)| t));
         Found {
             event,
-            last: Some(last.get()),
+            last: Some(last),
         }
     }
 
@@ -311,6 +326,41 @@ impl Contact for SingleCart {
             state.v = 0.0;
         }
         transition::next(setup, &touched(setup, state), ball, cart, cause)
+    }
+}
+
+/// The states at the last [`Recent::SLOTS`] evaluations of a phase's event functions.
+struct Recent {
+    slots: [Cell<State>; Recent::SLOTS],
+    next: Cell<usize>,
+}
+
+impl Recent {
+    const SLOTS: usize = 4;
+
+    /// Every slot holds `start` until evaluations replace it.
+    fn new(start: State) -> Self {
+        Recent {
+            slots: std::array::from_fn(|_| Cell::new(start)),
+            next: Cell::new(0),
+        }
+    }
+
+    #[inline]
+    fn record(&self, s: State) {
+        let next = self.next.get();
+        self.slots[next % Self::SLOTS].set(s);
+        self.next.set(next.wrapping_add(1));
+    }
+
+    /// The latest state recorded at `t`, or else the latest recorded.
+    fn at(&self, t: f64) -> State {
+        let next = self.next.get();
+        let latest = |back: usize| self.slots[next.wrapping_sub(back) % Self::SLOTS].get();
+        (1..=Self::SLOTS)
+            .map(latest)
+            .find(|s| s.t == t)
+            .unwrap_or_else(|| latest(1))
     }
 }
 

@@ -36,7 +36,12 @@ const DETUNED_GAIN: f64 = 16.0;
 
 impl Slide {
     pub fn new(setup: &Setup, start: State, dir: f64, cart: Cart) -> Self {
-        let (sin_wt0, cos_wt0) = sin_cos(setup.w * start.t);
+        // The first slide starts at t = 0, where sin_cos gives exactly (0, 1).
+        let (sin_wt0, cos_wt0) = if start.t == 0.0 {
+            (0.0, 1.0)
+        } else {
+            sin_cos(setup.w * start.t)
+        };
         let (w, omega) = (setup.w, setup.omega_slide);
         let amplitude = dir * setup.peak_friction() / (setup.cart_mass * (omega * omega - w * w));
         let speeds = start.vx.abs() + setup.r * start.omega.abs() + start.v.abs();
@@ -78,8 +83,14 @@ impl Slide {
         let tau = t - s0.t;
         let (w, omega) = (setup.w, setup.omega_slide);
         let force_amplitude = self.dir * setup.peak_friction();
-        // The normal force's angle and the cart's together (the cart's is wasted when it is stuck).
-        let ((sin_w_tau, cos_w_tau), (s, c)) = sin_cos2(w * tau, omega * tau);
+        // The normal force's angle and the cart's together (the cart's is wasted when it is stuck);
+        // both are 0 at the start of the phase, where the event search begins (sin_cos2 gives
+        // exactly (0, 1) there).
+        let ((sin_w_tau, cos_w_tau), (s, c)) = if tau == 0.0 {
+            ((0.0, 1.0), (0.0, 1.0))
+        } else {
+            sin_cos2(w * tau, omega * tau)
+        };
         let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
         // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
         let impulse =
