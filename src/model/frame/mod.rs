@@ -15,7 +15,6 @@
 //!   y'' + Ω_g² y = 0 with Ω_g² = k (1/(M + m_eff) + 1/M_t), P constant, and the static friction is
 //!   F_s = -m_eff x1'' = m_eff k y/(M + m_eff) (Eq. (5) with y for X).
 //!
-//!
 //! String friction F_c (Sec. IV's enhancement) acts between the cart and the frame its strings cross:
 //! -d F_c on the cart and +d F_c on the frame while the cart moves relative to the frame in direction d.
 //! It is internal, so P is as above, and it only shifts the stretch's centre: with
