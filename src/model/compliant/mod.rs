@@ -30,6 +30,15 @@
 //!   gripping a held one, the stretch rings down on a still surface while the masses behind swing
 //!   ([`HeldChainGrip`]). The events and rules are the single cart's, the first mass in the cart's place
 //!   and its link spring N k (X_1 - X_2) in place of k X.
+//! - String friction on the single cart tied to a free frame (issue 23): it acts between the cart and
+//!   the frame, -d F_c on the cart and +d F_c on the frame while the cart moves relative to the frame in
+//!   direction d. Moving, the pair is internal: each of the framed chain's modes (one mass and the
+//!   frame) is pushed by (Φ_1j - Φ_fj)(-d F_c), the translation by nothing, sliding as a step forcing
+//!   and gripping through Duhamel's integral ([`ChainGrip`]), and the phase also ends when V - V_f
+//!   reaches zero. Held, the cart and the frame are one free body of mass M + M_t ([`HeldOnFrame`]),
+//!   and the phase also ends when the push the string friction holds, M_t F/(M + M_t) - k y, reaches
+//!   ±F_c; a stopping cart is held or pushed on by that push ([`transition::at_rest`]). On a chain or
+//!   without a spring it is refused (`SolveError::FreeFrame`).
 //!
 //! Chatter: an undamped stiff ball may switch many times; every phase advances time and the solver stops
 //! after [`super::error::MAX_TRANSITIONS`] with `SolveError::TooManyPhases`.
