@@ -241,9 +241,20 @@ fn what_a_free_frame_does_not_solve_yet_is_refused_by_name() {
                 frame_mass: 0.3,
                 cart_friction: 5.0,
                 ball_stiffness: 1e5,
+                chain: 3.0,
                 ..Params::default()
             },
-            "--cart-friction",
+            "string friction (--cart-friction) on a chain",
+        ),
+        (
+            Params {
+                frame_mass: 0.3,
+                cart_friction: 5.0,
+                ball_stiffness: 1e5,
+                stiffness: 0.0,
+                ..Params::default()
+            },
+            "--stiffness 0",
         ),
     ] {
         let err = solve(&params).unwrap_err();

@@ -316,3 +316,172 @@ proptest! {
         prop_assert!(exact.energy().residual.abs() < 1e-9);
     }
 }
+
+/// A moderately stiff compliant ball with string friction on a random free frame.
+fn random_compliant_string_frame(rng: &mut Rng) -> Params {
+    let p = random_compliant_frame(rng);
+    Params {
+        cart_friction: rng.log_uniform(0.05, 200.0),
+        ..p
+    }
+}
+
+/// The exact compliant ball against the integration: the outcome as [`check_against`] (without the
+/// phase count: the integration may split a phase at a located touch), the ball's stretch, momentum
+/// along the surface, and an energy budget that closes and creates nothing.
+fn check_compliant(p: &Params, exact: &Bounce, reference: &FrameNumerical, tol: f64, what: &str) {
+    let o = &exact.outcome;
+    let summary = exact.phase_summary();
+    let speeds = p.speed;
+    let pairs = [
+        ("vx2", o.vx2, reference.vx2, speeds),
+        ("omega2", o.omega2, reference.omega2, speeds / p.radius),
+        ("V", exact.final_state.v, reference.v2, speeds),
+        ("V_f", exact.frame_velocity(), reference.vf2, speeds),
+        (
+            "y",
+            exact.final_state.x,
+            reference.stretch2,
+            speeds * p.duration,
+        ),
+    ];
+    for (name, a, b, scale) in pairs {
+        assert!(
+            close(a, b, tol, scale),
+            "{what}: {name} {a} vs {b} ({p:?}, {summary})"
+        );
+    }
+    let held = exact.phases.iter().any(|ph| ph.cart == Cart::Stuck);
+    assert_eq!(held, reference.held, "{what}: {summary}");
+    // m v_x + M V + M_t V_f: the string friction and the spring are internal.
+    let vx1 = p.speed * (90.0 - p.angle_deg).to_radians().sin();
+    let before = p.mass * vx1;
+    let after =
+        p.mass * o.vx2 + p.cart_mass * exact.final_state.v + p.frame_mass * exact.frame_velocity();
+    assert!(
+        (after - before).abs() <= 1e-9 * p.mass * speeds,
+        "{what}: momentum {before} -> {after} ({summary})"
+    );
+    let e = exact.energy();
+    assert!(e.residual.abs() < 1e-8, "{what}: {e:?} ({summary})");
+    assert!(
+        e.cart_friction_loss >= 0.0 && e.dashpot_loss >= 0.0,
+        "{e:?}"
+    );
+}
+
+#[test]
+fn a_compliant_ball_with_string_friction_on_a_free_frame_agrees_with_the_integration() {
+    let mut rng = Rng(0xc0ff_5791_0023_0008);
+    let (mut held, mut moved, mut both) = (0, 0, 0);
+    for case in 0..60 {
+        let p = random_compliant_string_frame(&mut rng);
+        let exact =
+            solve(&p).expect("a compliant ball with string friction on a free frame solves");
+        let reference = integrate_frame(&p, compliant_step(&p));
+        check_compliant(&p, &exact, &reference, 1e-9, &format!("case {case}"));
+        let stuck = exact
+            .phases
+            .iter()
+            .filter(|ph| ph.cart == Cart::Stuck)
+            .count();
+        held += usize::from(stuck > 0);
+        moved += usize::from(stuck < exact.phases.len());
+        both += usize::from(stuck > 0 && stuck < exact.phases.len());
+    }
+    // Every regime is exercised: held, moving, and a cart that changes between them.
+    assert!(
+        held >= 5 && moved >= 5 && both >= 3,
+        "{held} {moved} {both}"
+    );
+}
+
+#[test]
+fn a_compliant_ball_with_string_friction_on_a_heavy_frame_approaches_the_clamped_one() {
+    let mut rng = Rng(0xbea4_c0ff_0023_0009);
+    for _ in 0..12 {
+        let p = random_compliant_string_frame(&mut rng);
+        let clamped = solve(&Params {
+            frame_mass: 0.0,
+            frame_normal_mass: 0.0,
+            ..p
+        })
+        .unwrap();
+        let heavy = solve(&Params {
+            frame_mass: 1e6,
+            frame_normal_mass: 0.0,
+            ..p
+        })
+        .unwrap();
+        let what = format!(
+            "{} vs {} ({p:?})",
+            heavy.phase_summary(),
+            clamped.phase_summary()
+        );
+        let (h, c) = (&heavy.outcome, &clamped.outcome);
+        assert!(close(h.vx2, c.vx2, 1e-5, p.speed), "{what}");
+        assert!(
+            close(h.omega2, c.omega2, 1e-5, p.speed / p.radius),
+            "{what}"
+        );
+        assert!(
+            close(heavy.final_state.v, clamped.final_state.v, 1e-5, p.speed),
+            "{what}"
+        );
+        assert!(heavy.frame_velocity().abs() < 1e-5 * p.speed, "{what}");
+        let (eh, ec) = (heavy.energy(), clamped.energy());
+        assert!(
+            close(
+                eh.cart_friction_loss,
+                ec.cart_friction_loss,
+                1e-4,
+                1e-6 * ec.initial
+            ),
+            "{eh:?} vs {ec:?}"
+        );
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(64))]
+
+    #[test]
+    fn random_compliant_string_frames_agree_with_the_integration(seed in any::<u64>()) {
+        let mut rng = Rng(seed | 1);
+        let p = random_compliant_string_frame(&mut rng);
+        let exact = solve(&p).unwrap();
+        let reference = integrate_frame(&p, compliant_step(&p));
+        check_compliant(&p, &exact, &reference, 1e-9, "proptest");
+    }
+}
+
+/// The lab's question: the string presets (a compliant ball with string friction on the single cart) on
+/// the racquet's frame (M_t 188.09 g, M_n 181.15 g) solve, agree with the integration, and keep less
+/// spin than on the clamped frame at the same normal impulse.
+#[test]
+fn the_string_presets_on_the_racquets_frame_agree_with_the_integration() {
+    for name in ["polyester-strings", "gut-strings", "nylon-strings"] {
+        let clamped = snapback::config::preset(name)
+            .unwrap()
+            .apply(Params::default());
+        let p = Params {
+            frame_mass: 0.18809,
+            frame_normal_mass: 0.18115,
+            ..clamped
+        };
+        let exact = solve(&p).expect("a string preset on the racquet's frame solves");
+        let reference = integrate_frame(&p, compliant_step(&p));
+        check_compliant(&p, &exact, &reference, 1e-9, name);
+        let normal_only = solve(&Params {
+            frame_mass: 0.0,
+            ..p
+        })
+        .unwrap();
+        assert!(
+            exact.outcome.omega2 < normal_only.outcome.omega2,
+            "{name}: {} vs {}",
+            exact.outcome.omega2,
+            normal_only.outcome.omega2
+        );
+    }
+}

@@ -93,16 +93,29 @@ impl Chain {
         }
     }
 
-    /// Refuses on a free frame what is not solved there yet: string friction, and the longest chain (its
-    /// modes and the frame's would exceed [`MAX`]).
-    pub fn solvable_on_frame(params: &Params, setup: &Setup) -> Result<(), SolveError> {
+    /// Refuses on a free frame what is not solved there yet: string friction on a chain, or without a
+    /// spring, or (`compliant` false) under the rigid ball here (the single cart's is
+    /// [`super::frame::FramedCart`]'s), and the longest chain (its modes and the frame's would exceed
+    /// [`MAX`]).
+    pub fn solvable_on_frame(
+        params: &Params,
+        setup: &Setup,
+        compliant: bool,
+    ) -> Result<(), SolveError> {
         if setup.frame_mass.is_none() {
             return Ok(());
         }
         if params.cart_friction > 0.0 {
-            return Err(SolveError::FreeFrame {
-                what: "string friction (--cart-friction)",
-            });
+            let what = if params.chain > 1.0 {
+                Some("string friction (--cart-friction) on a chain")
+            } else if params.stiffness == 0.0 {
+                Some("string friction (--cart-friction) without a spring (--stiffness 0)")
+            } else {
+                (!compliant).then_some("string friction (--cart-friction)")
+            };
+            if let Some(what) = what {
+                return Err(SolveError::FreeFrame { what });
+            }
         }
         if params.chain as usize >= MAX {
             return Err(SolveError::FreeFrame {
@@ -302,7 +315,7 @@ impl ChainOfMasses {
     /// The model for `params`, refused when the chain oscillates too fast to resolve, and on a free
     /// frame where [`Chain::solvable_on_frame`] says so.
     pub fn new(params: &Params, setup: &Setup) -> Result<Self, SolveError> {
-        Chain::solvable_on_frame(params, setup)?;
+        Chain::solvable_on_frame(params, setup, false)?;
         let chain = Chain::shared(params, setup);
         let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
         if radians > MAX_RADIANS {

@@ -61,6 +61,8 @@ pub struct Contact {
     pub friction_rate: f64,
     /// The first mass's acceleration V_1'.
     pub accel: f64,
+    /// The free frame's velocity and acceleration along the surface (0 on the wall).
+    pub frame: (f64, f64),
 }
 
 impl Motion {
@@ -199,7 +201,7 @@ impl Motion {
                 let omega = modes.omega[j];
                 let (s, c) = sin_cos(omega * tau);
                 let (x_step, v_step) = step(s, c, omega, tau);
-                let drive = modes.shape[0][j] * self.push;
+                let drive = self.push_shape(j) * self.push;
                 q[j] += drive * x_step;
                 dq[j] += drive * v_step;
             }
@@ -235,11 +237,22 @@ impl Motion {
             stiff_rate += modes.first_stiff[j] * dq[j];
         }
         let frame = self.start.frame;
+        let mut frame_motion = (0.0, 0.0);
         if frame > 0 {
             // The first mass's displacement is reported relative to the free frame.
-            x -= (0..modes.n)
+            let xf = (0..modes.n)
                 .map(|j| modes.shape[frame][j] * q[j])
                 .sum::<f64>();
+            x -= xf;
+            // The frame feels the last link's spring and the string friction's reaction -push.
+            let last = (0..modes.n)
+                .map(|j| modes.shape[frame - 1][j] * q[j])
+                .sum::<f64>();
+            let vf = (0..modes.n)
+                .map(|j| modes.shape[frame][j] * dq[j])
+                .sum::<f64>();
+            let spring = self.chain.link_stiffness * (last - xf);
+            frame_motion = (vf, (spring - self.push) / modes.mass[frame]);
         }
         let s0 = &self.start;
         // The spring and string forces on the first mass over its mass: Σ Φ_1j Ω_j² q_j less push/m_1.
@@ -273,6 +286,7 @@ impl Motion {
             friction,
             friction_rate,
             accel,
+            frame: frame_motion,
         }
     }
 
@@ -297,6 +311,7 @@ impl Motion {
             friction,
             friction_rate: 0.0,
             accel: 0.0,
+            frame: (0.0, 0.0),
         }
     }
 
@@ -362,7 +377,7 @@ impl Motion {
                 let v_free = dq0 - a * w * self.cos_wt0;
                 a.abs() * w + ((omega * x_free).powi(2) + v_free * v_free).sqrt()
             };
-            let push = (modes.shape[0][j] * self.push).abs();
+            let push = (self.push_shape(j) * self.push).abs();
             if push > 0.0 {
                 energy += push * (setup.duration - self.start.t);
                 amplitudes += if omega > 0.0 {
@@ -382,7 +397,7 @@ impl Motion {
     fn grip_swing(&self, setup: &Setup, j: usize) -> f64 {
         let modes = self.modes();
         let (omega, q0, dq0) = (modes.omega[j], self.q0[j], self.dq0[j]);
-        let push = modes.shape[0][j] * self.push;
+        let push = self.push_shape(j) * self.push;
         if push == 0.0 {
             (dq0.powi(2) + (omega * q0).powi(2)).sqrt()
         } else if omega == 0.0 {
@@ -446,6 +461,32 @@ impl Motion {
                 curvature += modes.first_stiff[j].abs() * bound;
                 terms += modes.shape[0][j].abs() * bound;
             }
+        }
+        (curvature, terms)
+    }
+
+    /// The string friction's push on mode j per newton: Φ_1j on the wall; on a free frame Φ_1j - Φ_fj,
+    /// the push on the first mass with its reaction on the frame (0 for the rigid translation).
+    #[inline]
+    fn push_shape(&self, j: usize) -> f64 {
+        let modes = self.modes();
+        match self.start.frame {
+            0 => modes.shape[0][j],
+            frame => modes.shape[0][j] - modes.shape[frame][j],
+        }
+    }
+
+    /// On a free frame, for a sliding phase of a moving first mass: a bound on |(V_1 - V_f)''|, the
+    /// first mass relative to the frame, and the size of the terms it is summed from. V_1 - V_f =
+    /// Σ (Φ_1j - Φ_fj) q_j' with q_j''' = Φ_1j F' - Ω_j² q_j' (the push is constant), |F'| <= mu N0 w.
+    pub fn relative_curvature(&self, setup: &Setup) -> (f64, f64) {
+        let modes = self.modes();
+        let rate = setup.peak_friction() * setup.w;
+        let (mut curvature, mut terms) = (0.0, 0.0);
+        for (j, bound) in self.speed_bounds(setup).iter().enumerate().take(modes.n) {
+            let share = self.push_shape(j).abs();
+            curvature += share * (modes.shape[0][j].abs() * rate + modes.omega[j].powi(2) * bound);
+            terms += share * bound;
         }
         (curvature, terms)
     }

@@ -578,6 +578,7 @@ impl CompliantGrip {
             dde: dz[3],
             slip_rate: 0.0,
             accel: dz[1],
+            frame: (0.0, 0.0),
         }
     }
 

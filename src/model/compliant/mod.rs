@@ -30,6 +30,15 @@
 //!   gripping a held one, the stretch rings down on a still surface while the masses behind swing
 //!   ([`HeldChainGrip`]). The events and rules are the single cart's, the first mass in the cart's place
 //!   and its link spring N k (X_1 - X_2) in place of k X.
+//! - String friction on the single cart tied to a free frame (issue 23): it acts between the cart and
+//!   the frame, -d F_c on the cart and +d F_c on the frame while the cart moves relative to the frame in
+//!   direction d. Moving, the pair is internal: each of the framed chain's modes (one mass and the
+//!   frame) is pushed by (Φ_1j - Φ_fj)(-d F_c), the translation by nothing, sliding as a step forcing
+//!   and gripping through Duhamel's integral ([`ChainGrip`]), and the phase also ends when V - V_f
+//!   reaches zero. Held, the cart and the frame are one free body of mass M + M_t ([`HeldOnFrame`]),
+//!   and the phase also ends when the push the string friction holds, M_t F/(M + M_t) - k y, reaches
+//!   ±F_c; a stopping cart is held or pushed on by that push ([`transition::at_rest`]). On a chain or
+//!   without a spring it is refused (`SolveError::FreeFrame`).
 //!
 //! Chatter: an undamped stiff ball may switch many times; every phase advances time and the solver stops
 //! after [`super::error::MAX_TRANSITIONS`] with `SolveError::TooManyPhases`.
@@ -37,6 +46,7 @@
 mod cart_grip;
 mod chain_grip;
 mod held_chain;
+mod held_frame;
 mod stretch;
 
 use std::sync::Arc;
@@ -44,6 +54,7 @@ use std::sync::Arc;
 pub use cart_grip::{Compliance, CompliantGrip};
 pub use chain_grip::{ChainGrip, GripModes};
 pub use held_chain::HeldChainGrip;
+pub use held_frame::{FrameHold, HeldOnFrame};
 pub use stretch::Stretch;
 
 use std::cell::{Cell, RefCell};
@@ -103,6 +114,8 @@ pub enum CompliantMotion {
     Grip(Box<CompliantGrip>),
     ChainGrip(Box<ChainGrip>),
     HeldChainGrip(Box<HeldChainGrip>),
+    /// The single cart held to a free frame by string friction.
+    HeldOnFrame(Box<HeldOnFrame>),
 }
 
 /// Everything at one instant of a compliant phase.
@@ -121,13 +134,16 @@ pub struct Point {
     pub slip_rate: f64,
     /// The contact mass's acceleration V' (0 held still).
     pub accel: f64,
+    /// The velocity and acceleration along the surface of the frame the contact mass is tied to by
+    /// its spring and its string friction (0 clamped; a free frame's on a chain).
+    pub frame: (f64, f64),
 }
 
 impl CompliantSlide {
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> Point {
         let (e, de, dde) = self.stretch.at(setup.w, t);
-        let (state, friction, slip_rate, accel) = match &self.rigid {
+        let (state, friction, slip_rate, accel, frame) = match &self.rigid {
             Rigid::Cart(slide) => {
                 let (state, friction) = slide.evaluate(setup, t);
                 let accel = slide.cart_acceleration(setup, &state, friction);
@@ -136,12 +152,13 @@ impl CompliantSlide {
                     friction,
                     slide.slip_rate(setup, &state, friction),
                     accel,
+                    (0.0, 0.0),
                 )
             }
             Rigid::Chain(motion) => {
                 let c = motion.contact(setup, t);
                 let slip_rate = -c.friction / setup.m_eff - c.accel;
-                (c.state, c.friction, slip_rate, c.accel)
+                (c.state, c.friction, slip_rate, c.accel, c.frame)
             }
         };
         Point {
@@ -153,6 +170,7 @@ impl CompliantSlide {
             dde,
             slip_rate,
             accel,
+            frame,
         }
     }
 
@@ -190,6 +208,7 @@ impl CompliantMotion {
             CompliantMotion::Grip(g) => g.at(setup, t),
             CompliantMotion::ChainGrip(g) => g.at(setup, t),
             CompliantMotion::HeldChainGrip(g) => g.at(setup, t),
+            CompliantMotion::HeldOnFrame(h) => h.at(t),
         }
     }
 
@@ -208,6 +227,7 @@ impl CompliantMotion {
             CompliantMotion::Grip(_)
             | CompliantMotion::ChainGrip(_)
             | CompliantMotion::HeldChainGrip(_) => (self.at(setup, t).e, 0.0),
+            CompliantMotion::HeldOnFrame(h) => h.inner.stretch_and_patch_slip(&h.hold.body, t),
         }
     }
 
@@ -220,6 +240,7 @@ impl CompliantMotion {
             CompliantMotion::Grip(g) => g.start,
             CompliantMotion::ChainGrip(g) => g.start.contact(),
             CompliantMotion::HeldChainGrip(g) => g.ball.start,
+            CompliantMotion::HeldOnFrame(h) => h.initial(),
         }
     }
 
@@ -235,6 +256,7 @@ impl CompliantMotion {
                 cb: g.ball.compliance.cb,
             },
             CompliantMotion::ChainGrip(g) => g.modes.spring(),
+            CompliantMotion::HeldOnFrame(h) => h.inner.spring(),
         }
     }
 
@@ -247,6 +269,7 @@ impl CompliantMotion {
             }) => Some(motion.chain().energy(&motion.full(setup, t))),
             CompliantMotion::ChainGrip(g) => Some(g.modes.chain().energy(&g.full(setup, t))),
             CompliantMotion::HeldChainGrip(g) => Some(g.chain.chain().energy(&g.full(setup, t))),
+            CompliantMotion::HeldOnFrame(h) => Some(h.hold.chain.energy(&h.full(t))),
             _ => None,
         }
     }
@@ -260,6 +283,7 @@ impl CompliantMotion {
                 ..
             }) | CompliantMotion::ChainGrip(_)
                 | CompliantMotion::HeldChainGrip(_)
+                | CompliantMotion::HeldOnFrame(_)
         )
     }
 
@@ -277,6 +301,7 @@ impl CompliantMotion {
             CompliantMotion::Grip(g) => g.compliance.fastest,
             CompliantMotion::ChainGrip(g) => g.modes.fastest,
             CompliantMotion::HeldChainGrip(g) => g.fastest(),
+            CompliantMotion::HeldOnFrame(h) => h.inner.fastest(&h.hold.body),
         }
     }
 
@@ -296,6 +321,7 @@ impl CompliantMotion {
             | CompliantMotion::HeldChainGrip(_) => {
                 integrate(&f, start, end, 2.0 / self.fastest(setup).max(w))
             }
+            CompliantMotion::HeldOnFrame(h) => h.inner.integrate(&h.hold.body, f, start, end),
         }
     }
 }
@@ -367,6 +393,7 @@ impl PhaseMotion for CompliantMotion {
             }) => chain.full(setup, t),
             CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
+            CompliantMotion::HeldOnFrame(h) => h.full(t),
             CompliantMotion::Slide(_) | CompliantMotion::Grip(_) => return 0.0,
         };
         match full.frame {
@@ -410,6 +437,8 @@ pub struct CompliantState {
 /// [`CompliantGrip`], as are all grips on the single cart with string friction.
 pub struct CompliantBall {
     support: Support,
+    /// On a free frame with string friction, the cart held to the frame.
+    hold: Option<Arc<FrameHold>>,
     spring: BallSpring,
     spin: f64,
     /// |v_x1| + r |omega1|: the scale of the speeds, for the event functions' rounding.
@@ -434,9 +463,11 @@ impl CompliantBall {
         } else {
             Setup::new(params)
         };
-        Chain::solvable_on_frame(params, &setup)?;
+        Chain::solvable_on_frame(params, &setup, true)?;
+        let framed = setup.frame_mass.is_some();
         let spring = BallSpring::new(params, &setup);
-        let support = if modal && (!string || links > 1.0) {
+        let mut hold = None;
+        let support = if modal && (!string || links > 1.0 || framed) {
             let chain = Chain::shared(params, &setup);
             let key = (
                 Chain::key(params, &setup),
@@ -446,7 +477,15 @@ impl CompliantBall {
             let modes = reuse(&LAST_GRIP_MODES, key, || {
                 Arc::new(GripModes::new(chain.clone(), &setup, spring.kb, spring.cb))
             });
-            let held = string.then(|| Box::new(Compliance::new(params, &setup)));
+            let held = (string && !framed).then(|| Box::new(Compliance::new(params, &setup)));
+            if let (true, Some(frame)) = (string, setup.frame_mass) {
+                hold = Some(Arc::new(FrameHold::new(
+                    params,
+                    &setup,
+                    frame,
+                    chain.clone(),
+                )));
+            }
             Support::Chain { chain, modes, held }
         } else {
             Support::Cart(Box::new(Compliance::new(params, &setup)))
@@ -465,11 +504,107 @@ impl CompliantBall {
         }
         let model = CompliantBall {
             support,
+            hold,
             spring,
             spin: params.spin,
             incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
         };
         Ok((model, setup))
+    }
+}
+
+impl CompliantBall {
+    /// The part of the ball's force that pushes the cart relative to what holds it: M_t/(M + M_t) on a
+    /// free frame, 1 on the wall.
+    fn share(&self) -> f64 {
+        self.hold.as_ref().map_or(1.0, |hold| hold.share)
+    }
+
+    /// The phase of `ball` from `state` with the cart held to the free frame: the ball on the body of
+    /// cart and frame.
+    fn held_on_frame(
+        &self,
+        hold: &Arc<FrameHold>,
+        state: &CompliantState,
+        ball: Ball,
+    ) -> CompliantMotion {
+        let body = &hold.body;
+        let start = HeldOnFrame::body_start(&state.full);
+        let inner = match ball {
+            Ball::Slide(dir) => CompliantMotion::Slide(CompliantSlide {
+                rigid: Rigid::Cart(Slide::new(body, start, dir, Cart::Moving(1))),
+                stretch: Stretch::new(&self.spring, body, dir, start.t, state.e),
+                spring: self.spring,
+            }),
+            Ball::Grip => CompliantMotion::Grip(Box::new(CompliantGrip::new(
+                hold.compliance,
+                start,
+                state.e,
+                body,
+                Cart::Moving(1),
+            ))),
+        };
+        let frame_x = state.full.x[state.full.frame];
+        CompliantMotion::HeldOnFrame(Box::new(HeldOnFrame::new(
+            hold.clone(),
+            inner,
+            state.contact.x,
+            frame_x,
+        )))
+    }
+
+    /// The first event of a phase held to the free frame: the ball's on the body, or the push the string
+    /// friction must hold, share F - k y, reaching ±F_c.
+    fn held_event(
+        &self,
+        setup: &Setup,
+        held: &HeldOnFrame,
+        state: &CompliantState,
+        ball: Ball,
+        cause: Cause,
+    ) -> Option<(f64, Cause)> {
+        let body = &held.hold.body;
+        let inner_state = CompliantState {
+            contact: held.inner.initial(),
+            full: ChainState::from_contact(&held.inner.initial()),
+            e: state.e,
+        };
+        let mode = (ball, Cart::Moving(1));
+        let ball_event = self
+            .first_event(body, &held.inner, &inner_state, mode, cause)
+            .event;
+        let (t0, until) = (state.contact.t, ball_event.map_or(setup.duration, |e| e.0));
+        let share = held.hold.share;
+        let spring = setup.k * held.y;
+        let (w, peak) = (setup.w, setup.peak_friction());
+        let (curvature, size) = match &held.inner {
+            CompliantMotion::Grip(grip) => grip.force_bounds(body),
+            _ => (peak * w * w, 0.0),
+        };
+        let noise = ROUNDING * (peak + spring.abs() + setup.cart_friction + EXP_ROUNDING * size);
+        let f = |t: f64| {
+            let p = held.inner.at(body, t);
+            let (push, rate) = (share * p.friction - spring, share * p.friction_rate);
+            [
+                (push - setup.cart_friction, rate),
+                (-push - setup.cart_friction, -rate),
+            ]
+        };
+        let step = setup.event_step(held.inner.fastest(body));
+        let unstick =
+            first_rise_from_tangent(f, t0, until, step, [share * curvature; 2], [noise; 2]).map(
+                |(t, branch)| {
+                    (
+                        t,
+                        if branch == 0 {
+                            Cause::Unstick(1)
+                        } else {
+                            Cause::Unstick(-1)
+                        },
+                    )
+                },
+            );
+        unstick.or(ball_event)
     }
 }
 
@@ -508,7 +643,8 @@ impl CartEvents {
     }
 
     /// The same on a chain's first mass, given the link force N k (X_1 - X_2) and its rate where it is
-    /// held: moving, its velocity V_1; held, the net push F - N k (X_1 - X_2).
+    /// held: moving, its velocity V_1 (relative to a free frame, V_1 - V_f); held, the net push
+    /// F - N k (X_1 - X_2).
     #[inline]
     fn at_chain(&self, setup: &Setup, p: &Point, (link, link_rate): (f64, f64)) -> [(f64, f64); 2] {
         if setup.cart_friction == 0.0 {
@@ -517,7 +653,8 @@ impl CartEvents {
         match self.cart {
             Cart::Moving(d) => {
                 let d = f64::from(d);
-                [(-d * (p.state.v - self.v_offset), -d * p.accel), STAND_IN]
+                let (v, accel) = (p.state.v - p.frame.0, p.accel - p.frame.1);
+                [(-d * (v - self.v_offset), -d * accel), STAND_IN]
             }
             Cart::Stuck => {
                 let (push, rate) = (p.friction - link, p.friction_rate - link_rate);
@@ -680,7 +817,7 @@ impl Contact for CompliantBall {
                 Ball::Slide(_) => 0.0,
                 Ball::Grip => spring.cb * slip0,
             };
-            transition::at_rest(setup, force)
+            transition::at_rest(setup, self.share() * force)
         } else {
             Cart::Moving(1)
         };
@@ -697,6 +834,9 @@ impl Contact for CompliantBall {
 
     fn motion(&self, setup: &Setup, state: &CompliantState, (ball, cart): Mode) -> CompliantMotion {
         let t0 = state.contact.t;
+        if let (Some(hold), Cart::Stuck) = (&self.hold, cart) {
+            return self.held_on_frame(hold, state, ball);
+        }
         match ball {
             Ball::Slide(dir) => {
                 let rigid = match &self.support {
@@ -746,7 +886,7 @@ impl Contact for CompliantBall {
         setup: &Setup,
         motion: &CompliantMotion,
         state: &CompliantState,
-        (_, cart): Mode,
+        (ball, cart): Mode,
         cause: Cause,
     ) -> Found<Point> {
         let (t0, end) = (state.contact.t, setup.duration);
@@ -755,9 +895,13 @@ impl Contact for CompliantBall {
         let last = Cell::new(None::<Point>);
         let speeds = self.incoming + s.vx.abs() + setup.r * s.omega.abs() + s.v.abs();
         // The cart's velocity starts on its own zero after it stopped or came unstuck (and at first
-        // contact): measured from its start value, so rounding cannot fake a stop there.
+        // contact): measured from its start value, so rounding cannot fake a stop there. On a free frame,
+        // its velocity relative to the frame.
         let v_offset = if matches!(cause, Cause::Start | Cause::CartStop | Cause::Unstick(_)) {
-            s.v
+            match state.full.frame {
+                0 => s.v,
+                frame => s.v - state.full.v[frame],
+            }
         } else {
             0.0
         };
@@ -767,6 +911,7 @@ impl Contact for CompliantBall {
             forces: peak + setup.k * s.x.abs() + setup.cart_friction,
         };
         let event = match motion {
+            CompliantMotion::HeldOnFrame(held) => self.held_event(setup, held, state, ball, cause),
             CompliantMotion::Slide(slide) => {
                 let dir = slide.dir();
                 // After a grip broke, the patch starts from rest on the cart (with a dashpot) or with
@@ -810,7 +955,10 @@ impl Contact for CompliantBall {
                         )
                     }
                     Rigid::Chain(motion) => {
-                        let (curvature, terms) = motion.cart_curvature(setup);
+                        let (curvature, terms) = match state.full.frame {
+                            0 => motion.cart_curvature(setup),
+                            _ => motion.relative_curvature(setup),
+                        };
                         (curvature, ROUNDING * (v_offset.abs() + terms))
                     }
                 };
@@ -967,6 +1115,7 @@ impl Contact for CompliantBall {
             }) => chain.full(setup, t),
             CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
+            CompliantMotion::HeldOnFrame(held) => held.full(t),
             _ => ChainState::from_contact(&point.state),
         };
         CompliantState {
@@ -996,7 +1145,10 @@ impl Contact for CompliantBall {
                 // The spring holding the contact mass back: k X on the cart, N k (X_1 - X_2) on a chain.
                 let spring = match &self.support {
                     Support::Chain { chain, .. } => {
-                        state.full.v[0] = 0.0;
+                        // At rest on the wall, or moving with a free frame.
+                        let frame = state.full.frame;
+                        let v = if frame > 0 { state.full.v[frame] } else { 0.0 };
+                        (s.v, state.full.v[0]) = (v, v);
                         chain.link_force(&state.full)
                     }
                     Support::Cart(_) => {
@@ -1009,7 +1161,10 @@ impl Contact for CompliantBall {
                     // Gripping, e' is the contact point's slip on the cart.
                     Ball::Grip => self.spring.kb * state.e + self.spring.cb * setup.slip(s),
                 };
-                (ball, transition::at_rest(setup, force - spring))
+                (
+                    ball,
+                    transition::at_rest(setup, self.share() * force - spring),
+                )
             }
             Cause::SlipZero | Cause::Start => (Ball::Grip, cart),
         }

@@ -21,7 +21,7 @@ impl GripModes {
     }
 
     /// For a grip pushed by string friction: the augmented matrix Ã⁺ = [[Ã, b̃], [0, 0]] with b̃ = T b the
-    /// unit push on the first mass (b̃ = (0, 0, 0, Φ_1j): Q is mass-normalised), so that
+    /// unit push on the first mass (b̃ = (0, 0, 0, Φ_1j), on a free frame Φ_1j - Φ_fj: Q is mass-normalised), so that
     /// exp(Ã⁺ τ) (z̃0, P) = (exp(Ã τ) z̃0 + ∫_0^τ exp(Ã s) b̃ P ds, P); a step h with |Ã⁺ h|₁ <= 1 and
     /// exp(Ã⁺ h).
     pub(super) fn forced_checkpoint(&self) -> &(DMatrix<f64>, f64, DMatrix<f64>) {
@@ -30,7 +30,7 @@ impl GripModes {
             let mut augmented = DMatrix::<f64>::zeros(size + 1, size + 1);
             augmented.view_mut((0, 0), (size, size)).copy_from(&self.a);
             for j in 0..self.n {
-                augmented[(self.n + 2 + j, size)] = self.phi1[j];
+                augmented[(self.n + 2 + j, size)] = self.push_row[j];
             }
             let h = 1.0
                 / augmented

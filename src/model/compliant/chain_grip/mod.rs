@@ -130,6 +130,10 @@ pub struct GripModes {
     /// On a free frame: the translation, and the frame's Φ_fj over the flexible modes.
     translation: Option<Translation>,
     frame_row: [f64; MAX],
+    /// The string friction's unit push on each flexible mode: Φ_1j on the wall; on a free frame
+    /// Φ_1j - Φ_fj, the push on the first mass and its reaction on the frame (the pair is internal, so
+    /// the translation and the centre of mass feel nothing).
+    push_row: [f64; MAX],
     /// On a free frame, per grip mode, X_f - Y of the mode, Σ' Φ_fj Q_j (for X_1 - X_f).
     frame_shares: Vec<C64>,
     /// `None` where the roots could not all be found distinct: the grips then use the exponential.
@@ -185,6 +189,12 @@ impl GripModes {
             omega2[k] = modes.omega[j] * modes.omega[j];
             frame_row[k] = modes.shape[frame][j];
         }
+        let mut push_row = phi1;
+        if translation.is_some() {
+            for k in 0..n {
+                push_row[k] -= frame_row[k];
+            }
+        }
         let dof = n + 1;
         // K = diag(0, Ω²) + k_b g gᵀ and C = c_b g gᵀ with g = (1, -Φ_1j): e = g · y.
         let mut g = DVector::<f64>::zeros(dof);
@@ -222,6 +232,7 @@ impl GripModes {
             flexible,
             translation,
             frame_row,
+            push_row,
             frame_shares: Vec::new(),
             modes: None,
             a,
@@ -320,13 +331,13 @@ impl ChainGrip {
             .modes
             .as_ref()
             .and_then(|list| coefficients(&modes, list, &z0));
-        // The push P on the first mass is the forcing b = (0, 0, 0, Φ_1j P) of z' = A z + b; its
-        // coefficients come from the same orthogonality (and the same checks) as the state's.
+        // The push P on the first mass is the forcing b = (0, 0, 0, Φ_1j P) of z' = A z + b (on a free
+        // frame (Φ_1j - Φ_fj) P, with the frame's reaction); its coefficients come from the same orthogonality (and the same checks) as the state's.
         let beta = match (&modes.modes, push != 0.0 && coefficients.is_some()) {
             (Some(list), true) => {
                 let mut b = vec![0.0; 2 * n + 2];
                 for j in 0..n {
-                    b[n + 2 + j] = modes.phi1[j] * push;
+                    b[n + 2 + j] = modes.push_row[j] * push;
                 }
                 coefficients::coefficients(&modes, list, &b)
             }
@@ -397,14 +408,14 @@ impl ChainGrip {
         let n = g.n;
         // The contact quantities alone need only one exponential per mode.
         let framed = g.translation.is_some();
-        // On a free frame also r'' and X_f - Y (otherwise 0).
-        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, xf) =
+        // On a free frame also r'' and X_f - Y with its two rates (otherwise 0).
+        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf)) =
             match (&g.modes, &self.coefficients) {
                 (Some(list), Some(c)) => {
                     let zero = C64::new(0.0, 0.0);
                     let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde, mut a1) =
                         (zero, zero, zero, zero, zero, zero, zero, zero);
-                    let (mut ddu, mut xf) = (zero, zero);
+                    let (mut ddu, mut xf, mut dxf, mut ddxf) = (zero, zero, zero, zero);
                     for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
                         let (a, da) = self.term(mode, ci, i, tau);
                         u += a * mode.u;
@@ -418,11 +429,25 @@ impl ChainGrip {
                         if framed {
                             ddu += da * mode.s * mode.u;
                             xf += a * g.frame_shares[i];
+                            dxf += da * g.frame_shares[i];
+                            ddxf += da * mode.s * g.frame_shares[i];
                         }
                     }
                     let (u, du, e, de) = (u.re, du.re, e.re, de.re);
-                    let (dd, x) = (ddu.re, xf.re);
-                    (du, f.re, df.re, e, de, dde.re, u - e, du - de, a1.re, dd, x)
+                    let frame = (xf.re, dxf.re, ddxf.re);
+                    (
+                        du,
+                        f.re,
+                        df.re,
+                        e,
+                        de,
+                        dde.re,
+                        u - e,
+                        du - de,
+                        a1.re,
+                        ddu.re,
+                        frame,
+                    )
                 }
                 _ => {
                     let (z, dz) = self.propagate(t);
@@ -430,6 +455,8 @@ impl ChainGrip {
                     let v1: f64 = (0..n).map(|j| g.phi1[j] * z[n + 2 + j]).sum();
                     let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
                     let xf: f64 = (0..n).map(|j| g.frame_row[j] * z[j + 1]).sum();
+                    let dxf: f64 = (0..n).map(|j| g.frame_row[j] * z[n + 2 + j]).sum();
+                    let ddxf: f64 = (0..n).map(|j| g.frame_row[j] * dz[n + 2 + j]).sum();
                     let (e, de, dde) = (z[0] - x1, z[n + 1] - v1, dz[n + 1] - a1);
                     let force = g.kb * e + g.cb * de;
                     (
@@ -443,20 +470,24 @@ impl ChainGrip {
                         v1,
                         a1,
                         dz[n + 1],
-                        xf,
+                        (xf, dxf, ddxf),
                     )
                 }
             };
         // On a free frame: X_1 - X_f = (X_1 - Y) - (X_f - Y), and the translation's rate
-        // Y' = G' - (m_eff/(m_eff + M)) r' and Y'' added to the first mass's.
-        let (du, x1, v1, a1) = match (g.translation, self.centre) {
-            (Some(tr), Some((_, dg))) => (
-                dg + tr.ball_share * du,
-                x1 - xf,
-                v1 + dg - tr.chain_share * du,
-                a1 - tr.chain_share * ddu,
-            ),
-            _ => (du, x1, v1, a1),
+        // Y' = G' - (m_eff/(m_eff + M)) r' and Y'' added to the first mass's and the frame's.
+        let (du, x1, v1, a1, frame) = match (g.translation, self.centre) {
+            (Some(tr), Some((_, dg))) => {
+                let (dy, ddy) = (dg - tr.chain_share * du, -tr.chain_share * ddu);
+                (
+                    dg + tr.ball_share * du,
+                    x1 - xf,
+                    v1 + dg - tr.chain_share * du,
+                    a1 - tr.chain_share * ddu,
+                    (dxf + dy, ddxf + ddy),
+                )
+            }
+            _ => (du, x1, v1, a1, (0.0, 0.0)),
         };
         let (vx, omega) = self.ball(setup, du);
         Point {
@@ -474,6 +505,7 @@ impl ChainGrip {
             dde,
             slip_rate: 0.0,
             accel: a1,
+            frame,
         }
     }
 

@@ -122,27 +122,36 @@ impl ChainGrip {
 
     /// For the first mass's stopping: a bound on |V_1''| over the rest of the contact, and the size of
     /// the terms V_1 is summed from. In the modes V_1 = Re Σ (c_i s_i + β_i) e^{s_i τ} X_1i (X_1i the
-    /// first mass in mode i), so |V_1''| <= Σ |(c_i s_i + β_i) X_1i| |s_i|² e^{max(Re s_i, 0) τ}.
+    /// first mass in mode i), so |V_1''| <= Σ |(c_i s_i + β_i) X_1i| |s_i|² e^{max(Re s_i, 0) τ}. On a
+    /// free frame the same for V_1 - V_f, the first mass relative to the frame (X_1i - X_fi; the
+    /// translation moves both alike).
     pub fn first_mass_bounds(&self, setup: &Setup) -> (f64, f64) {
         let g = &self.modes;
         let remaining = setup.duration - self.start.t;
+        let frame = self.start.frame;
+        let start = (self.start.v[0] - if frame > 0 { self.start.v[frame] } else { 0.0 }).abs();
         match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
-                let (mut curvature, mut size) = (0.0, self.start.v[0].abs());
+                let (mut curvature, mut size) = (0.0, start);
                 for (i, (mode, ci)) in list.iter().zip(c).enumerate() {
                     let beta = self.beta.as_ref().map_or(C64::new(0.0, 0.0), |b| b[i]);
-                    let term = ((ci * mode.s + beta) * (mode.u - mode.e)).norm()
-                        * growth(mode.s.re, 0.0, remaining);
+                    let share = match g.frame_shares.get(i) {
+                        Some(&xf) => mode.u - mode.e - xf,
+                        None => mode.u - mode.e,
+                    };
+                    let term =
+                        ((ci * mode.s + beta) * share).norm() * growth(mode.s.re, 0.0, remaining);
                     curvature += term * mode.s.norm_sqr();
                     size += term;
                 }
                 (curvature, size)
             }
             _ => {
+                // The first mass's row (relative to the frame on a free one) is the push's.
                 let mut first = vec![0.0; 2 * g.n + 2];
-                first[g.n + 2..].copy_from_slice(&g.phi1[..g.n]);
+                first[g.n + 2..].copy_from_slice(&g.push_row[..g.n]);
                 let (curvature, size) = self.energy_bounds(setup, &first);
-                (curvature, size + self.start.v[0].abs())
+                (curvature, size + start)
             }
         }
     }
@@ -153,13 +162,13 @@ impl ChainGrip {
     fn energy_bounds(&self, setup: &Setup, h: &[f64]) -> (f64, f64) {
         let g = &self.modes;
         let push = self.push.abs();
-        let unit: f64 = g.phi1[..g.n].iter().map(|p| p * p).sum::<f64>().sqrt();
+        let unit: f64 = g.push_row[..g.n].iter().map(|p| p * p).sum::<f64>().sqrt();
         let reach = g.energy_norm(&self.z0) + push * unit * (setup.duration - self.start.t);
         let dual = g.dual(h);
         let second = g.a.transpose() * g.a.transpose() * &dual;
         let mut forcing = DVector::<f64>::zeros(2 * g.n + 2);
         for j in 0..g.n {
-            forcing[g.n + 2 + j] = g.phi1[j];
+            forcing[g.n + 2 + j] = g.push_row[j];
         }
         let constant = (dual.transpose() * &g.a * forcing)[0].abs() * push;
         (second.norm() * reach + constant, dual.norm() * reach)
