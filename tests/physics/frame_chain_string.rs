@@ -10,7 +10,7 @@ use crate::support::rng::Rng;
 use snapback::model::chain::{ChainOfMasses, ChainState};
 use snapback::model::contact::{Cart, Cause, Contact};
 use snapback::model::setup::Setup;
-use snapback::model::{Params, solve};
+use snapback::model::{Params, PhaseKind, solve};
 
 /// A random rigid-ball bounce on a chain of 2 to 6 masses on a frame of 20 g to 20 kg, with string
 /// friction from a light touch to one that holds the first mass throughout.
@@ -36,7 +36,7 @@ fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
 #[test]
 fn string_friction_on_a_framed_chain_agrees_with_an_independent_integration() {
     let mut rng = Rng(0xf4a3_5715_0023_0001);
-    let (mut held, mut moved) = (0, 0);
+    let (mut held, mut moved, mut held_grip) = (0, 0, 0);
     for case in 0..60 {
         let p = random_framed_string(&mut rng);
         let exact = solve(&p).expect("string friction on a framed chain solves");
@@ -68,9 +68,20 @@ fn string_friction_on_a_framed_chain_agrees_with_an_independent_integration() {
             reference.chain_energy
         );
         held += usize::from(exact.phases.iter().any(|ph| ph.cart == Cart::Stuck));
+        held_grip += usize::from(
+            exact
+                .phases
+                .iter()
+                .any(|ph| ph.cart == Cart::Stuck && ph.kind == PhaseKind::Grip),
+        );
+
         moved += usize::from(exact.phases.iter().any(|ph| ph.cart != Cart::Stuck));
     }
-    assert!(held >= 20 && moved >= 20, "held {held}, moved {moved}");
+    // The ball gripping the held body (its static friction carried by the ring's springs).
+    assert!(
+        held >= 20 && moved >= 20 && held_grip >= 3,
+        "held {held}, moved {moved}, gripped while held {held_grip}"
+    );
 }
 
 /// m v_x plus every mass's momentum along the surface, the frame's included.
