@@ -2,10 +2,15 @@
 //! --cart-friction F_c`): the friction acts between the first mass and the frame, and a first mass held
 //! to the frame makes one body with it, the links behind a ring. Against the chain integrator with the
 //! same friction between its first and last masses, momentum along the surface phase by phase, the
-//! energy budget, and the heavy frame against the clamped chain with string friction.
+//! energy budget, the heavy frame against the clamped chain with string friction, and property tests
+//! over random framed chains.
+
+use proptest::prelude::*;
+use proptest::test_runner::TestCaseError;
 
 use crate::support::chain::random_chain;
 use crate::support::chain_integrator;
+use crate::support::prop::config;
 use crate::support::rng::Rng;
 use snapback::model::chain::{ChainOfMasses, ChainState};
 use snapback::model::contact::{Cart, Cause, Contact};
@@ -174,5 +179,36 @@ fn a_heavy_frame_approaches_the_clamped_chain_with_string_friction() {
             "{what}"
         );
         assert!(heavy.frame_velocity().abs() <= 1e-5 * p.speed, "{what}");
+    }
+}
+
+proptest! {
+    #![proptest_config(config(200))]
+
+    #[test]
+    fn random_framed_chains_with_string_friction_solve_within_their_budgets(seed in any::<u64>()) {
+        let mut rng = Rng(seed | 1);
+        let n = 2 + rng.below(14);
+        let mut p = random_chain(&mut rng, n as f64);
+        // Lighter and heavier frames and frictions than the integration can follow.
+        p.frame_mass = rng.log_uniform(1e-3, 1e3);
+        p.cart_friction = rng.log_uniform(0.01, 1000.0);
+        let b = solve(&p).map_err(|e| TestCaseError::fail(format!("{e} ({p:?})")))?;
+        let e = b.energy();
+        prop_assert!(b.outcome.vx2.is_finite() && b.outcome.omega2.is_finite());
+        prop_assert!(e.residual.abs() < 1e-9, "{e:?} ({p:?})");
+        prop_assert!(e.cart_friction_loss >= 0.0 && e.friction_loss >= -1e-12 * e.initial);
+        prop_assert!(e.final_ball + e.final_cart + e.frame <= e.initial * (1.0 + 1e-12));
+        // Held to the frame, the first mass keeps its place on it.
+        for (index, phase) in b.phases.iter().enumerate() {
+            if phase.cart != Cart::Stuck {
+                continue;
+            }
+            let first = b.sample_in(index, phase.start);
+            for i in 1..=8 {
+                let s = b.sample_in(index, phase.start + phase.duration() * f64::from(i) / 8.0);
+                prop_assert!(s.x == first.x, "{} vs {} ({p:?})", s.x, first.x);
+            }
+        }
     }
 }
