@@ -231,15 +231,6 @@ fn what_a_free_frame_does_not_solve_yet_is_refused_by_name() {
             Params {
                 frame_mass: 0.3,
                 cart_friction: 5.0,
-                chain: 3.0,
-                ..Params::default()
-            },
-            "--cart-friction",
-        ),
-        (
-            Params {
-                frame_mass: 0.3,
-                cart_friction: 5.0,
                 ball_stiffness: 1e5,
                 chain: 3.0,
                 ..Params::default()

@@ -178,7 +178,7 @@ fn the_frame_takes_its_kinetic_energy_from_the_ball_and_none_is_created() {
 }
 
 #[test]
-fn the_longest_chain_and_string_friction_on_a_frame_are_refused_by_name() {
+fn the_longest_chain_and_a_compliant_balls_string_friction_on_a_frame_are_refused_by_name() {
     for (params, flag) in [
         (
             Params {
@@ -193,6 +193,7 @@ fn the_longest_chain_and_string_friction_on_a_frame_are_refused_by_name() {
                 frame_mass: 0.3,
                 chain: 3.0,
                 cart_friction: 5.0,
+                ball_stiffness: 1e5,
                 ..Params::default()
             },
             "--cart-friction",

@@ -7,6 +7,7 @@
 use proptest::prelude::*;
 
 use crate::frame::{close, random_frame, step_for};
+use crate::support::compliant::solved_or_refused;
 use crate::support::frame_integrator::{FrameNumerical, integrate_frame};
 use crate::support::rng::Rng;
 use snapback::model::{Bounce, Cart, Params, PhaseKind, solve};
@@ -449,7 +450,10 @@ proptest! {
     fn random_compliant_string_frames_agree_with_the_integration(seed in any::<u64>()) {
         let mut rng = Rng(seed | 1);
         let p = random_compliant_string_frame(&mut rng);
-        let exact = solve(&p).unwrap();
+        // A ball too fast to resolve is refused (seed 13591502468455239360: its dashpot).
+        let Some(exact) = solved_or_refused(&p)? else {
+            return Ok(());
+        };
         let reference = integrate_frame(&p, compliant_step(&p));
         check_compliant(&p, &exact, &reference, 1e-9, "proptest");
     }

@@ -405,6 +405,27 @@ fn cases() -> Vec<Case> {
         pairs.push(("cart-friction", num(rng.log_uniform(0.1, 300.0))));
         out.push(case(&pairs));
     }
+    // String friction under the rigid ball on a chain on the free frame (issue 23, the first mass held
+    // to the frame as one body with the ring behind it), appended last with its own seed: short and
+    // long chains on the racquet's frame and a light one, and seeded random framed chains.
+    for chain in ["2", "4", "15"] {
+        for (frame, fc) in [("188.09g", "30"), ("20g", "3")] {
+            out.push(case(&[
+                ("chain", chain.into()),
+                ("frame-mass", frame.into()),
+                ("frame-normal-mass", "181.15g".into()),
+                ("cart-friction", fc.into()),
+            ]));
+        }
+    }
+    let mut rng = Rng(0x5791_c4a1_0023);
+    for _ in 0..20 {
+        let mut pairs = rigid(&mut rng);
+        pairs.push(("chain", (2 + rng.below(14)).to_string()));
+        pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
+        pairs.push(("cart-friction", num(rng.log_uniform(0.1, 300.0))));
+        out.push(case(&pairs));
+    }
     out
 }
 

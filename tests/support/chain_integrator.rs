@@ -12,6 +12,12 @@
 //! String friction on the first mass (`cart_friction`, F_c): a Coulomb force against its motion, which
 //! holds it still while the push on it, F - (K X)_1, is at most F_c (the ball rolling on it needs no
 //! friction then). Gripping a moving first mass, F_s = m_eff ((K X)_1 + d F_c) / (M/N + m_eff).
+//!
+//! On a free frame the string friction acts between the first mass and the frame: moving relative to
+//! the frame in direction d, -d F_c on the first mass and +d F_c on the frame; held, the two move as one
+//! body at a_B = (F - (K X)_1 - (K X)_f) / (M/N + M_t) (a gripping ball then needs F_s = -m_eff a_B,
+//! so its m_eff joins the body), while the force the frame must give the first mass,
+//! push = F - (K X)_1 - (M/N) a_B, is at most F_c. On the wall a_B = 0 and this is the clamped rule.
 
 use snapback::model::Params;
 
@@ -113,7 +119,48 @@ impl Model {
         match (ball, cart) {
             (Ball::Slide(dir), _) => dir * self.mu * self.normal(t),
             (Ball::Grip, Cart::Moving(dir)) => self.static_friction(y, dir),
-            (Ball::Grip, Cart::Stuck) => 0.0,
+            (Ball::Grip, Cart::Stuck) => self.held_friction(y),
+        }
+    }
+
+    /// The spring forces on the held body of first mass and frame, pulling back: (K X)_1 + (K X)_f
+    /// (0 on the wall, where nothing holds the body but the wall).
+    fn held_springs(&self, y: &Y) -> f64 {
+        if self.dof > self.n {
+            self.spring(y, 0) + self.spring(y, self.n)
+        } else {
+            0.0
+        }
+    }
+
+    /// The held body's acceleration a_B under the ball's friction `f` (0 on the wall).
+    fn held_accel(&self, f: f64, y: &Y) -> f64 {
+        if self.dof > self.n {
+            (f - self.held_springs(y)) / (self.link + self.frame)
+        } else {
+            0.0
+        }
+    }
+
+    /// The static friction of a ball gripping the held body, -m_eff a_B (0 on the wall: it rolls).
+    fn held_friction(&self, y: &Y) -> f64 {
+        let m_eff = self.m_eff();
+        m_eff * self.held_springs(y) / (self.link + self.frame + m_eff)
+    }
+
+    /// The force the string friction must give the held first mass (forward positive) to keep it
+    /// with the frame (on the wall, still) under the ball's friction `f`: F - (K X)_1 - (M/N) a_B.
+    fn held_push(&self, f: f64, y: &Y) -> f64 {
+        f - self.spring(y, 0) - self.link * self.held_accel(f, y)
+    }
+
+    /// The first mass's velocity relative to the frame (to the wall).
+    fn relative(&self, y: &Y) -> f64 {
+        let v1 = y[2 + self.dof];
+        if self.dof > self.n {
+            v1 - y[2 + self.dof + self.n]
+        } else {
+            v1
         }
     }
 
@@ -127,12 +174,20 @@ impl Model {
             out[2 + i] = y[2 + n + i];
             let push = match (i, cart) {
                 (0, Cart::Moving(dir)) => f - dir * self.fc,
+                (i, Cart::Moving(dir)) if i == self.n => dir * self.fc,
+                (0, Cart::Stuck) => f,
                 _ => 0.0,
             };
             out[2 + n + i] = (push - self.spring(y, i)) / self.mass(i);
         }
         if cart == Cart::Stuck {
-            (out[2], out[2 + n]) = (0.0, 0.0);
+            // The first mass moves with the frame (stays on the wall).
+            let a = self.held_accel(f, y);
+            out[2] = if n > self.n { y[2 + n + self.n] } else { 0.0 };
+            out[2 + n] = a;
+            if n > self.n {
+                out[2 + n + self.n] = a;
+            }
         }
         out
     }
@@ -161,8 +216,8 @@ impl Model {
             Ball::Grip => f.abs() > self.mu * self.normal(t),
         };
         let cart_event = match cart {
-            Cart::Moving(dir) => self.fc > 0.0 && -dir * y[2 + self.dof] > 0.0,
-            Cart::Stuck => (f - self.spring(y, 0)).abs() > self.fc,
+            Cart::Moving(dir) => self.fc > 0.0 && -dir * self.relative(y) > 0.0,
+            Cart::Stuck => self.held_push(f, y).abs() > self.fc,
         };
         (ball_event, cart_event)
     }
@@ -186,15 +241,30 @@ impl Model {
         }
     }
 
-    /// The first mass at rest under a gripping ball: held if the spring cannot overcome F_c, else it
-    /// moves the way the spring pulls.
+    /// The first mass at rest (relative to the frame) under a gripping ball: held if the push the
+    /// held grip needs is within F_c (the ball sliding on if that grip needs more than mu N), else it
+    /// moves the way it is pushed.
     fn at_rest_under_grip(&self, t: f64, y: &Y, ball: Ball) -> (Ball, Cart) {
-        let spring = self.spring(y, 0);
-        if spring.abs() <= self.fc {
+        let held = self.held_friction(y);
+        let push = self.held_push(held, y);
+        if push.abs() > self.fc {
+            let dir = push.signum();
+            (self.ball_on_moving(t, y, dir, ball), Cart::Moving(dir))
+        } else if held.abs() <= self.mu * self.normal(t) {
             (Ball::Grip, Cart::Stuck)
         } else {
-            let dir = (-spring).signum();
-            (self.ball_on_moving(t, y, dir, ball), Cart::Moving(dir))
+            self.held_slide(t, y, held.signum())
+        }
+    }
+
+    /// A ball sliding with `s` on a first mass at rest (relative to the frame): held if the push is
+    /// within F_c, else moving the way it is pushed.
+    fn held_slide(&self, t: f64, y: &Y, s: f64) -> (Ball, Cart) {
+        let push = self.held_push(s * self.mu * self.normal(t), y);
+        if push.abs() <= self.fc {
+            (Ball::Slide(s), Cart::Stuck)
+        } else {
+            (Ball::Slide(s), Cart::Moving(push.signum()))
         }
     }
 
@@ -206,7 +276,8 @@ impl Model {
         y: &mut Y,
     ) -> (Ball, Cart) {
         let n = self.dof;
-        let spring = self.spring(y, 0);
+        // The frame's velocity (0 on the wall), which a first mass that stops takes.
+        let rest = if n > self.n { y[2 + n + self.n] } else { 0.0 };
         match (ball, cart, ball_fired) {
             (Ball::Slide(_), Cart::Moving(dir), true) => {
                 (self.ball_on_moving(t, y, dir, ball), cart)
@@ -214,28 +285,27 @@ impl Model {
             (Ball::Slide(_), Cart::Stuck, true) => self.at_rest_under_grip(t, y, ball),
             // The first mass came to rest under a sliding ball.
             (Ball::Slide(s), Cart::Moving(_), false) => {
-                y[2 + n] = 0.0;
-                let push = s * self.mu * self.normal(t) - spring;
-                if push.abs() <= self.fc {
-                    (ball, Cart::Stuck)
-                } else {
-                    (ball, Cart::Moving(push.signum()))
-                }
+                y[2 + n] = rest;
+                self.held_slide(t, y, s)
             }
             (Ball::Slide(s), Cart::Stuck, false) => {
-                let push = s * self.mu * self.normal(t) - spring;
+                let push = self.held_push(s * self.mu * self.normal(t), y);
                 (ball, Cart::Moving(push.signum()))
             }
             (Ball::Grip, Cart::Moving(dir), true) => {
                 (Ball::Slide(self.static_friction(y, dir).signum()), cart)
             }
             (Ball::Grip, Cart::Moving(_), false) => {
-                y[2 + n] = 0.0;
+                y[2 + n] = rest;
                 self.at_rest_under_grip(t, y, ball)
             }
-            // Pushed free by the spring behind it, under a rolling ball.
-            (Ball::Grip, Cart::Stuck, _) => {
-                let dir = (-spring).signum();
+            // The grip on the held body broke (never on the wall, where the ball rolls freely).
+            (Ball::Grip, Cart::Stuck, true) => {
+                self.held_slide(t, y, self.held_friction(y).signum())
+            }
+            // Pushed free, under a gripping ball.
+            (Ball::Grip, Cart::Stuck, false) => {
+                let dir = self.held_push(self.held_friction(y), y).signum();
                 (self.ball_on_moving(t, y, dir, ball), Cart::Moving(dir))
             }
         }
@@ -283,10 +353,6 @@ pub fn integrate(p: &Params, max_step: f64) -> Numerical {
     let theta = p.angle_deg.to_radians();
     let n = p.chain as usize;
     let framed = p.frame_mass > 0.0;
-    assert!(
-        !framed || p.cart_friction == 0.0,
-        "string friction on a frame"
-    );
     let dof = n + usize::from(framed);
     // The apparent restitution on a frame of normal mass M_n (M_t unless given).
     let normal_mass = if p.frame_normal_mass > 0.0 {

@@ -14,10 +14,13 @@
 //! a constant -d F_c while it moves in direction d, and while the net push on it (the ball's friction
 //! less the link spring N k (X_1 - X_2)) stays within F_c, it holds it still (`string.rs`). The modes
 //! that follow each event are chosen by the single cart's rules ([`super::transition`]), the first mass
-//! (with the ball's m_eff while it grips) in the cart's place.
+//! (with the ball's m_eff while it grips) in the cart's place. On a free frame the string friction acts
+//! between the first mass and the frame, and a first mass held to the frame makes one body with it, the
+//! links behind forming a ring (`ring.rs`).
 
 pub mod modes;
 pub mod motion;
+mod ring;
 mod string;
 
 use std::cell::RefCell;
@@ -49,6 +52,8 @@ pub struct Chain {
     grip: OnceLock<Modes>,
     /// The modes of the masses behind a first mass held by string friction, when first needed.
     clamped: OnceLock<Modes>,
+    /// On a free frame, the ring's modes of a first mass held to the frame, sliding and gripping.
+    ring: [OnceLock<Modes>; 2],
     m_eff: f64,
 }
 
@@ -89,14 +94,15 @@ impl Chain {
             slide: Chain::modes_with(n, link_mass, link_stiffness, 0.0, frame),
             grip: OnceLock::new(),
             clamped: OnceLock::new(),
+            ring: [OnceLock::new(), OnceLock::new()],
             m_eff: setup.m_eff,
         }
     }
 
-    /// Refuses on a free frame what is not solved there yet: string friction on a chain, or without a
-    /// spring, or (`compliant` false) under the rigid ball here (the single cart's is
-    /// [`super::frame::FramedCart`]'s), and the longest chain (its modes and the frame's would exceed
-    /// [`MAX`]).
+    /// Refuses on a free frame what is not solved there yet: string friction under a compliant ball
+    /// on a chain, or without a spring, or (`compliant` false) under the rigid ball on one mass here
+    /// (the single cart's is [`super::frame::FramedCart`]'s), and the longest chain (its modes and the
+    /// frame's would exceed [`MAX`]).
     pub fn solvable_on_frame(
         params: &Params,
         setup: &Setup,
@@ -107,7 +113,7 @@ impl Chain {
         }
         if params.cart_friction > 0.0 {
             let what = if params.chain > 1.0 {
-                Some("string friction (--cart-friction) on a chain")
+                compliant.then_some("string friction (--cart-friction) on a chain")
             } else if params.stiffness == 0.0 {
                 Some("string friction (--cart-friction) without a spring (--stiffness 0)")
             } else {
@@ -150,6 +156,21 @@ impl Chain {
     /// the chain is tied to the wall, which has no entry).
     pub fn frame_index(&self) -> usize {
         if self.frame.is_some() { self.n } else { 0 }
+    }
+
+    /// The modes of a phase with the first mass held by string friction, sliding (`dir` ±1) or gripping
+    /// (`dir` 0): on the wall those of the masses behind it ([`Chain::clamped`]); on a free frame the
+    /// ring's ([`Modes::ring`]: the first mass and the frame one body, with m_eff while the ball grips).
+    pub fn held(&self, dir: f64) -> &Modes {
+        let Some(frame) = self.frame else {
+            return self.clamped();
+        };
+        let grip = usize::from(dir == 0.0);
+        self.ring[grip].get_or_init(|| {
+            let extra = if grip == 1 { self.m_eff } else { 0.0 };
+            let body = self.link_mass + frame;
+            Modes::ring(self.n, self.link_mass, self.link_stiffness, body, extra)
+        })
     }
 
     /// The modes of the masses behind a held first mass.
@@ -317,7 +338,13 @@ impl ChainOfMasses {
     pub fn new(params: &Params, setup: &Setup) -> Result<Self, SolveError> {
         Chain::solvable_on_frame(params, setup, false)?;
         let chain = Chain::shared(params, setup);
-        let radians = chain.slide.fastest.max(chain.grip().fastest) * setup.duration;
+        let mut fastest = chain.slide.fastest.max(chain.grip().fastest);
+        if params.cart_friction > 0.0 && chain.frame.is_some() {
+            fastest = fastest
+                .max(chain.held(1.0).fastest)
+                .max(chain.held(0.0).fastest);
+        }
+        let radians = fastest * setup.duration;
         if radians > MAX_RADIANS {
             return Err(SolveError::TooFast { radians });
         }
@@ -449,7 +476,12 @@ impl Contact for ChainOfMasses {
     ) -> Mode {
         if self.string {
             if cause == Cause::CartStop {
-                state.v[0] = 0.0;
+                // The first mass joins the frame (stops on the wall).
+                state.v[0] = if state.frame > 0 {
+                    state.v[state.frame]
+                } else {
+                    0.0
+                };
             }
             return string::next(&self.chain, setup, state, ball, cart, cause);
         }

@@ -148,6 +148,75 @@ impl Modes {
         modes
     }
 
+    /// The chain on a free frame with its first mass held to the frame by string friction: the first
+    /// mass and the frame are one body of mass `body` (M/N + M_t, with `extra` added: the ball's m_eff
+    /// while it grips), and the `n` - 1 links behind it form a ring tied to that body at both ends, `n`
+    /// springs `link_stiffness` from the body through the links back to the body. The masses are
+    /// [body, link, ..., link]; T has 2 on its whole diagonal and -1 between neighbours and between the
+    /// body and the last link (for `n` = 2 the two springs join the same pair: -2; for `n` = 1 there is
+    /// no spring). One mode is the rigid translation, written exactly as in [`Modes::framed`]; the
+    /// others' Ω_j² are Rayleigh quotients as in [`Modes::new`], over the ring's `n` springs.
+    pub fn ring(n: usize, link_mass: f64, link_stiffness: f64, body: f64, extra: f64) -> Modes {
+        assert!((1..=MAX).contains(&n), "ring of {n} masses");
+        let mut scale = [1.0; MAX];
+        scale[0] = ((body + extra) / link_mass).sqrt().recip();
+        let mut a = DMatrix::<f64>::zeros(n, n);
+        for i in 0..n {
+            let j = (i + 1) % n;
+            if i != j {
+                a[(i, i)] += scale[i] * scale[i];
+                a[(j, j)] += scale[j] * scale[j];
+                a[(i, j)] -= scale[i] * scale[j];
+                a[(j, i)] -= scale[i] * scale[j];
+            }
+        }
+        let eigen = SymmetricEigen::new(a);
+        let frequency = (link_stiffness / link_mass).sqrt();
+        let mut mass = [0.0; MAX];
+        for (i, m) in mass.iter_mut().enumerate().take(n) {
+            *m = if i == 0 { body + extra } else { link_mass };
+        }
+        let values = &eigen.eigenvalues;
+        let rigid = (0..n).fold(0, |best, j| if values[j] < values[best] { j } else { best });
+        let total: f64 = mass[..n].iter().sum();
+        let mut modes = Modes {
+            n,
+            mass,
+            omega: [0.0; MAX],
+            shape: [[0.0; MAX]; MAX],
+            first_stiff: [0.0; MAX],
+            largest: [0.0; MAX],
+            fastest: 0.0,
+        };
+        let root_mass = link_mass.sqrt();
+        for j in 0..n {
+            if j == rigid {
+                let phi = total.sqrt().recip();
+                for row in modes.shape.iter_mut().take(n) {
+                    row[j] = phi;
+                }
+                modes.largest[j] = phi;
+                continue;
+            }
+            let u = eigen.eigenvectors.column(j);
+            let z: Vec<f64> = (0..n).map(|i| scale[i] * u[i]).collect();
+            let stretch: f64 = (0..n).map(|i| (z[i] - z[(i + 1) % n]).powi(2)).sum();
+            let norm: f64 = (0..n).map(|i| u[i] * u[i]).sum();
+            let omega = frequency * (stretch / norm).max(0.0).sqrt();
+            modes.omega[j] = omega;
+            let mut largest: f64 = 0.0;
+            for (i, zi) in z.iter().enumerate() {
+                let phi = zi / (root_mass * norm.sqrt());
+                modes.shape[i][j] = phi;
+                largest = largest.max(phi.abs());
+            }
+            modes.largest[j] = largest;
+            modes.first_stiff[j] = modes.shape[0][j] * omega * omega;
+            modes.fastest = modes.fastest.max(omega);
+        }
+        modes
+    }
+
     /// The masses behind a first mass held still by string friction: `n` links of mass `link_mass`
     /// between two fixed ends (the held mass and the wall) joined by `n + 1` springs `link_stiffness`.
     /// Their modes are known in closed form: Φ_ij = sqrt(2/((n+1) m)) sin(i j π/(n+1)) and
@@ -293,6 +362,44 @@ mod tests {
                 let rigid: Vec<usize> = (0..n).filter(|&j| modes.omega[j] == 0.0).collect();
                 assert_eq!(rigid.len(), 1, "links {links} frame {frame}");
                 assert_eq!(modes.first_stiff[rigid[0]], 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn ring_modes_diagonalise_the_held_body_and_the_links_behind_it() {
+        for n in [1, 2, 3, 6, 16] {
+            for (body, extra) in [(0.3, 0.0), (0.005, 0.03), (1e6, 0.0)] {
+                let (m, kappa) = (0.01 / n as f64, 15000.0 * n as f64);
+                let modes = Modes::ring(n, m, kappa, body, extra);
+                assert_eq!(modes.mass[0], body + extra);
+                // The ring: spring i joins mass i and mass i + 1, the last back to the body.
+                let mut k = DMatrix::<f64>::zeros(n, n);
+                for i in 0..n {
+                    let j = (i + 1) % n;
+                    if i != j {
+                        k[(i, i)] += kappa;
+                        k[(j, j)] += kappa;
+                        k[(i, j)] -= kappa;
+                        k[(j, i)] -= kappa;
+                    }
+                }
+                let phi = DMatrix::from_fn(n, n, |i, j| modes.shape[i][j]);
+                let d = DMatrix::from_fn(n, n, |i, j| if i == j { modes.mass[i] } else { 0.0 });
+                let identity = phi.transpose() * &d * &phi;
+                let spectral = phi.transpose() * k * &phi;
+                let scale = modes.fastest.powi(2).max(1.0);
+                for i in 0..n {
+                    for j in 0..n {
+                        let want = if i == j { 1.0 } else { 0.0 };
+                        let what = format!("n {n} body {body} I {i} {j}");
+                        assert!((identity[(i, j)] - want).abs() < 1e-10, "{what}");
+                        let want = if i == j { modes.omega[i].powi(2) } else { 0.0 };
+                        assert!((spectral[(i, j)] - want).abs() < 1e-12 * scale, "{what} K");
+                    }
+                }
+                let rigid: Vec<usize> = (0..n).filter(|&j| modes.omega[j] == 0.0).collect();
+                assert_eq!(rigid.len(), 1, "n {n} body {body}");
             }
         }
     }

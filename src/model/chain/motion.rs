@@ -2,7 +2,9 @@
 //! oscillator, written with the resonance- and zero-frequency-safe pieces of [`super::super::oscillator`].
 //! With string friction the first mass moving in direction d also feels the constant -d F_c, a step
 //! forcing Φ_1j (-d F_c) of each mode; held still by it, the first mass stays put and the masses behind
-//! it swing freely in their own modes ([`Modes::clamped`]) about the straight line from it to the wall.
+//! it swing freely in their own modes ([`Modes::clamped`]) about the straight line from it to the wall;
+//! held to a free frame, first mass and frame are one body and each phase is the moving one's closed
+//! form in the ring's modes ([`Modes::ring`], coordinates from `ring.rs`).
 
 use std::sync::Arc;
 
@@ -11,7 +13,7 @@ use super::super::oscillator::{detuned, forced, free, free_given, step};
 use super::super::setup::{Setup, State};
 use super::super::trig::sin_cos;
 use super::modes::{MAX, Modes};
-use super::{Chain, ChainState};
+use super::{Chain, ChainState, ring};
 
 /// How one mode moves in a sliding phase (see `Slide`'s cart response, of which this is the modal copy).
 #[derive(Clone, Copy, Debug)]
@@ -74,12 +76,18 @@ impl Motion {
         cart: Cart,
     ) -> Motion {
         let (sin_wt0, cos_wt0) = sin_cos(setup.w * start.t);
-        if cart == Cart::Stuck {
+        let held = cart == Cart::Stuck;
+        if held && start.frame == 0 {
             return Motion::held(chain, start, dir, (sin_wt0, cos_wt0));
         }
-        let modes = chain.modes(dir);
-        let q0 = modes.project(&start.x);
-        let dq0 = modes.project(&start.v);
+        // Held to a free frame, the ring of first mass and frame and the links behind ([`ring`]).
+        let (modes, (x, v)) = if held {
+            (chain.held(dir), ring::coordinates(&chain, &start))
+        } else {
+            (chain.modes(dir), (start.x, start.v))
+        };
+        let q0 = modes.project(&x);
+        let dq0 = modes.project(&v);
         let v1_start = (0..modes.n).map(|j| modes.shape[0][j] * dq0[j]).sum();
         let force = dir * setup.peak_friction();
         let speeds = start.vx.abs()
@@ -147,10 +155,11 @@ impl Motion {
         &self.chain
     }
 
-    /// The modes of this phase (held: those of the masses behind the first).
+    /// The modes of this phase (held: those of the masses behind the first, or on a free frame the
+    /// ring's, [`Chain::held`]).
     pub fn modes(&self) -> &Modes {
         match self.cart {
-            Cart::Stuck => self.chain.clamped(),
+            Cart::Stuck => self.chain.held(self.dir),
             Cart::Moving(_) => self.chain.modes(self.dir),
         }
     }
@@ -223,7 +232,8 @@ impl Motion {
     /// The ball, the first mass and the friction at `t`.
     #[inline]
     pub fn contact(&self, setup: &Setup, t: f64) -> Contact {
-        if self.is_held() {
+        let frame = self.start.frame;
+        if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
         }
         let modes = self.modes();
@@ -236,9 +246,8 @@ impl Motion {
             stiff += modes.first_stiff[j] * q[j];
             stiff_rate += modes.first_stiff[j] * dq[j];
         }
-        let frame = self.start.frame;
         let mut frame_motion = (0.0, 0.0);
-        if frame > 0 {
+        if frame > 0 && !self.is_held() {
             // The first mass's displacement is reported relative to the free frame.
             let xf = (0..modes.n)
                 .map(|j| modes.shape[frame][j] * q[j])
@@ -275,6 +284,11 @@ impl Motion {
             let (impulse, friction) = self.sliding(setup, sin_w_tau, cos_w_tau);
             (impulse, friction, 0.0, friction / modes.mass[0] - held_back)
         };
+        if frame > 0 && self.is_held() {
+            // Held to the frame: the first mass keeps its place on it and moves with it.
+            x = s0.x[0] - s0.x[frame];
+            frame_motion = (v, accel);
+        }
         Contact {
             state: State {
                 t,
@@ -336,7 +350,9 @@ impl Motion {
         let (q, dq, _, _) = self.modal(setup, t);
         let contact = self.contact(setup, t).state;
         let (mut x, mut v) = (modes.expand(&q), modes.expand(&dq));
-        if self.is_held() {
+        if self.is_held() && self.start.frame > 0 {
+            (x, v) = ring::place(&self.chain, &self.start, &x, &v);
+        } else if self.is_held() {
             // Behind the held mass: its rest line plus the swing.
             for i in (1..self.chain.n).rev() {
                 x[i] = rest_line(&self.chain, &self.start, i) + x[i - 1];

@@ -4,13 +4,14 @@
 //! ends when its velocity V_1 reaches zero. Held still, the ball slides on (Eqs. (1), (2) with V = 0) or
 //! rolls on a still surface, and the phase ends when the net push on the first mass, F - N k (X_1 - X_2),
 //! reaches ±F_c (F = 0 for a rolling ball). What follows is decided by [`transition::next`] with the
-//! first mass in the cart's place.
+//! first mass in the cart's place. On a free frame the first mass's velocity is measured relative to the
+//! frame, and a first mass held to it is the ring's (`ring.rs`, which also decides what follows).
 
 use super::super::contact::{Ball, Cart, Cause, Mode, ROUNDING};
 use super::super::events::first_rise;
 use super::super::setup::Setup;
 use super::super::transition::{self, Touched};
-use super::{Chain, ChainMotion, ChainOfMasses, ChainState};
+use super::{Chain, ChainMotion, ChainOfMasses, ChainState, ring};
 
 /// The mode after `cause` at `state`, in a phase that was `ball` and `cart`.
 pub fn next(
@@ -21,6 +22,9 @@ pub fn next(
     cart: Cart,
     cause: Cause,
 ) -> Mode {
+    if state.frame > 0 {
+        return ring::next(chain, setup, state, ball, cart, cause);
+    }
     let touched = Touched {
         t: state.t,
         mass: chain.link_mass,
@@ -48,11 +52,17 @@ pub fn first_event(
     } else {
         0.0
     };
+    // The first mass's velocity and acceleration relative to the frame (to the wall).
+    let relative = |c: &super::motion::Contact| (c.state.v - c.frame.0, c.accel - c.frame.1);
     let v_offset = if matches!(cause, Cause::Start | Cause::CartStop | Cause::Unstick(_)) {
-        start.state.v
+        relative(&start).0
     } else {
         0.0
     };
+    let framed = state.frame > 0;
+    if framed && cart == Cart::Stuck {
+        return ring::first_event(setup, motion, state, ball, model.incoming, slip_offset);
+    }
     let speeds = model.incoming + state.vx.abs() + setup.r * state.omega.abs();
     match (ball, cart) {
         (Ball::Slide(dir), Cart::Moving(d)) => {
@@ -60,13 +70,18 @@ pub fn first_event(
             let f = |t: f64| {
                 let c = motion.contact(setup, t);
                 let rate = -c.friction / setup.m_eff - c.accel;
+                let (v, accel) = relative(&c);
                 [
                     (-dir * (setup.slip(&c.state) - slip_offset), -dir * rate),
-                    (-d * (c.state.v - v_offset), -d * c.accel),
+                    (-d * (v - v_offset), -d * accel),
                 ]
             };
             let (slip_curvature, terms) = motion.slip_curvature(setup);
-            let (cart_curvature, cart_terms) = motion.cart_curvature(setup);
+            let (cart_curvature, cart_terms) = if framed {
+                motion.relative_curvature(setup)
+            } else {
+                motion.cart_curvature(setup)
+            };
             let noise = [
                 ROUNDING * (speeds + terms),
                 ROUNDING * (v_offset.abs() + cart_terms),
@@ -88,14 +103,15 @@ pub fn first_event(
             let f = |t: f64| {
                 let c = motion.contact(setup, t);
                 let [forward, backward] = setup.grip_margins(t, c.friction, c.friction_rate);
-                [
-                    forward,
-                    backward,
-                    (-d * (c.state.v - v_offset), -d * c.accel),
-                ]
+                let (v, accel) = relative(&c);
+                [forward, backward, (-d * (v - v_offset), -d * accel)]
             };
             let (margin_curvature, terms) = motion.margin_curvature(setup);
-            let (cart_curvature, cart_terms) = motion.cart_curvature(setup);
+            let (cart_curvature, cart_terms) = if framed {
+                ring::grip_relative_curvature(motion, setup)
+            } else {
+                motion.cart_curvature(setup)
+            };
             let noise = [
                 ROUNDING * terms,
                 ROUNDING * terms,
