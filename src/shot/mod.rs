@@ -51,6 +51,11 @@ pub enum ShotError {
     Racquet(#[from] RacquetError),
     #[error("on the strings: {0}")]
     Strings(SolveError),
+    /// A combination the core does not solve on a free frame, which a shot's racquet in the hand is.
+    #[error(
+        "on the strings: {what} on a hand-held racquet is not solved yet (use --racquet-mass clamped)"
+    )]
+    HandHeld { what: &'static str },
     #[error("on the court: {0}")]
     Court(SolveError),
     #[error(transparent)]
@@ -190,7 +195,10 @@ fn on_strings(p: &Params, racquet: &Hold) -> Result<Params, ShotError> {
 fn hit_by(p: &Params, racquet: &Hold, options: &SolveOptions) -> Result<Contact, ShotError> {
     let strings = strings(p);
     let incidence = incidence(p)?;
-    let bounce = solve_with(&on_strings(p, racquet)?, options).map_err(ShotError::Strings)?;
+    let bounce = solve_with(&on_strings(p, racquet)?, options).map_err(|e| match e {
+        SolveError::FreeFrame { what } => ShotError::HandHeld { what },
+        e => ShotError::Strings(e),
+    })?;
     let o = &bounce.outcome;
     let (velocity, omega_z) = strings.rebound(&incidence, o.vx2, o.vy2, o.omega2);
     Ok(Contact {

@@ -431,3 +431,25 @@ fn a_hand_held_shot_agrees_with_an_independent_solution_end_to_end() {
     eprintln!("worst: launch {launch:.1e} m/s, court {court:.1e} m over {compared} shots");
     assert!(compared >= 15, "{compared}");
 }
+
+#[test]
+fn a_shot_the_hand_held_racquet_cannot_solve_names_the_racquet_flag() {
+    let refused = [
+        "--preset",
+        "topspin-forehand",
+        "--chain",
+        "4",
+        "--ball-stiffness",
+        "100kN/m",
+        "--cart-friction",
+        "10",
+    ];
+    let out = snapback_shot(&refused);
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("hand-held racquet"), "{err}");
+    assert!(err.contains("--racquet-mass clamped"), "{err}");
+    assert!(!err.contains("--frame-mass"), "{err}");
+    // The advice works: the same shot on a clamped racquet is played.
+    shot_json(&[&refused[..], &["--racquet-mass", "clamped"][..]].concat());
+}
