@@ -10,6 +10,7 @@ use crate::frame::{close, random_frame, step_for};
 use crate::support::compliant::solved_or_refused;
 use crate::support::frame_integrator::{FrameNumerical, integrate_frame};
 use crate::support::rng::Rng;
+use snapback::analysis::timeline::travel;
 use snapback::model::{Bounce, Cart, Params, PhaseKind, solve};
 
 /// A random frame with string friction from a light touch to one that holds the cart throughout.
@@ -26,16 +27,25 @@ fn check_against(p: &Params, exact: &Bounce, reference: &FrameNumerical, tol: f6
     let o = &exact.outcome;
     let summary = exact.phase_summary();
     let speeds = p.speed;
+    // The cart's velocity and stretch are measured against the largest the cart reached: a cart of a few
+    // milligrams swings at tens of thousands of rad/s, and its velocity at release is then as sensitive
+    // to the time of the last transition as that speed times rounding.
+    let travel = travel(exact);
     let pairs = [
         ("vx2", o.vx2, reference.vx2, speeds),
         ("omega2", o.omega2, reference.omega2, speeds / p.radius),
-        ("V", exact.final_state.v, reference.v2, speeds),
+        (
+            "V",
+            exact.final_state.v,
+            reference.v2,
+            speeds.max(travel.peak_v),
+        ),
         ("V_f", exact.frame_velocity(), reference.vf2, speeds),
         (
             "y",
             exact.final_state.x,
             reference.stretch2,
-            speeds * p.duration,
+            (speeds * p.duration).max(travel.peak_x),
         ),
     ];
     for (name, a, b, scale) in pairs {
@@ -488,4 +498,16 @@ fn the_string_presets_on_the_racquets_frame_agree_with_the_integration() {
             normal_only.outcome.omega2
         );
     }
+}
+
+/// A seed the property test once drew: a 13 mg cart on 8 kN/m swinging at 25 000 rad/s, held and
+/// pushed free in turn. Its release velocity differs from the integration's by 1.1e-8 m/s, 2e-9 of the
+/// ball's speed but 3e-10 of the cart's own peak speed (34 m/s), against which it is now measured.
+#[test]
+fn a_cart_of_milligrams_agrees_within_its_own_swing() {
+    let mut rng = Rng(16_202_890_283_908_862_478 | 1);
+    let p = random_string_frame(&mut rng);
+    let exact = solve(&p).unwrap();
+    let reference = integrate_frame(&p, step_for(&p));
+    check_against(&p, &exact, &reference, 1e-9, "milligram cart");
 }
