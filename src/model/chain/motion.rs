@@ -236,8 +236,21 @@ impl Motion {
         if self.is_held() {
             return self.held_contact(setup, t);
         }
-        let modes = self.modes();
         let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
+        self.moving_contact(setup, t, (&q, &dq), (sin_w_tau, cos_w_tau))
+    }
+
+    /// [`Motion::contact`] of a moving first mass given the modal coordinates and rates at `t` and
+    /// sin(w τ), cos(w τ) there (from [`Motion::modal`]).
+    #[inline]
+    fn moving_contact(
+        &self,
+        setup: &Setup,
+        t: f64,
+        (q, dq): (&[f64; MAX], &[f64; MAX]),
+        (sin_w_tau, cos_w_tau): (f64, f64),
+    ) -> Contact {
+        let modes = self.modes();
         let (mut x, mut v, mut stiff, mut stiff_rate) = (0.0, 0.0, 0.0, 0.0);
         for j in 0..modes.n {
             let phi = modes.shape[0][j];
@@ -343,8 +356,13 @@ impl Motion {
     /// The whole chain at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
         let modes = self.modes();
-        let (q, dq, _, _) = self.modal(setup, t);
-        let contact = self.contact(setup, t).state;
+        let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
+        let contact = if self.is_held() {
+            self.held_contact(setup, t)
+        } else {
+            self.moving_contact(setup, t, (&q, &dq), (sin_w_tau, cos_w_tau))
+        }
+        .state;
         let (mut x, mut v) = (modes.expand(&q), modes.expand(&dq));
         if self.is_held() {
             // Behind the held mass: its rest line plus the swing.
