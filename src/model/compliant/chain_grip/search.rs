@@ -1,8 +1,8 @@
 //! Where the event search looks for the grip's break, and the bounds on |F''| it needs: in stages, a
 //! strongly damped mode bounding |F''| only until it has died out.
 
-use super::super::super::setup::Setup;
 use super::super::super::chain::modes::MAX;
+use super::super::super::setup::Setup;
 use super::super::stretch::SETTLED;
 use nalgebra::DVector;
 
