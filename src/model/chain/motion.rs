@@ -9,9 +9,9 @@
 use std::sync::Arc;
 
 use super::super::contact::Cart;
-use super::super::oscillator::{detuned, forced, free, free_given, step};
+use super::super::oscillator::{detuned, forced, free_given, step};
 use super::super::setup::{Setup, State};
-use super::super::trig::sin_cos;
+use super::super::trig::{sin_cos, sin_cos2};
 use super::modes::{MAX, Modes};
 use super::{Chain, ChainState, ring};
 
@@ -178,27 +178,39 @@ impl Motion {
         let modes = self.modes();
         let tau = t - self.start.t;
         let w = setup.w;
+        // sin and cos of every Ω_j τ, and of w τ while sliding (in the last place), two at a time.
+        let n = modes.n;
+        let count = if self.is_grip() { n } else { n + 1 };
+        let angle = |j: usize| if j < n { modes.omega[j] * tau } else { w * tau };
+        let (mut sin, mut cos) = ([0.0; MAX + 1], [0.0; MAX + 1]);
+        let mut j = 0;
+        while j + 1 < count {
+            ((sin[j], cos[j]), (sin[j + 1], cos[j + 1])) = sin_cos2(angle(j), angle(j + 1));
+            j += 2;
+        }
+        if j < count {
+            (sin[j], cos[j]) = sin_cos(angle(j));
+        }
         let (sin_w_tau, cos_w_tau) = if self.is_grip() {
             (0.0, 1.0)
         } else {
-            sin_cos(w * tau)
+            (sin[n], cos[n])
         };
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
-        for j in 0..modes.n {
+        for j in 0..n {
             let omega = modes.omega[j];
             let (x0, v0) = (self.q0[j], self.dq0[j]);
+            let (s, c) = (sin[j], cos[j]);
+            let (x_free, v_free) = free_given(x0, v0, omega, tau, s, c);
             (q[j], dq[j]) = match self.response[j] {
-                Response::Free => free(x0, v0, omega, tau),
+                Response::Free => (x_free, v_free),
                 Response::Detuned { amplitude } => {
-                    let (s, c) = sin_cos(omega * tau);
-                    let (x_free, v_free) = free_given(x0, v0, omega, tau, s, c);
                     let phase0 = (self.sin_wt0, self.cos_wt0);
                     let (x_forced, v_forced) =
                         detuned(omega, w, tau, phase0, (sin_w_tau, cos_w_tau), (s, c));
                     (x_free + amplitude * x_forced, v_free + amplitude * v_forced)
                 }
                 Response::Forced { drive } => {
-                    let (x_free, v_free) = free(x0, v0, omega, tau);
                     let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
                     (x_free + drive * g, v_free + drive * dg)
                 }
@@ -206,10 +218,8 @@ impl Motion {
         }
         if self.push != 0.0 {
             // The string friction switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω².
-            for j in 0..modes.n {
-                let omega = modes.omega[j];
-                let (s, c) = sin_cos(omega * tau);
-                let (x_step, v_step) = step(s, c, omega, tau);
+            for j in 0..n {
+                let (x_step, v_step) = step(sin[j], cos[j], modes.omega[j], tau);
                 let drive = self.push_shape(j) * self.push;
                 q[j] += drive * x_step;
                 dq[j] += drive * v_step;
@@ -236,8 +246,21 @@ impl Motion {
         if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
         }
-        let modes = self.modes();
         let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
+        self.moving_contact(setup, t, (&q, &dq), (sin_w_tau, cos_w_tau))
+    }
+
+    /// [`Motion::contact`] of a moving first mass given the modal coordinates and rates at `t` and
+    /// sin(w τ), cos(w τ) there (from [`Motion::modal`]).
+    #[inline]
+    fn moving_contact(
+        &self,
+        setup: &Setup,
+        t: f64,
+        (q, dq): (&[f64; MAX], &[f64; MAX]),
+        (sin_w_tau, cos_w_tau): (f64, f64),
+    ) -> Contact {
+        let modes = self.modes();
         let (mut x, mut v, mut stiff, mut stiff_rate) = (0.0, 0.0, 0.0, 0.0);
         for j in 0..modes.n {
             let phi = modes.shape[0][j];
@@ -347,8 +370,13 @@ impl Motion {
     /// The whole chain at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
         let modes = self.modes();
-        let (q, dq, _, _) = self.modal(setup, t);
-        let contact = self.contact(setup, t).state;
+        let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
+        let contact = if self.is_held() {
+            self.held_contact(setup, t)
+        } else {
+            self.moving_contact(setup, t, (&q, &dq), (sin_w_tau, cos_w_tau))
+        }
+        .state;
         let (mut x, mut v) = (modes.expand(&q), modes.expand(&dq));
         if self.is_held() && self.start.frame > 0 {
             (x, v) = ring::place(&self.chain, &self.start, &x, &v);

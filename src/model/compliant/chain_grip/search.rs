@@ -1,6 +1,7 @@
 //! Where the event search looks for the grip's break, and the bounds on |F''| it needs: in stages, a
 //! strongly damped mode bounding |F''| only until it has died out.
 
+use super::super::super::chain::modes::MAX;
 use super::super::super::setup::Setup;
 use super::super::stretch::SETTLED;
 use nalgebra::DVector;
@@ -32,12 +33,13 @@ impl ChainGrip {
             };
             (from, end, curvature, setup.event_step(rate))
         };
-        let first = self.force_bounds(setup, t0);
+        let sizes = self.mode_sizes(setup);
+        let first = self.force_bounds_with(setup, t0, &sizes);
         let size = first.1;
         let mut stages = vec![stage_from(t0, first)];
         // A cut pays for itself only where the bound has fallen by half since the stage began.
         for cut in cuts {
-            let next = stage_from(cut, self.force_bounds(setup, cut));
+            let next = stage_from(cut, self.force_bounds_with(setup, cut, &sizes));
             let current = stages.last_mut().expect("one stage at least");
             if next.2 < 0.5 * current.2 {
                 current.1 = cut;
@@ -53,40 +55,69 @@ impl ChainGrip {
     /// From `from` on: a mode decaying at -Re s has shrunk by e^(Re s (from - t0)) there, so a strongly
     /// damped mode stops counting once it has died out. Also the fastest rate still worth resolving.
     pub fn force_bounds(&self, setup: &Setup, from: f64) -> (f64, f64, f64) {
+        self.force_bounds_with(setup, from, &self.mode_sizes(setup))
+    }
+
+    /// Per mode, what [`ChainGrip::force_bounds`] scales by the mode's growth: its share of the bound
+    /// on |F''| and of the size of F's terms, and |s_i| (empty where the modes do not reproduce the
+    /// start). They stay the same over the grip, so the event search's stages take them once.
+    fn mode_sizes(&self, setup: &Setup) -> Vec<ModeSize> {
+        let remaining = setup.duration - self.start.t;
+        let (Some(list), Some(c)) = (&self.modes.modes, &self.coefficients) else {
+            return Vec::new();
+        };
+        list.iter()
+            .zip(c)
+            .enumerate()
+            .map(|(i, (mode, ci))| {
+                // Pushed, F'' = Re Σ (c_i s_i + β_i) s_i e^{s_i τ} and the push's share of F is
+                // β_i (e^{s_i τ} - 1)/s_i, at most |β_i| τ e^{max(Re s_i, 0) τ}.
+                let (part, term, squared) = match &self.beta {
+                    Some(beta) => {
+                        let rate = (ci * mode.s + beta[i]) * mode.force;
+                        let shift = (beta[i] * mode.force).norm() * remaining;
+                        let part = rate.norm() * mode.s.norm();
+                        (part, (ci * mode.force).norm() + shift, false)
+                    }
+                    None => ((ci * mode.force).norm(), 0.0, true),
+                };
+                ModeSize {
+                    re: mode.s.re,
+                    part,
+                    term,
+                    squared: squared.then(|| mode.s.norm_sqr()),
+                    rate: mode.s.norm(),
+                }
+            })
+            .collect()
+    }
+
+    /// [`ChainGrip::force_bounds`] given [`ChainGrip::mode_sizes`].
+    fn force_bounds_with(&self, setup: &Setup, from: f64, sizes: &[ModeSize]) -> (f64, f64, f64) {
         let g = &self.modes;
         let (elapsed, remaining) = (from - self.start.t, setup.duration - self.start.t);
         match (&g.modes, &self.coefficients) {
-            (Some(list), Some(c)) => {
+            (Some(_), Some(_)) => {
                 let (mut curvature, mut size) = (0.0, 0.0);
-                let terms: Vec<(f64, f64)> = list
+                let mut parts = [0.0; 2 * MAX + 2];
+                for (m, slot) in sizes.iter().zip(&mut parts) {
+                    let growth = growth(m.re, elapsed, remaining);
+                    let (part, term) = match m.squared {
+                        None => (m.part * growth, m.term * growth),
+                        Some(squared) => {
+                            let term = m.part * growth;
+                            (term * squared, term)
+                        }
+                    };
+                    curvature += part;
+                    size += term;
+                    *slot = part;
+                }
+                let fastest = sizes
                     .iter()
-                    .zip(c)
-                    .enumerate()
-                    .map(|(i, (mode, ci))| {
-                        let growth = growth(mode.s.re, elapsed, remaining);
-                        // Pushed, F'' = Re Σ (c_i s_i + β_i) s_i e^{s_i τ} and the push's share of F is
-                        // β_i (e^{s_i τ} - 1)/s_i, at most |β_i| τ e^{max(Re s_i, 0) τ}.
-                        let (part, term) = match &self.beta {
-                            Some(beta) => {
-                                let rate = (ci * mode.s + beta[i]) * mode.force;
-                                let shift = (beta[i] * mode.force).norm() * remaining;
-                                let part = rate.norm() * mode.s.norm() * growth;
-                                (part, ((ci * mode.force).norm() + shift) * growth)
-                            }
-                            None => {
-                                let term = (ci * mode.force).norm() * growth;
-                                (term * mode.s.norm_sqr(), term)
-                            }
-                        };
-                        curvature += part;
-                        size += term;
-                        (part, mode.s.norm())
-                    })
-                    .collect();
-                let fastest = terms
-                    .iter()
-                    .filter(|(part, _)| *part >= NEGLIGIBLE * curvature)
-                    .map(|&(_, rate)| rate)
+                    .zip(parts)
+                    .filter(|(_, part)| *part >= NEGLIGIBLE * curvature)
+                    .map(|(m, _)| m.rate)
                     .fold(0.0, f64::max);
                 (curvature, size, fastest)
             }
@@ -173,6 +204,20 @@ impl ChainGrip {
         let constant = (dual.transpose() * &g.a * forcing)[0].abs() * push;
         (second.norm() * reach + constant, dual.norm() * reach)
     }
+}
+
+/// One mode's constant shares of [`ChainGrip::force_bounds`], before its growth.
+struct ModeSize {
+    /// Re s_i, which sets the growth.
+    re: f64,
+    /// Pushed: |(c_i s_i + β_i) F_i| |s_i|; otherwise |c_i F_i|.
+    part: f64,
+    /// Pushed: |c_i F_i| + |β_i F_i| (t_end - t0) (otherwise unused).
+    term: f64,
+    /// Unpushed: |s_i|², by which the grown |c_i F_i| bounds the mode's |F''|.
+    squared: Option<f64>,
+    /// |s_i|.
+    rate: f64,
 }
 
 /// How much a mode of rate s may have grown (or least shrunk) over the contact from `elapsed` after the
