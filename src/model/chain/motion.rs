@@ -260,6 +260,7 @@ impl Motion {
         (q, dq): (&[f64; MAX], &[f64; MAX]),
         (sin_w_tau, cos_w_tau): (f64, f64),
     ) -> Contact {
+        let frame = self.start.frame;
         let modes = self.modes();
         let (mut x, mut v, mut stiff, mut stiff_rate) = (0.0, 0.0, 0.0, 0.0);
         for j in 0..modes.n {
@@ -371,7 +372,7 @@ impl Motion {
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
         let modes = self.modes();
         let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
-        let contact = if self.is_held() {
+        let contact = if self.is_held() && self.start.frame == 0 {
             self.held_contact(setup, t)
         } else {
             self.moving_contact(setup, t, (&q, &dq), (sin_w_tau, cos_w_tau))
