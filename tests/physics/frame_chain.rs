@@ -123,37 +123,42 @@ fn momentum(p: &Params, setup: &Setup, s: &ChainState) -> f64 {
     setup.m * s.vx + links + p.frame_mass * s.v[s.frame]
 }
 
+/// Runs the framed chain of `p` phase by phase and checks its momentum along the surface (ball, masses,
+/// frame) inside every phase and at its end against its value at first contact, to 1e-12.
+pub(crate) fn assert_momentum_conserved(p: &Params, what: &str) {
+    let setup = Setup::new(p);
+    let model = ChainOfMasses::new(p, &setup).expect("a framed chain");
+    let (mut state, mut mode) = model.start(&setup);
+    let p0 = momentum(p, &setup, &state);
+    let scale = setup.m * (p.speed + p.radius * p.spin.abs());
+    let mut cause = Cause::Start;
+    for _ in 0..1000 {
+        let motion = model.motion(&setup, &state, mode);
+        let found = model.first_event(&setup, &motion, &state, mode, cause);
+        let end = found.event.map_or(setup.duration, |(t, _)| t);
+        // Inside the phase and at its end.
+        for t in [0.5 * (state.t + end), end] {
+            let s = model.state_at(&setup, &motion, t, None);
+            let drift = (momentum(p, &setup, &s) - p0).abs();
+            assert!(
+                drift <= 1e-12 * scale,
+                "{what} at {t} ({mode:?}): {drift} ({p:?})"
+            );
+        }
+        let Some((t, next_cause)) = found.event else {
+            break;
+        };
+        state = model.state_at(&setup, &motion, t, found.last);
+        mode = model.next(&setup, &mut state, mode, next_cause);
+        cause = next_cause;
+    }
+}
+
 #[test]
 fn momentum_along_the_surface_is_conserved_through_every_phase() {
     let mut rng = Rng(0xf4a3_c4a1_2310_0003);
     for case in 0..60 {
-        let p = random_framed_chain(&mut rng);
-        let setup = Setup::new(&p);
-        let model = ChainOfMasses::new(&p, &setup).expect("a framed chain");
-        let (mut state, mut mode) = model.start(&setup);
-        let p0 = momentum(&p, &setup, &state);
-        let scale = setup.m * (p.speed + p.radius * p.spin.abs());
-        let mut cause = Cause::Start;
-        for _ in 0..1000 {
-            let motion = model.motion(&setup, &state, mode);
-            let found = model.first_event(&setup, &motion, &state, mode, cause);
-            let end = found.event.map_or(setup.duration, |(t, _)| t);
-            // Inside the phase and at its end.
-            for t in [0.5 * (state.t + end), end] {
-                let s = model.state_at(&setup, &motion, t, None);
-                let drift = (momentum(&p, &setup, &s) - p0).abs();
-                assert!(
-                    drift <= 1e-12 * scale,
-                    "case {case} at {t}: {drift} ({p:?})"
-                );
-            }
-            let Some((t, next_cause)) = found.event else {
-                break;
-            };
-            state = model.state_at(&setup, &motion, t, found.last);
-            mode = model.next(&setup, &mut state, mode, next_cause);
-            cause = next_cause;
-        }
+        assert_momentum_conserved(&random_framed_chain(&mut rng), &format!("case {case}"));
     }
 }
 

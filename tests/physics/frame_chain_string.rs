@@ -8,13 +8,12 @@
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 
+use crate::frame_chain::assert_momentum_conserved;
 use crate::support::chain::random_chain;
 use crate::support::chain_integrator;
 use crate::support::prop::config;
 use crate::support::rng::Rng;
-use snapback::model::chain::{ChainOfMasses, ChainState};
-use snapback::model::contact::{Cart, Cause, Contact};
-use snapback::model::setup::Setup;
+use snapback::model::contact::Cart;
 use snapback::model::{Params, PhaseKind, solve};
 
 /// A random rigid-ball bounce on a chain of 2 to 6 masses on a frame of 20 g to 20 kg, with string
@@ -89,43 +88,11 @@ fn string_friction_on_a_framed_chain_agrees_with_an_independent_integration() {
     );
 }
 
-/// m v_x plus every mass's momentum along the surface, the frame's included.
-fn momentum(p: &Params, setup: &Setup, s: &ChainState) -> f64 {
-    let n = p.chain as usize;
-    let links: f64 = s.v[..n].iter().sum::<f64>() * p.cart_mass / p.chain;
-    setup.m * s.vx + links + p.frame_mass * s.v[s.frame]
-}
-
 #[test]
 fn momentum_along_the_surface_is_conserved_through_every_phase_with_string_friction() {
     let mut rng = Rng(0xf4a3_5715_0023_0002);
     for case in 0..60 {
-        let p = random_framed_string(&mut rng);
-        let setup = Setup::new(&p);
-        let model = ChainOfMasses::new(&p, &setup).expect("a framed chain");
-        let (mut state, mut mode) = model.start(&setup);
-        let p0 = momentum(&p, &setup, &state);
-        let scale = setup.m * (p.speed + p.radius * p.spin.abs());
-        let mut cause = Cause::Start;
-        for _ in 0..1000 {
-            let motion = model.motion(&setup, &state, mode);
-            let found = model.first_event(&setup, &motion, &state, mode, cause);
-            let end = found.event.map_or(setup.duration, |(t, _)| t);
-            for t in [0.5 * (state.t + end), end] {
-                let s = model.state_at(&setup, &motion, t, None);
-                let drift = (momentum(&p, &setup, &s) - p0).abs();
-                assert!(
-                    drift <= 1e-12 * scale,
-                    "case {case} at {t} ({mode:?}): {drift} ({p:?})"
-                );
-            }
-            let Some((t, next_cause)) = found.event else {
-                break;
-            };
-            state = model.state_at(&setup, &motion, t, found.last);
-            mode = model.next(&setup, &mut state, mode, next_cause);
-            cause = next_cause;
-        }
+        assert_momentum_conserved(&random_framed_string(&mut rng), &format!("case {case}"));
     }
 }
 
