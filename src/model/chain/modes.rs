@@ -100,52 +100,16 @@ impl Modes {
             let values = &eigen.eigenvalues;
             (0..n).fold(0, |best, j| if values[j] < values[best] { j } else { best })
         });
-        let total: f64 = mass[..n].iter().sum();
-        let mut modes = Modes {
-            n,
-            mass,
-            omega: [0.0; MAX],
-            shape: [[0.0; MAX]; MAX],
-            first_stiff: [0.0; MAX],
-            largest: [0.0; MAX],
-            fastest: 0.0,
-        };
-        let root_mass = link_mass.sqrt();
-        for j in 0..n {
-            if rigid == Some(j) {
-                let phi = total.sqrt().recip();
-                for row in modes.shape.iter_mut().take(n) {
-                    row[j] = phi;
-                }
-                modes.largest[j] = phi;
-                continue;
-            }
-            let u = eigen.eigenvectors.column(j);
-            let z: Vec<f64> = (0..n).map(|i| scale[i] * u[i]).collect();
-            // The springs' extensions: between neighbours, and the last mass's to the wall if clamped.
-            let springs = if frame.is_some() { n - 1 } else { n };
-            let stretch: f64 = (0..springs)
+        // The springs' extensions: between neighbours, and the last mass's to the wall if clamped.
+        let springs = if frame.is_some() { n - 1 } else { n };
+        Modes::from_eigen(&eigen, mass, &scale, link_mass, frequency, rigid, |z| {
+            (0..springs)
                 .map(|i| {
                     let e = if i + 1 < n { z[i] - z[i + 1] } else { z[i] };
                     e * e
                 })
-                .sum();
-            let norm: f64 = (0..n).map(|i| u[i] * u[i]).sum();
-            let lambda = (stretch / norm).max(0.0);
-            let omega = frequency * lambda.sqrt();
-            modes.omega[j] = omega;
-            let mut largest: f64 = 0.0;
-            for (i, zi) in z.iter().enumerate() {
-                // Φ = D^(-1/2) u with D = link_mass S.
-                let phi = zi / (root_mass * norm.sqrt());
-                modes.shape[i][j] = phi;
-                largest = largest.max(phi.abs());
-            }
-            modes.largest[j] = largest;
-            modes.first_stiff[j] = modes.shape[0][j] * omega * omega;
-            modes.fastest = modes.fastest.max(omega);
-        }
-        modes
+                .sum()
+        })
     }
 
     /// The chain on a free frame with its first mass held to the frame by string friction: the first
@@ -178,6 +142,31 @@ impl Modes {
         }
         let values = &eigen.eigenvalues;
         let rigid = (0..n).fold(0, |best, j| if values[j] < values[best] { j } else { best });
+        Modes::from_eigen(
+            &eigen,
+            mass,
+            &scale,
+            link_mass,
+            frequency,
+            Some(rigid),
+            |z| (0..n).map(|i| (z[i] - z[(i + 1) % n]).powi(2)).sum(),
+        )
+    }
+
+    /// The modes of `mass` from the eigenvectors of the scaled spring pattern (`scale` the diagonal of
+    /// S^(-1/2), in units of `link_mass`): the mode `rigid`, if any, written exactly as the rigid
+    /// translation; every other Ω_j² the Rayleigh quotient `stretch(z)`/|u|² of its vector z = S^(-1/2) u,
+    /// `stretch` summing the squared extensions of the springs, times the link's k/m.
+    fn from_eigen(
+        eigen: &SymmetricEigen<f64, nalgebra::Dyn>,
+        mass: [f64; MAX],
+        scale: &[f64; MAX],
+        link_mass: f64,
+        frequency: f64,
+        rigid: Option<usize>,
+        stretch: impl Fn(&[f64]) -> f64,
+    ) -> Modes {
+        let n = eigen.eigenvalues.len();
         let total: f64 = mass[..n].iter().sum();
         let mut modes = Modes {
             n,
@@ -190,7 +179,7 @@ impl Modes {
         };
         let root_mass = link_mass.sqrt();
         for j in 0..n {
-            if j == rigid {
+            if rigid == Some(j) {
                 let phi = total.sqrt().recip();
                 for row in modes.shape.iter_mut().take(n) {
                     row[j] = phi;
@@ -200,12 +189,13 @@ impl Modes {
             }
             let u = eigen.eigenvectors.column(j);
             let z: Vec<f64> = (0..n).map(|i| scale[i] * u[i]).collect();
-            let stretch: f64 = (0..n).map(|i| (z[i] - z[(i + 1) % n]).powi(2)).sum();
             let norm: f64 = (0..n).map(|i| u[i] * u[i]).sum();
-            let omega = frequency * (stretch / norm).max(0.0).sqrt();
+            let lambda = (stretch(&z) / norm).max(0.0);
+            let omega = frequency * lambda.sqrt();
             modes.omega[j] = omega;
             let mut largest: f64 = 0.0;
             for (i, zi) in z.iter().enumerate() {
+                // Φ = D^(-1/2) u with D = link_mass S.
                 let phi = zi / (root_mass * norm.sqrt());
                 modes.shape[i][j] = phi;
                 largest = largest.max(phi.abs());
