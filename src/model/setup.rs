@@ -171,6 +171,17 @@ impl Setup {
         ]
     }
 
+    /// How far a cart held by string friction is from coming unstuck, given the net push `push` on it
+    /// (with rate `rate`): forward push - F_c and backward -push - F_c, each with its rate. The cart is
+    /// pushed free the way of whichever rises above zero first (Sec. IV's enhancement).
+    #[inline]
+    pub fn unstick_margins(&self, push: f64, rate: f64) -> [(f64, f64); 2] {
+        [
+            (push - self.cart_friction, rate),
+            (-push - self.cart_friction, -rate),
+        ]
+    }
+
     /// Slip speed of the ball's contact point relative to the cart: v_x - r omega - V.
     #[inline]
     pub fn slip(&self, s: &State) -> f64 {

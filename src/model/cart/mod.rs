@@ -243,11 +243,8 @@ impl Contact for SingleCart {
                     let slip = slide.slip_event(setup, &s, friction, slip_offset);
                     let push = friction - setup.k * s.x;
                     let push_rate = slide.dir * setup.friction_limit_rate(t);
-                    [
-                        slip,
-                        (push - setup.cart_friction, push_rate),
-                        (-push - setup.cart_friction, -push_rate),
-                    ]
+                    let [up, down] = setup.unstick_margins(push, push_rate);
+                    [slip, up, down]
                 };
                 let (slip_curvature, push_curvature) = slide.curvature(setup);
                 let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];

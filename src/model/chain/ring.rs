@@ -112,17 +112,11 @@ pub fn first_event(
     let forces = ROUNDING * (push_terms + setup.cart_friction);
     let step = setup.event_step(motion.modes().fastest);
     let speeds = incoming + state.vx.abs() + setup.r * state.omega.abs();
-    let branch = |(p, rate): (f64, f64)| {
-        [
-            (p - setup.cart_friction, rate),
-            (-p - setup.cart_friction, -rate),
-        ]
-    };
     if dir == 0.0 {
         let f = |t: f64| {
             let (c, p, rate) = push(t);
             let [forward, backward] = setup.grip_margins(t, c.friction, c.friction_rate);
-            let [up, down] = branch((p, rate));
+            let [up, down] = setup.unstick_margins(p, rate);
             [forward, backward, up, down]
         };
         let (margin_curvature, terms) = motion.margin_curvature(setup);
@@ -143,7 +137,7 @@ pub fn first_event(
         let f = |t: f64| {
             let (c, p, rate) = push(t);
             let slip_rate = -c.friction / setup.m_eff - c.accel;
-            let [up, down] = branch((p, rate));
+            let [up, down] = setup.unstick_margins(p, rate);
             [
                 (
                     -dir * (setup.slip(&c.state) - slip_offset),

@@ -145,11 +145,8 @@ pub fn first_event(
                 let (spring, spring_rate) = motion.link(setup, t);
                 let push = c.friction - spring;
                 let push_rate = dir * setup.friction_limit_rate(t) - spring_rate;
-                [
-                    slip,
-                    (push - setup.cart_friction, push_rate),
-                    (-push - setup.cart_friction, -push_rate),
-                ]
+                let [up, down] = setup.unstick_margins(push, push_rate);
+                [slip, up, down]
             };
             let (link_curvature, link_terms) = motion.link_curvature();
             let friction = dir.abs() * setup.peak_friction();

@@ -585,10 +585,7 @@ impl CompliantBall {
         let f = |t: f64| {
             let p = held.inner.at(body, t);
             let (push, rate) = (share * p.friction - spring, share * p.friction_rate);
-            [
-                (push - setup.cart_friction, rate),
-                (-push - setup.cart_friction, -rate),
-            ]
+            setup.unstick_margins(push, rate)
         };
         let step = setup.event_step(held.inner.fastest(body));
         let unstick =
@@ -635,10 +632,7 @@ impl CartEvents {
                 [(-d * (p.state.v - self.v_offset), -d * accel), STAND_IN]
             }
             // X is fixed: the push changes as F does.
-            Cart::Stuck => [
-                (push - setup.cart_friction, p.friction_rate),
-                (-push - setup.cart_friction, -p.friction_rate),
-            ],
+            Cart::Stuck => setup.unstick_margins(push, p.friction_rate),
         }
     }
 
@@ -658,10 +652,7 @@ impl CartEvents {
             }
             Cart::Stuck => {
                 let (push, rate) = (p.friction - link, p.friction_rate - link_rate);
-                [
-                    (push - setup.cart_friction, rate),
-                    (-push - setup.cart_friction, -rate),
-                ]
+                setup.unstick_margins(push, rate)
             }
         }
     }

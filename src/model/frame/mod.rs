@@ -549,11 +549,8 @@ impl Contact for FramedCart {
                     let slip = (-dir * (setup.slip(&p.state.s) - slip_offset), -dir * rate);
                     let push = share * p.friction - setup.k * p.state.s.x;
                     let push_rate = share * p.friction_rate;
-                    [
-                        slip,
-                        (push - setup.cart_friction, push_rate),
-                        (-push - setup.cart_friction, -push_rate),
-                    ]
+                    let [up, down] = setup.unstick_margins(push, push_rate);
+                    [slip, up, down]
                 };
                 let force_rate = peak * setup.w;
                 let slip_curvature = force_rate * (1.0 / setup.m_eff + 1.0 / body);
