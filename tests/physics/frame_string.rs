@@ -7,7 +7,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::RngSeed;
 
-use crate::frame::{close, random_frame, step_for};
+use crate::frame::{assert_momentum_conserved, close, random_frame, step_for};
 use crate::support::compliant::solved_or_refused;
 use crate::support::frame_integrator::{FrameNumerical, integrate_frame};
 use crate::support::rng::Rng;
@@ -120,22 +120,7 @@ fn momentum_along_the_surface_is_conserved_with_string_friction() {
     let mut rng = Rng(0x30e5_7a11_0023_0002);
     for _ in 0..40 {
         let p = random_string_frame(&mut rng);
-        let b = solve(&p).unwrap();
-        let total = |vx: f64, v: f64, vf: f64| p.mass * vx + p.cart_mass * v + p.frame_mass * vf;
-        let before = total(b.setup.vx1, 0.0, 0.0);
-        let scale = p.mass * p.speed;
-        for (index, phase) in b.phases.iter().enumerate() {
-            for t in [phase.start, 0.5 * (phase.start + phase.end), phase.end] {
-                let s = b.sample_in(index, t);
-                let vf = phase.motion().frame_velocity(&b.setup, t);
-                let now = total(s.vx, s.v, vf);
-                assert!(
-                    (now - before).abs() <= 1e-11 * scale,
-                    "{now} vs {before} at {t} ({p:?}, {})",
-                    b.phase_summary()
-                );
-            }
-        }
+        assert_momentum_conserved(&p, &solve(&p).unwrap());
     }
 }
 
