@@ -47,6 +47,8 @@ pub fn summary(b: &Bounce) -> String {
     let _ = writeln!(out, "\nPhases ({})", b.phase_summary());
     // A compliant ball grips through its contact patch, and its force then follows its spring.
     let compliant = model.compliant();
+    let decimals = phase_decimals(b.phases.iter().flat_map(|p| [p.start * 1e3, p.end * 1e3]));
+    let width = decimals + 3;
     for p in &b.phases {
         let stuck;
         let slip = match (p.kind, p.slip_sign, p.cart) {
@@ -80,10 +82,11 @@ pub fn summary(b: &Bounce) -> String {
         };
         let _ = writeln!(
             out,
-            "  {:<6}{:>7.4} - {:>6.4} ms  {slip}",
+            "  {:<6}{:>width$.decimals$} - {:>w$.decimals$} ms  {slip}",
             p.kind.name(),
             p.start * 1e3,
-            p.end * 1e3
+            p.end * 1e3,
+            w = width - 1
         );
     }
     let _ = writeln!(
@@ -137,4 +140,21 @@ pub fn summary(b: &Bounce) -> String {
     }
     let _ = writeln!(out, "  {:<24}{:>10.1e} (relative)", "residual", e.residual);
     out
+}
+
+/// The decimals (4 to 9) at which every two different phase boundaries, in ms, read differently: a grip
+/// that breaks 20 ns before the end of contact shows as 4.99998 - 5.00000, not 5.0000 - 5.0000.
+fn phase_decimals(boundaries: impl Iterator<Item = f64> + Clone) -> usize {
+    let distinct = |d: usize| {
+        let mut shown = boundaries.clone().map(|t| (t, format!("{t:.d$}")));
+        let mut previous: Option<(f64, String)> = None;
+        shown.all(|(t, text)| {
+            let clash = previous
+                .as_ref()
+                .is_some_and(|(u, seen)| *u != t && *seen == text);
+            previous = Some((t, text));
+            !clash
+        })
+    };
+    (4..=9).find(|&d| distinct(d)).unwrap_or(9)
 }

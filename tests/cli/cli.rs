@@ -41,6 +41,23 @@ fn table_is_the_default() {
         .stdout(predicate::str::contains("lost to friction"));
 }
 
+/// The table shows phase times with as many decimals as it takes to tell them apart: the 10 kg cart's
+/// grip breaks 23 ns before the end of contact (its last slide is real: mu N falls to zero there).
+#[test]
+fn a_phase_shorter_than_the_tables_rounding_still_reads_as_an_interval() {
+    snapback()
+        .args(["simulate", "--cart-mass", "10kg"])
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("grip   2.25792 - 4.99998 ms"))
+        .stdout(predicate::str::contains("slide  4.99998 - 5.00000 ms"));
+    snapback()
+        .arg("simulate")
+        .assert()
+        .success()
+        .stdout(predicate::str::contains("grip   1.3244 - 4.3917 ms"));
+}
+
 #[test]
 fn json_has_the_contract_keys() {
     let v = json(&[]);
