@@ -182,17 +182,6 @@ fn the_frame_takes_its_kinetic_energy_from_the_ball_and_none_is_created() {
     }
 }
 
-#[test]
-fn the_longest_chain_on_a_frame_is_refused_by_name() {
-    let params = Params {
-        frame_mass: 0.3,
-        chain: 16.0,
-        ..Params::default()
-    };
-    let err = solve(&params).unwrap_err();
-    assert!(err.to_string().contains("--chain 16"), "{err}");
-}
-
 proptest! {
     #![proptest_config(config(200))]
 

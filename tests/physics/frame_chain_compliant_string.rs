@@ -4,11 +4,13 @@
 //! ring, which the ball's spring grips or slides on. Against the independent integration of
 //! support/chain_compliant_integrator.rs (RK4 with that friction between the first and the last mass),
 //! momentum along the surface phase by phase, the energy budget, the heavy frame against the clamped
-//! chain with the same string friction, and property tests.
+//! chain with the same string friction, the longest chain on a frame (its 16 links and the frame, 17
+//! masses), and property tests.
 
 use proptest::prelude::*;
 
 use crate::support::chain_compliant_integrator::{Reference, integrate, step_for};
+use crate::support::chain_integrator;
 use crate::support::compliant::{peak_friction, random_compliant, solved_or_refused};
 use crate::support::prop::config;
 use crate::support::rng::Rng;
@@ -234,6 +236,44 @@ fn a_heavy_frame_approaches_the_clamped_chain_with_the_same_string_friction() {
     }
 }
 
+#[test]
+fn the_longest_chain_on_a_frame_agrees_with_the_integrations() {
+    // The rigid ball, with and without string friction, against the chain's integration.
+    for cart_friction in [0.0, 5.0] {
+        let p = Params {
+            chain: 16.0,
+            frame_mass: 0.3,
+            cart_friction,
+            ..Params::default()
+        };
+        let exact = solve(&p).expect("a chain of 16 on a frame solves");
+        let reference = chain_integrator::integrate(&p, chain_integrator::step_for(&p) / 8.0);
+        let what = format!("{p:?} ({})", exact.phase_summary());
+        assert_eq!(exact.phases.len(), reference.phases, "{what}");
+        let pairs = [
+            (exact.outcome.vx2, reference.vx2, p.speed),
+            (exact.outcome.omega2, reference.omega2, p.speed / p.radius),
+            (exact.final_state.v, reference.v2, p.speed),
+            (exact.frame_velocity(), reference.frame_v, p.speed),
+        ];
+        for (a, b, scale) in pairs {
+            assert!((a - b).abs() <= 1e-9 * scale, "{what}: {a} vs {b}");
+        }
+    }
+    // The compliant ball, with and without string friction.
+    for cart_friction in [0.0, 30.0] {
+        let p = Params {
+            chain: 16.0,
+            frame_mass: 0.188,
+            ball_stiffness: 1e5,
+            ball_damping: 0.3,
+            cart_friction,
+            ..Params::default()
+        };
+        check_against_reference(&p, "chain of 16");
+    }
+}
+
 proptest! {
     #![proptest_config(config(100))]
 
@@ -242,7 +282,7 @@ proptest! {
         seed in any::<u64>(),
     ) {
         let mut rng = Rng(seed | 1);
-        let links = 2 + rng.below(14);
+        let links = 2 + rng.below(15);
         let mut p = random_params(&mut rng, links);
         // Lighter frames and balls than the integration can follow.
         p.frame_mass = rng.log_uniform(1e-3, 1e3);

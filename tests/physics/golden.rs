@@ -452,6 +452,21 @@ fn cases() -> Vec<Case> {
         pairs.push(("cart-friction", num(rng.log_uniform(0.1, 300.0))));
         out.push(case(&pairs));
     }
+    // The longest chain on the free frame (issue 23; 17 masses with the frame), appended last: the
+    // rigid ball with and without string friction, and the compliant ball with it, on the racquet's
+    // frame and a light one.
+    for (ball, fc) in [("0", "0"), ("0", "30"), ("100kN/m", "30")] {
+        for frame in ["188.09g", "20g"] {
+            out.push(case(&[
+                ("chain", "16".into()),
+                ("ball-stiffness", ball.into()),
+                ("ball-damping", "0.3".into()),
+                ("frame-mass", frame.into()),
+                ("frame-normal-mass", "181.15g".into()),
+                ("cart-friction", fc.into()),
+            ]));
+        }
+    }
     out
 }
 

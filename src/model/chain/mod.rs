@@ -101,8 +101,7 @@ impl Chain {
 
     /// Refuses on a free frame what is not solved there: string friction without a spring (but under
     /// the rigid ball on a chain), or (`compliant` false) under the rigid ball on one mass here (the
-    /// single cart's is [`super::frame::FramedCart`]'s), and the longest chain (its modes and the
-    /// frame's would exceed [`MAX`]).
+    /// single cart's is [`super::frame::FramedCart`]'s).
     pub fn solvable_on_frame(
         params: &Params,
         setup: &Setup,
@@ -124,11 +123,6 @@ impl Chain {
             if let Some(what) = what {
                 return Err(SolveError::FreeFrame { what });
             }
-        }
-        if params.chain as usize >= MAX {
-            return Err(SolveError::FreeFrame {
-                what: "a chain of 16 masses (--chain 16)",
-            });
         }
         Ok(())
     }
