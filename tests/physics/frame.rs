@@ -231,17 +231,18 @@ fn the_energy_budget_balances_and_nothing_is_created() {
 }
 
 #[test]
-fn what_a_free_frame_does_not_solve_yet_is_refused_by_name() {
+fn what_a_free_frame_does_not_solve_is_refused_by_name() {
     for (params, flag) in [
         (
             Params {
                 frame_mass: 0.3,
                 cart_friction: 5.0,
                 ball_stiffness: 1e5,
+                stiffness: 0.0,
                 chain: 3.0,
                 ..Params::default()
             },
-            "string friction (--cart-friction) on a chain",
+            "--stiffness 0",
         ),
         (
             Params {

@@ -182,33 +182,6 @@ fn the_frame_takes_its_kinetic_energy_from_the_ball_and_none_is_created() {
     }
 }
 
-#[test]
-fn the_longest_chain_and_a_compliant_balls_string_friction_on_a_frame_are_refused_by_name() {
-    for (params, flag) in [
-        (
-            Params {
-                frame_mass: 0.3,
-                chain: 16.0,
-                ..Params::default()
-            },
-            "--chain 16",
-        ),
-        (
-            Params {
-                frame_mass: 0.3,
-                chain: 3.0,
-                cart_friction: 5.0,
-                ball_stiffness: 1e5,
-                ..Params::default()
-            },
-            "--cart-friction",
-        ),
-    ] {
-        let err = solve(&params).unwrap_err();
-        assert!(err.to_string().contains(flag), "{err}");
-    }
-}
-
 proptest! {
     #![proptest_config(config(200))]
 

@@ -378,8 +378,8 @@ fn cases() -> Vec<Case> {
         out.push(case(&pairs));
     }
     // String friction under a compliant ball on the free frame (issue 23), appended last with its own
-    // seed: the racquet's frame at three frictions, a light frame, the chain (still refused), and
-    // seeded random single carts.
+    // seed: the racquet's frame at three frictions, a light frame, a chain, and seeded random single
+    // carts.
     for (frame, fc, chain) in [
         ("188.09g", "3", "1"),
         ("188.09g", "30", "1"),
@@ -425,6 +425,47 @@ fn cases() -> Vec<Case> {
         pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
         pairs.push(("cart-friction", num(rng.log_uniform(0.1, 300.0))));
         out.push(case(&pairs));
+    }
+    // String friction under a compliant ball on a chain on the free frame (issue 23, the ball's spring
+    // gripping the body of first mass and frame with the ring behind it), appended last with its own
+    // seed: short and long chains on the racquet's frame and a light one, and seeded random framed
+    // chains.
+    for chain in ["2", "8", "15"] {
+        for (frame, fc) in [("188.09g", "30"), ("20g", "3")] {
+            out.push(case(&[
+                ("chain", chain.into()),
+                ("ball-stiffness", "100kN/m".into()),
+                ("ball-damping", "0.3".into()),
+                ("frame-mass", frame.into()),
+                ("frame-normal-mass", "181.15g".into()),
+                ("cart-friction", fc.into()),
+            ]));
+        }
+    }
+    let mut rng = Rng(0xc0ff_c4a1_5791_0023);
+    for _ in 0..20 {
+        let mut pairs = rigid(&mut rng);
+        pairs.push(("chain", (2 + rng.below(14)).to_string()));
+        pairs.push(("ball-stiffness", num(rng.log_uniform(1e4, 1e7))));
+        pairs.push(("ball-damping", num(rng.uniform(0.05, 2.0))));
+        pairs.push(("frame-mass", num(rng.log_uniform(1e-3, 1e3))));
+        pairs.push(("cart-friction", num(rng.log_uniform(0.1, 300.0))));
+        out.push(case(&pairs));
+    }
+    // The longest chain on the free frame (issue 23; 17 masses with the frame), appended last: the
+    // rigid ball with and without string friction, and the compliant ball with it, on the racquet's
+    // frame and a light one.
+    for (ball, fc) in [("0", "0"), ("0", "30"), ("100kN/m", "30")] {
+        for frame in ["188.09g", "20g"] {
+            out.push(case(&[
+                ("chain", "16".into()),
+                ("ball-stiffness", ball.into()),
+                ("ball-damping", "0.3".into()),
+                ("frame-mass", frame.into()),
+                ("frame-normal-mass", "181.15g".into()),
+                ("cart-friction", fc.into()),
+            ]));
+        }
     }
     out
 }

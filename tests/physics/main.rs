@@ -27,6 +27,7 @@ mod compliant_string;
 mod critical;
 mod frame;
 mod frame_chain;
+mod frame_chain_compliant_string;
 mod frame_chain_string;
 mod frame_compliant;
 mod frame_string;

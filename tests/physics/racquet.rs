@@ -437,8 +437,8 @@ fn a_shot_the_hand_held_racquet_cannot_solve_names_the_racquet_flag() {
     let refused = [
         "--preset",
         "topspin-forehand",
-        "--chain",
-        "4",
+        "--stiffness",
+        "0",
         "--ball-stiffness",
         "100kN/m",
         "--cart-friction",

@@ -25,11 +25,16 @@
 //!
 //! On a free frame (`frame_mass` > 0, issue 23) the last spring goes to one more mass, the frame M_t,
 //! and nothing to the wall; the normal impulse carries the apparent restitution
-//! e_A = (e_y M_n - m)/(M_n + m) (M_n = M_t unless given). Not with string friction.
+//! e_A = (e_y M_n - m)/(M_n + m) (M_n = M_t unless given). String friction then acts between the first
+//! mass and the frame: moving relative to the frame in direction d, -d F_c on the first mass and
+//! +d F_c on the frame, until V_1 - V_f reaches zero (the first mass then takes the frame's velocity);
+//! held, the first mass and the frame move as one body, a_B = (F - S_1 - S_f)/(M/N + M_t) with S_f
+//! the frame's spring, while the force the frame gives the first mass, F - S_1 - (M/N) a_B, stays
+//! within ±F_c.
 //!
 //! Three more components ride along as quadratures of the energy budget: the friction loss
 //! ∫ F (patch slip) dt over the slides, the dashpot loss ∫ c_b e'² dt and the string friction's loss
-//! ∫ F_c |V_1| dt.
+//! ∫ F_c |V_1 - V_f| dt (V_f = 0 on the wall).
 
 use snapback::model::Params;
 use std::f64::consts::PI;
@@ -59,7 +64,7 @@ pub struct Budget {
     pub friction_loss: f64,
     /// ∫ c_b e'² dt.
     pub dashpot_loss: f64,
-    /// ∫ F_c |V_1| dt.
+    /// ∫ F_c |V_1 - V_f| dt.
     pub string_loss: f64,
 }
 
@@ -137,10 +142,6 @@ impl Model {
         let links = p.chain as usize;
         assert!((1..=MAX_LINKS).contains(&links) && links as f64 == p.chain);
         let framed = p.frame_mass > 0.0;
-        assert!(
-            !framed || p.cart_friction == 0.0,
-            "string friction on a frame"
-        );
         let n = links + usize::from(framed);
         let vy1 = p.speed * (90.0 - p.angle_deg).to_radians().cos();
         let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
@@ -234,10 +235,35 @@ impl Model {
         }
     }
 
-    /// The first mass's own spring, kappa (X_1 - X_2) (kappa X_1 for one mass).
-    fn first_spring(&self, y: &Y) -> f64 {
-        let behind = if self.n > 1 { y[self.xi(1)] } else { 0.0 };
-        self.kappa * (y[self.xi(0)] - behind)
+    /// True on a free frame (the last mass).
+    fn framed(&self) -> bool {
+        self.n > self.links
+    }
+
+    /// The first mass's velocity relative to the frame (to the wall).
+    fn relative(&self, y: &Y) -> f64 {
+        if self.framed() {
+            y[self.vi(0)] - y[self.vi(self.n - 1)]
+        } else {
+            y[self.vi(0)]
+        }
+    }
+
+    /// The acceleration of the held body of first mass and frame under the ball's force `f` (0 on the
+    /// wall, where the first mass stays still).
+    fn held_accel(&self, f: f64, y: &Y) -> f64 {
+        if self.framed() {
+            let springs = self.spring(y, 0) + self.spring(y, self.n - 1);
+            (f - springs) / (self.link + self.frame)
+        } else {
+            0.0
+        }
+    }
+
+    /// The force the string friction must give the held first mass to keep it with the frame (still
+    /// on the wall): F - S_1 - (M/N) a_B.
+    fn held_push(&self, f: f64, y: &Y) -> f64 {
+        f - self.spring(y, 0) - self.link * self.held_accel(f, y)
     }
 
     fn rate(&self, (dir, cart): (f64, Cart), t: f64, y: &Y) -> Y {
@@ -245,15 +271,21 @@ impl Model {
         let mut out = [0.0; DIM];
         out[0] = -f / self.m;
         out[1] = self.r * f / self.inertia;
+        let frame = self.n - 1;
         for i in 0..self.n {
             out[self.xi(i)] = y[self.vi(i)];
             let push = match (i, cart) {
                 (0, Some(d)) => f - d * self.fc,
+                (i, Some(d)) if i == frame && self.framed() => d * self.fc,
                 _ => 0.0,
             };
             out[self.vi(i)] = (push - self.spring(y, i)) / self.mass(i);
         }
-        if cart.is_none() {
+        if cart.is_none() && self.framed() {
+            // The first mass moves with the frame, one body.
+            let a = self.held_accel(f, y);
+            (out[self.vi(0)], out[self.vi(frame)]) = (a, a);
+        } else if cart.is_none() {
             out[self.xi(0)] = 0.0;
             out[self.vi(0)] = 0.0;
         }
@@ -265,7 +297,7 @@ impl Model {
             f * (self.contact_slip(y) - de)
         };
         out[ei + 2] = self.cb * de * de;
-        out[ei + 3] = self.fc * y[self.vi(0)].abs();
+        out[ei + 3] = self.fc * self.relative(y).abs();
         out
     }
 
@@ -307,14 +339,14 @@ impl Model {
             return -1.0;
         }
         match cart {
-            Some(d) => -d * y[self.vi(0)],
-            None => (self.force(dir, t, y).0 - self.first_spring(y)).abs() - self.fc,
+            Some(d) => -d * self.relative(y),
+            None => self.held_push(self.force(dir, t, y).0, y).abs() - self.fc,
         }
     }
 
     /// A held first mass, or one moving the way the net force pushes it.
     fn cart_at_rest(&self, dir: f64, t: f64, y: &Y) -> Cart {
-        let push = self.force(dir, t, y).0 - self.first_spring(y);
+        let push = self.held_push(self.force(dir, t, y).0, y);
         (push.abs() > self.fc).then(|| push.signum())
     }
 
@@ -462,7 +494,12 @@ pub fn integrate(p: &Params, max_step: f64) -> Reference {
         let (ball_event, next_dir) = model.event(dir, t, &y);
         if model.cart_event((dir, cart), t, &y) > cart_tolerance(cart) {
             if cart.is_some() {
-                y[model.vi(0)] = 0.0;
+                // It stops on the wall, or takes the frame's velocity.
+                y[model.vi(0)] = if model.framed() {
+                    y[model.vi(n - 1)]
+                } else {
+                    0.0
+                };
                 stops += 1;
             }
             cart = model.cart_at_rest(dir, t, &y);

@@ -20,7 +20,7 @@
 
 pub mod modes;
 pub mod motion;
-mod ring;
+pub mod ring;
 mod string;
 
 use std::cell::RefCell;
@@ -99,10 +99,9 @@ impl Chain {
         }
     }
 
-    /// Refuses on a free frame what is not solved there yet: string friction under a compliant ball
-    /// on a chain, or without a spring, or (`compliant` false) under the rigid ball on one mass here
-    /// (the single cart's is [`super::frame::FramedCart`]'s), and the longest chain (its modes and the
-    /// frame's would exceed [`MAX`]).
+    /// Refuses on a free frame what is not solved there: string friction without a spring (but under
+    /// the rigid ball on a chain), or (`compliant` false) under the rigid ball on one mass here (the
+    /// single cart's is [`super::frame::FramedCart`]'s).
     pub fn solvable_on_frame(
         params: &Params,
         setup: &Setup,
@@ -112,21 +111,18 @@ impl Chain {
             return Ok(());
         }
         if params.cart_friction > 0.0 {
-            let what = if params.chain > 1.0 {
-                compliant.then_some("string friction (--cart-friction) on a chain")
-            } else if params.stiffness == 0.0 {
+            // The rigid ball's chain without springs is solved as on the wall; the compliant ball's
+            // meets its first mass alone, as on one.
+            let what = if params.stiffness == 0.0 && (compliant || params.chain <= 1.0) {
                 Some("string friction (--cart-friction) without a spring (--stiffness 0)")
+            } else if params.chain > 1.0 {
+                None
             } else {
                 (!compliant).then_some("string friction (--cart-friction)")
             };
             if let Some(what) = what {
                 return Err(SolveError::FreeFrame { what });
             }
-        }
-        if params.chain as usize >= MAX {
-            return Err(SolveError::FreeFrame {
-                what: "a chain of 16 masses (--chain 16)",
-            });
         }
         Ok(())
     }
@@ -170,6 +166,27 @@ impl Chain {
             let extra = if grip == 1 { self.m_eff } else { 0.0 };
             let body = self.link_mass + frame;
             Modes::ring(self.n, self.link_mass, self.link_stiffness, body, extra)
+        })
+    }
+
+    /// On a free frame, the ring of a first mass held to the frame, sliding ([`Chain::held`]: the body
+    /// B first, the links behind), written as the chain a compliant ball's grip is solved on
+    /// ([`super::compliant::GripModes`]): its slide modes are the ring's, with the rigid translation,
+    /// and the ball's spring pulls on B, their first mass. Laid out as a framed chain of N - 1 links
+    /// (N masses, the last link in the frame's place); only its modes and its link mass (the lighter,
+    /// for the grip's rate bound) are read. `None` on the wall or for one mass.
+    pub fn held_ring(&self) -> Option<Chain> {
+        self.frame.filter(|_| self.n > 1)?;
+        Some(Chain {
+            n: self.n - 1,
+            link_mass: self.link_mass,
+            link_stiffness: self.link_stiffness,
+            frame: self.frame,
+            slide: self.held(1.0).clone(),
+            grip: OnceLock::new(),
+            clamped: OnceLock::new(),
+            ring: [OnceLock::new(), OnceLock::new()],
+            m_eff: self.m_eff,
         })
     }
 

@@ -3,8 +3,9 @@
 
 use nalgebra::{DMatrix, SymmetricEigen};
 
-/// The longest chain.
-pub const MAX: usize = 16;
+/// The most masses one set of modes holds: the longest chain (16 links, `--chain`'s range) and a free
+/// frame behind it.
+pub const MAX: usize = 17;
 
 /// The normal modes of one configuration of the chain: masses `mass` on the springs, mass-normalised
 /// shapes Φ (Φᵀ D Φ = I with D = diag(mass), Φᵀ K Φ = diag(Ω²)), so that with x = Φ q each modal

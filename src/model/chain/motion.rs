@@ -172,9 +172,11 @@ impl Motion {
         self.dir == 0.0
     }
 
-    /// The modal coordinates and their rates at `t`, with sin(w τ) and cos(w τ), τ = t - t0.
+    /// The modal coordinates and their rates at `t`, written into `q` and `dq` (each of the modes' entries;
+    /// filled in place rather than returned, which would copy the arrays), with sin(w τ) and cos(w τ),
+    /// τ = t - t0.
     #[inline]
-    fn modal(&self, setup: &Setup, t: f64) -> ([f64; MAX], [f64; MAX], f64, f64) {
+    fn modal(&self, setup: &Setup, t: f64, q: &mut [f64; MAX], dq: &mut [f64; MAX]) -> (f64, f64) {
         let modes = self.modes();
         let tau = t - self.start.t;
         let w = setup.w;
@@ -196,7 +198,6 @@ impl Motion {
         } else {
             (sin[n], cos[n])
         };
-        let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         for j in 0..n {
             let omega = modes.omega[j];
             let (x0, v0) = (self.q0[j], self.dq0[j]);
@@ -225,7 +226,7 @@ impl Motion {
                 dq[j] += drive * v_step;
             }
         }
-        (q, dq, sin_w_tau, cos_w_tau)
+        (sin_w_tau, cos_w_tau)
     }
 
     /// The ball's impulse ∫ F dt since t0 and the friction F at t0 + τ while it slides, Eqs. (1), (2):
@@ -246,7 +247,8 @@ impl Motion {
         if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
         }
-        let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
+        let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
+        let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
         self.moving_contact(setup, t, (&q, &dq), (sin_w_tau, cos_w_tau))
     }
 
@@ -357,7 +359,8 @@ impl Motion {
     /// X_1 - X_2 = X_1/N; the masses' swing Σ Φ_1j q_j about it adds the rest.
     pub fn link(&self, setup: &Setup, t: f64) -> (f64, f64) {
         let modes = self.modes();
-        let (q, dq, _, _) = self.modal(setup, t);
+        let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
+        self.modal(setup, t, &mut q, &mut dq);
         let (mut x2, mut v2) = (0.0, 0.0);
         for j in 0..modes.n {
             x2 += modes.shape[0][j] * q[j];
@@ -371,7 +374,8 @@ impl Motion {
     /// The whole chain at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
         let modes = self.modes();
-        let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
+        let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
+        let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
         let contact = if self.is_held() && self.start.frame == 0 {
             self.held_contact(setup, t)
         } else {

@@ -20,7 +20,7 @@
 use super::super::contact::{Ball, Cart, Cause, Mode, ROUNDING};
 use super::super::events::first_rise;
 use super::super::setup::Setup;
-use super::modes::MAX;
+use super::modes::{MAX, Modes};
 use super::{Chain, ChainMotion, ChainState};
 
 /// The ring's coordinates and velocities at `start` (the first mass held to the frame): B's, the
@@ -85,28 +85,19 @@ pub fn first_event(
 ) -> Option<(f64, Cause)> {
     let chain = motion.chain();
     let (t0, end) = (state.t, setup.duration);
-    let (m1, body) = (
-        chain.link_mass,
-        chain.link_mass + chain.frame.unwrap_or(0.0),
-    );
     let dir = match ball {
         Ball::Slide(dir) => dir,
         Ball::Grip => 0.0,
     };
     let push = |t: f64| {
         let c = motion.contact(setup, t);
-        let [(t1, t1_rate), (_, tn_rate)] = springs(chain, &motion.full(setup, t));
         let f_rate = if dir == 0.0 {
             c.friction_rate
         } else {
             dir * setup.friction_limit_rate(t)
         };
-        let accel_rate = (f_rate - t1_rate + tn_rate) / body;
-        (
-            c,
-            c.friction - t1 - m1 * c.accel,
-            f_rate - t1_rate - m1 * accel_rate,
-        )
+        let (push, rate) = held_push(chain, (c.friction, f_rate), c.accel, &motion.full(setup, t));
+        (c, push, rate)
     };
     let (push_curvature, push_terms) = push_bounds(motion, setup);
     let forces = ROUNDING * (push_terms + setup.cart_friction);
@@ -158,37 +149,89 @@ pub fn first_event(
     }
 }
 
-/// A bound on |push''| over a held phase, and the size of push's terms.
+/// The force the frame must give the held first mass to keep it on the frame, and its rate, given the
+/// ball's force F on the body B and its rate (`friction`), B's acceleration a_B = (F - T_1 + T_N)/m_B
+/// and the whole chain `full`: push = F - T_1 - (M/N) a_B.
+pub fn held_push(
+    chain: &Chain,
+    (friction, friction_rate): (f64, f64),
+    accel: f64,
+    full: &ChainState,
+) -> (f64, f64) {
+    let (m1, body) = (
+        chain.link_mass,
+        chain.link_mass + chain.frame.unwrap_or(0.0),
+    );
+    let [(t1, t1_rate), (_, tn_rate)] = springs(chain, full);
+    let accel_rate = (friction_rate - t1_rate + tn_rate) / body;
+    (
+        friction - t1 - m1 * accel,
+        friction_rate - t1_rate - m1 * accel_rate,
+    )
+}
+
+/// [`held_push`] at a transition, where the ball's force `friction` is known and B's acceleration
+/// follows from it and the springs of `full`.
+pub fn rest_push(chain: &Chain, friction: f64, full: &ChainState) -> f64 {
+    let body = chain.link_mass + chain.frame.unwrap_or(0.0);
+    let [(t1, _), (tn, _)] = springs(chain, full);
+    friction - t1 - chain.link_mass * (friction - t1 + tn) / body
+}
+
+/// A bound on |push''| over a held phase, and the size of push's terms (the rigid ball's ring phase).
+pub fn push_bounds(motion: &ChainMotion, setup: &Setup) -> (f64, f64) {
+    let chain = motion.chain();
+    let share = chain.frame.unwrap_or(0.0) / (chain.link_mass + chain.frame.unwrap_or(0.0));
+    let sliding = !motion.is_grip();
+    let force_curvature = if sliding {
+        share * setup.peak_friction() * setup.w * setup.w
+    } else {
+        share * motion.margin_curvature(setup).0
+    };
+    ring_push_bounds(
+        chain,
+        motion.modes(),
+        &motion.start,
+        sliding,
+        force_curvature,
+        setup,
+    )
+}
+
+/// A bound on |push''| over a held phase from `start` in the ring's `modes`, and the size of push's
+/// terms, given the ball's part of it, `force_curvature` >= (M_t/m_B) |F''|; `forced` when the ball's
+/// force F (at most mu N) drives the ring through B, false when the ring swings freely (the rigid
+/// ball's grip, its m_eff riding on B).
 ///
 /// push = (M_t/m_B) (F - T_1) - (M/N / m_B) T_N. |F''| <= mu N0 w² sliding, and gripping the margins'
 /// bound (which holds F_s''); each spring is N k Σ_j (Φ_aj - Φ_bj) q_j with |q_j''| <= |Φ_1j| |F| +
 /// Ω_j E_j, E_j = sqrt(q_j'² + Ω_j² q_j²) at most its start value plus |Φ_1j| times the friction's
-/// remaining impulse 2 mu N0 / w (sliding; a gripping ring swings freely, E_j fixed).
-fn push_bounds(motion: &ChainMotion, setup: &Setup) -> (f64, f64) {
-    let chain = motion.chain();
-    let modes = motion.modes();
+/// remaining impulse 2 mu N0 / w (forced; swinging freely, E_j fixed).
+pub fn ring_push_bounds(
+    chain: &Chain,
+    modes: &Modes,
+    start: &ChainState,
+    forced: bool,
+    force_curvature: f64,
+    setup: &Setup,
+) -> (f64, f64) {
     let n = chain.n;
     let body = chain.link_mass + chain.frame.unwrap_or(0.0);
     let share = chain.frame.unwrap_or(0.0) / body;
     let tail = chain.link_mass / body;
-    let sliding = !motion.is_grip();
     let peak = setup.peak_friction();
-    let (y, v) = coordinates(chain, &motion.start);
+    let (y, v) = coordinates(chain, start);
     let (q0, dq0) = (modes.project(&y), modes.project(&v));
     let (second, last) = (1 % n, n - 1);
-    let mut curvature = if sliding {
-        share * peak * setup.w * setup.w
-    } else {
-        share * motion.margin_curvature(setup).0
-    };
-    let d = motion.start.x[0] - motion.start.x[motion.start.frame];
+    let mut curvature = force_curvature;
+    let d = start.x[0] - start.x[start.frame];
     let mut terms = peak + chain.link_stiffness * d.abs() / n as f64;
     for j in 0..modes.n {
         let omega = modes.omega[j];
         let phi = modes.shape[0][j];
         let mut energy = (dq0[j] * dq0[j] + (omega * q0[j]).powi(2)).sqrt();
         let mut accel = omega * energy;
-        if sliding {
+        if forced {
             energy += phi.abs() * 2.0 * peak / setup.w;
             accel = phi.abs() * peak + omega * energy;
         }

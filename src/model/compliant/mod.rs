@@ -37,8 +37,17 @@
 //!   and gripping through Duhamel's integral ([`ChainGrip`]), and the phase also ends when V - V_f
 //!   reaches zero. Held, the cart and the frame are one free body of mass M + M_t ([`HeldOnFrame`]),
 //!   and the phase also ends when the push the string friction holds, M_t F/(M + M_t) - k y, reaches
-//!   ±F_c; a stopping cart is held or pushed on by that push ([`transition::at_rest`]). On a chain or
-//!   without a spring it is refused (`SolveError::FreeFrame`).
+//!   ±F_c; a stopping cart is held or pushed on by that push ([`transition::at_rest`]). Without a
+//!   spring it is refused (`SolveError::FreeFrame`).
+//! - String friction on a chain's first mass on a free frame: moving, as on the single framed cart,
+//!   each of the framed chain's modes pushed by (Φ_1j - Φ_fj)(-d F_c), sliding by the rigid ball's
+//!   chain and gripping through Duhamel's integral ([`ChainGrip`]). Held, the first mass and the frame
+//!   are one body B of mass m_B = M/N + M_t with the links behind a ring tied to it at both ends (the
+//!   rigid ball's, `chain/ring.rs`): sliding, the rigid ball's held phase in the ring's modes; gripping,
+//!   the ball's spring and dashpot on B, the grip's damped modal system on the ring with its rigid
+//!   translation taken out ([`HeldRingGrip`]). The phase also ends when the force the frame must give
+//!   the first mass, F - T_1 - (M/N) a_B (T_1 = N k (X_1 - X_2), a_B = (F - T_1 + T_N)/m_B), reaches
+//!   ±F_c, and a stopping first mass is held or pushed on by that force ([`transition::at_rest`]).
 //!
 //! Chatter: an undamped stiff ball may switch many times; every phase advances time and the solver stops
 //! after [`super::error::MAX_TRANSITIONS`] with `SolveError::TooManyPhases`.
@@ -47,6 +56,7 @@ mod cart_grip;
 mod chain_grip;
 mod held_chain;
 mod held_frame;
+mod held_ring;
 mod stretch;
 
 use std::sync::Arc;
@@ -55,13 +65,14 @@ pub use cart_grip::{Compliance, CompliantGrip};
 pub use chain_grip::{ChainGrip, GripModes};
 pub use held_chain::HeldChainGrip;
 pub use held_frame::{FrameHold, HeldOnFrame};
+pub use held_ring::HeldRingGrip;
 pub use stretch::Stretch;
 
 use std::cell::{Cell, RefCell};
 
 use super::cart::Slide;
 use super::chain::motion::Motion as ChainMotion;
-use super::chain::{Chain, ChainState};
+use super::chain::{Chain, ChainState, ring};
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise_from_tangent;
@@ -116,6 +127,8 @@ pub enum CompliantMotion {
     HeldChainGrip(Box<HeldChainGrip>),
     /// The single cart held to a free frame by string friction.
     HeldOnFrame(Box<HeldOnFrame>),
+    /// The grip on a chain's first mass held to a free frame by string friction.
+    HeldRingGrip(Box<HeldRingGrip>),
 }
 
 /// Everything at one instant of a compliant phase.
@@ -209,6 +222,7 @@ impl CompliantMotion {
             CompliantMotion::ChainGrip(g) => g.at(setup, t),
             CompliantMotion::HeldChainGrip(g) => g.at(setup, t),
             CompliantMotion::HeldOnFrame(h) => h.at(t),
+            CompliantMotion::HeldRingGrip(g) => g.at(setup, t),
         }
     }
 
@@ -226,7 +240,8 @@ impl CompliantMotion {
             }
             CompliantMotion::Grip(_)
             | CompliantMotion::ChainGrip(_)
-            | CompliantMotion::HeldChainGrip(_) => (self.at(setup, t).e, 0.0),
+            | CompliantMotion::HeldChainGrip(_)
+            | CompliantMotion::HeldRingGrip(_) => (self.at(setup, t).e, 0.0),
             CompliantMotion::HeldOnFrame(h) => h.inner.stretch_and_patch_slip(&h.hold.body, t),
         }
     }
@@ -241,6 +256,7 @@ impl CompliantMotion {
             CompliantMotion::ChainGrip(g) => g.start.contact(),
             CompliantMotion::HeldChainGrip(g) => g.ball.start,
             CompliantMotion::HeldOnFrame(h) => h.initial(),
+            CompliantMotion::HeldRingGrip(g) => g.start.contact(),
         }
     }
 
@@ -257,6 +273,7 @@ impl CompliantMotion {
             },
             CompliantMotion::ChainGrip(g) => g.modes.spring(),
             CompliantMotion::HeldOnFrame(h) => h.inner.spring(),
+            CompliantMotion::HeldRingGrip(g) => g.grip.modes.spring(),
         }
     }
 
@@ -270,6 +287,7 @@ impl CompliantMotion {
             CompliantMotion::ChainGrip(g) => Some(g.modes.chain().energy(&g.full(setup, t))),
             CompliantMotion::HeldChainGrip(g) => Some(g.chain.chain().energy(&g.full(setup, t))),
             CompliantMotion::HeldOnFrame(h) => Some(h.hold.chain.energy(&h.full(t))),
+            CompliantMotion::HeldRingGrip(g) => Some(g.chain.energy(&g.full(setup, t))),
             _ => None,
         }
     }
@@ -284,6 +302,7 @@ impl CompliantMotion {
             }) | CompliantMotion::ChainGrip(_)
                 | CompliantMotion::HeldChainGrip(_)
                 | CompliantMotion::HeldOnFrame(_)
+                | CompliantMotion::HeldRingGrip(_)
         )
     }
 
@@ -300,6 +319,7 @@ impl CompliantMotion {
             }
             CompliantMotion::Grip(g) => g.compliance.fastest,
             CompliantMotion::ChainGrip(g) => g.modes.fastest,
+            CompliantMotion::HeldRingGrip(g) => g.grip.modes.fastest,
             CompliantMotion::HeldChainGrip(g) => g.fastest(),
             CompliantMotion::HeldOnFrame(h) => h.inner.fastest(&h.hold.body),
         }
@@ -318,7 +338,8 @@ impl CompliantMotion {
             }
             CompliantMotion::Grip(_)
             | CompliantMotion::ChainGrip(_)
-            | CompliantMotion::HeldChainGrip(_) => {
+            | CompliantMotion::HeldChainGrip(_)
+            | CompliantMotion::HeldRingGrip(_) => {
                 integrate(&f, start, end, 2.0 / self.fastest(setup).max(w))
             }
             CompliantMotion::HeldOnFrame(h) => h.inner.integrate(&h.hold.body, f, start, end),
@@ -394,6 +415,7 @@ impl PhaseMotion for CompliantMotion {
             CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldOnFrame(h) => h.full(t),
+            CompliantMotion::HeldRingGrip(grip) => grip.full(setup, t),
             CompliantMotion::Slide(_) | CompliantMotion::Grip(_) => return 0.0,
         };
         match full.frame {
@@ -407,6 +429,9 @@ thread_local! {
     /// The grip's modes of the last bounce on this thread, by its chain and the ball's spring and
     /// dashpot.
     static LAST_GRIP_MODES: Slot<([u64; 5], u64, u64), Arc<GripModes>> =
+        const { RefCell::new(None) };
+    /// The same for the ball gripping the ring of a first mass held to a free frame.
+    static LAST_RING_MODES: Slot<([u64; 5], u64, u64), Arc<GripModes>> =
         const { RefCell::new(None) };
 }
 
@@ -430,15 +455,29 @@ pub struct CompliantState {
     e: f64,
 }
 
+impl CompliantState {
+    /// The ball and every mass (on the single cart, its only mass; the frame's entry where it is free).
+    pub fn full(&self) -> &ChainState {
+        &self.full
+    }
+}
+
 /// The tangentially compliant ball on the single cart or on a chain, with or without string friction.
 /// With a spring (k > 0) every grip on a moving contact mass is solved by [`ChainGrip`], the single cart
 /// without string friction being a chain of one mass, and a grip on a held first mass of a chain by
-/// [`HeldChainGrip`]; a free cart (k = 0) has a double zero root there, and its grips are solved by
-/// [`CompliantGrip`], as are all grips on the single cart with string friction.
+/// [`HeldChainGrip`] ([`HeldRingGrip`] on a free frame); a free cart (k = 0) has a double zero root
+/// there, and its grips are solved by [`CompliantGrip`], as are all grips on the single cart with
+/// string friction (on a free frame, held, on the body of cart and frame, [`HeldOnFrame`]).
 pub struct CompliantBall {
     support: Support,
-    /// On a free frame with string friction, the cart held to the frame.
+    /// On a free frame with string friction, the single cart held to the frame.
     hold: Option<Arc<FrameHold>>,
+    /// On a free frame with string friction on a chain, the grip's modes of the ball on the ring of a
+    /// first mass held to the frame ([`HeldRingGrip`]).
+    ring: Option<Arc<GripModes>>,
+    /// The part of the ball's force that pushes the contact mass relative to what holds it: M_t/m_B
+    /// on a free frame (m_B the contact mass and the frame), 1 on the wall.
+    share: f64,
     spring: BallSpring,
     spin: f64,
     /// |v_x1| + r |omega1|: the scale of the speeds, for the event functions' rounding.
@@ -466,7 +505,7 @@ impl CompliantBall {
         Chain::solvable_on_frame(params, &setup, true)?;
         let framed = setup.frame_mass.is_some();
         let spring = BallSpring::new(params, &setup);
-        let mut hold = None;
+        let (mut hold, mut ring, mut share) = (None, None, 1.0);
         let support = if modal && (!string || links > 1.0 || framed) {
             let chain = Chain::shared(params, &setup);
             let key = (
@@ -479,21 +518,34 @@ impl CompliantBall {
             });
             let held = (string && !framed).then(|| Box::new(Compliance::new(params, &setup)));
             if let (true, Some(frame)) = (string, setup.frame_mass) {
-                hold = Some(Arc::new(FrameHold::new(
-                    params,
-                    &setup,
-                    frame,
-                    chain.clone(),
-                )));
+                if let Some(on_ring) = chain.held_ring() {
+                    share = frame / (chain.link_mass + frame);
+                    ring = Some(reuse(&LAST_RING_MODES, key, || {
+                        Arc::new(GripModes::new(
+                            Arc::new(on_ring),
+                            &setup,
+                            spring.kb,
+                            spring.cb,
+                        ))
+                    }));
+                } else {
+                    let frame_hold = FrameHold::new(params, &setup, frame, chain.clone());
+                    share = frame_hold.share;
+                    hold = Some(Arc::new(frame_hold));
+                }
             }
             Support::Chain { chain, modes, held }
         } else {
             Support::Cart(Box::new(Compliance::new(params, &setup)))
         };
-        let (cart_fastest, ball_fastest) = match &support {
+        let (mut cart_fastest, mut ball_fastest) = match &support {
             Support::Cart(c) => (setup.omega_slide.max(setup.omega_grip), c.fastest),
             Support::Chain { chain, modes, .. } => (chain.slide.fastest, modes.fastest),
         };
+        if let (Some(ring), Support::Chain { chain, .. }) = (&ring, &support) {
+            cart_fastest = cart_fastest.max(chain.held(1.0).fastest);
+            ball_fastest = ball_fastest.max(ring.fastest);
+        }
         let radians = cart_fastest * setup.duration;
         if radians > MAX_RADIANS {
             return Err(SolveError::TooFast { radians });
@@ -505,6 +557,8 @@ impl CompliantBall {
         let model = CompliantBall {
             support,
             hold,
+            ring,
+            share,
             spring,
             spin: params.spin,
             incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
@@ -514,12 +568,6 @@ impl CompliantBall {
 }
 
 impl CompliantBall {
-    /// The part of the ball's force that pushes the cart relative to what holds it: M_t/(M + M_t) on a
-    /// free frame, 1 on the wall.
-    fn share(&self) -> f64 {
-        self.hold.as_ref().map_or(1.0, |hold| hold.share)
-    }
-
     /// The phase of `ball` from `state` with the cart held to the free frame: the ball on the body of
     /// cart and frame.
     fn held_on_frame(
@@ -808,7 +856,7 @@ impl Contact for CompliantBall {
                 Ball::Slide(_) => 0.0,
                 Ball::Grip => spring.cb * slip0,
             };
-            transition::at_rest(setup, self.share() * force)
+            transition::at_rest(setup, self.share * force)
         } else {
             Cart::Moving(1)
         };
@@ -847,6 +895,17 @@ impl Contact for CompliantBall {
                 })
             }
             Ball::Grip => {
+                if let (Some(ring), Support::Chain { chain, .. }, Cart::Stuck) =
+                    (&self.ring, &self.support, cart)
+                {
+                    return CompliantMotion::HeldRingGrip(Box::new(HeldRingGrip::new(
+                        ring.clone(),
+                        chain.clone(),
+                        setup,
+                        state.full,
+                        state.e,
+                    )));
+                }
                 match &self.support {
                     Support::Cart(compliance) => CompliantMotion::Grip(Box::new(
                         CompliantGrip::new(**compliance, state.contact, state.e, setup, cart),
@@ -920,6 +979,14 @@ impl Contact for CompliantBall {
                     let (slip, rate) = slide.patch_slip(setup, &p);
                     let [first, second] = match &slide.rigid {
                         Rigid::Cart(_) => events.at(setup, &p),
+                        // Held to a free frame: the ring's push on the first mass.
+                        Rigid::Chain(motion) if motion.is_held() && state.full.frame > 0 => {
+                            let full = motion.full(setup, t);
+                            let friction = (p.friction, p.friction_rate);
+                            let (push, rate) =
+                                ring::held_push(motion.chain(), friction, p.accel, &full);
+                            setup.unstick_margins(push, rate)
+                        }
                         Rigid::Chain(motion) if motion.is_held() => {
                             events.at_chain(setup, &p, motion.link(setup, t))
                         }
@@ -937,6 +1004,11 @@ impl Contact for CompliantBall {
                         events.bounds(setup, (curvature, speeds), curvature, 0.0)
                     }
                     Rigid::Chain(_) if setup.cart_friction == 0.0 => (0.0, 0.0),
+                    // Held to a free frame, the ring's push (its bound has the friction's share).
+                    Rigid::Chain(motion) if motion.is_held() && state.full.frame > 0 => {
+                        let (curvature, terms) = ring::push_bounds(motion, setup);
+                        (curvature, ROUNDING * (terms + setup.cart_friction))
+                    }
                     // Held, the push's F = dir mu N(t) and the link force; moving, V_1.
                     Rigid::Chain(motion) if motion.is_held() => {
                         let (curvature, terms) = motion.link_curvature();
@@ -1003,6 +1075,35 @@ impl Contact for CompliantBall {
                     .map(|(t, branch)| match branch {
                         0 | 1 => (t, grip_break(branch)),
                         _ => (t, Cause::CartStop),
+                    })
+            }
+            CompliantMotion::HeldRingGrip(held) => {
+                // The grip on a first mass held to a free frame: also the push on it reaching ±F_c.
+                let margin_curvature = peak * w * w;
+                let (stages, size) = held.grip.search_stages(setup);
+                let noise = ROUNDING * (peak + size);
+                let f = |t: f64| {
+                    let p = held.at(setup, t);
+                    last.set(Some(p));
+                    let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
+                    let (push, rate) = held.push(setup, &p);
+                    let [up, down] = setup.unstick_margins(push, rate);
+                    [forward, backward, up, down]
+                };
+                stages
+                    .into_iter()
+                    .find_map(|(from, to, curvature, step)| {
+                        let (push_curvature, push_terms) = held.push_bounds(setup, curvature);
+                        let push_noise = ROUNDING * (push_terms + size + setup.cart_friction);
+                        let margin = curvature + margin_curvature;
+                        let curvature = [margin, margin, push_curvature, push_curvature];
+                        let noise = [noise, noise, push_noise, push_noise];
+                        first_rise_from_tangent(f, from, to, step, curvature, noise)
+                    })
+                    .map(|(t, branch)| match branch {
+                        0 | 1 => (t, grip_break(branch)),
+                        2 => (t, Cause::Unstick(1)),
+                        _ => (t, Cause::Unstick(-1)),
                     })
             }
             CompliantMotion::HeldChainGrip(held) => {
@@ -1107,6 +1208,7 @@ impl Contact for CompliantBall {
             CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldOnFrame(held) => held.full(t),
+            CompliantMotion::HeldRingGrip(grip) => grip.full(setup, t),
             _ => ChainState::from_contact(&point.state),
         };
         CompliantState {
@@ -1152,10 +1254,14 @@ impl Contact for CompliantBall {
                     // Gripping, e' is the contact point's slip on the cart.
                     Ball::Grip => self.spring.kb * state.e + self.spring.cb * setup.slip(s),
                 };
-                (
-                    ball,
-                    transition::at_rest(setup, self.share() * force - spring),
-                )
+                // On a chain held to a free frame, the ring's push F - T_1 - (M/N) a_B.
+                let push = match (&self.ring, &self.support) {
+                    (Some(_), Support::Chain { chain, .. }) => {
+                        ring::rest_push(chain, force, &state.full)
+                    }
+                    _ => self.share * force - spring,
+                };
+                (ball, transition::at_rest(setup, push))
             }
             Cause::SlipZero | Cause::Start => (Ball::Grip, cart),
         }
