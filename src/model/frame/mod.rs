@@ -132,7 +132,7 @@ impl FrameMotion {
                 ((amplitude * w).abs() <= DETUNED_GAIN * speeds).then_some(amplitude);
         }
         if !motion.held {
-            motion.v1_start = motion.cart_velocity(motion.p0, start.s.v - start.vf);
+            motion.v1_start = motion.velocities(motion.p0, start.s.v - start.vf).0;
         }
         motion
     }
@@ -186,10 +186,13 @@ impl FrameMotion {
         }
     }
 
-    /// The cart's velocity from the momentum `p` and the stretch's rate `dy`: (P + M_t y')/(M + M_t).
+    /// The cart's velocity and the frame's from the momentum `p` and the stretch's rate `dy`:
+    /// (P + M_t y')/(M + M_t) and (P - M y')/(M + M_t). Each is taken from P and y' directly, not as the
+    /// other less y', which would lose the lighter body's velocity to the heavier's rounding.
     #[inline]
-    fn cart_velocity(&self, p: f64, dy: f64) -> f64 {
-        (p + self.frame * dy) / (self.cart + self.frame)
+    fn velocities(&self, p: f64, dy: f64) -> (f64, f64) {
+        let body = self.cart + self.frame;
+        ((p + self.frame * dy) / body, (p - self.cart * dy) / body)
     }
 
     /// Everything at `t`; on a moving cart the stretch is solved as z = y + `string` (see the module).
@@ -204,7 +207,7 @@ impl FrameMotion {
         let (sin_omega_tau, cos_omega_tau) = (self.omega * tau).sin_cos();
         let (z_free, dy_free) = free_given(z0, dy0, self.omega, tau, sin_omega_tau, cos_omega_tau);
         if self.dir == 0.0 {
-            let v = self.cart_velocity(self.p0, dy_free);
+            let (v, vf) = self.velocities(self.p0, dy_free);
             let impulse = -setup.m_eff * (v - self.v1_start);
             // Eq. (5) with the string friction beside the spring force: m_eff (k y + d F_c)/(M + m_eff).
             let gain = setup.m_eff * setup.k / self.cart;
@@ -218,7 +221,7 @@ impl FrameMotion {
                         x: z_free - self.string,
                         v,
                     },
-                    vf: v - dy_free,
+                    vf,
                 },
                 friction: gain * z_free,
                 friction_rate: gain * dy_free,
@@ -248,7 +251,7 @@ impl FrameMotion {
                 (z_free + drive * g, dy_free + drive * dg)
             }
         };
-        let v = self.cart_velocity(self.p0 + impulse, dy);
+        let (v, vf) = self.velocities(self.p0 + impulse, dy);
         let accel = (friction - setup.k * z) / self.cart;
         Point {
             state: FrameState {
@@ -259,7 +262,7 @@ impl FrameMotion {
                     x: z - self.string,
                     v,
                 },
-                vf: v - dy,
+                vf,
             },
             friction,
             friction_rate: self.dir * setup.friction_limit_rate(t),
