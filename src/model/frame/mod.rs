@@ -270,8 +270,7 @@ impl FrameMotion {
         let force_amplitude = self.dir * setup.peak_friction();
         let (sin_w_tau, cos_w_tau) = normal;
         // The ball's impulse is also what the cart and the frame together gain.
-        let [impulse, friction, friction_rate] =
-            self.slide_impulse(setup, (sin_w_tau, cos_w_tau));
+        let [impulse, friction, friction_rate] = self.slide_impulse(setup, (sin_w_tau, cos_w_tau));
         let (z, dy) = match self.amplitude {
             Some(amplitude) => {
                 let (g, dg) = detuned(
