@@ -22,6 +22,7 @@ pub mod oscillator;
 pub mod params;
 pub mod phase;
 pub mod quadrature;
+pub mod recent;
 pub mod registry;
 pub mod reportable;
 pub mod setup;

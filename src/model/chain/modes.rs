@@ -25,6 +25,8 @@ pub struct Modes {
     pub largest: [f64; MAX],
     /// The fastest Ω_j.
     pub fastest: f64,
+    /// The rigid translation's mode (Ω = 0), on a free frame.
+    pub rigid: Option<usize>,
 }
 
 impl Modes {
@@ -177,6 +179,7 @@ impl Modes {
             first_stiff: [0.0; MAX],
             largest: [0.0; MAX],
             fastest: 0.0,
+            rigid,
         };
         let root_mass = link_mass.sqrt();
         for j in 0..n {
@@ -222,6 +225,7 @@ impl Modes {
             first_stiff: [0.0; MAX],
             largest: [0.0; MAX],
             fastest: 0.0,
+            rigid: None,
         };
         let ends = (n + 1) as f64;
         let norm = (2.0 / (ends * link_mass)).sqrt();
@@ -352,6 +356,7 @@ mod tests {
                 }
                 let rigid: Vec<usize> = (0..n).filter(|&j| modes.omega[j] == 0.0).collect();
                 assert_eq!(rigid.len(), 1, "links {links} frame {frame}");
+                assert_eq!(modes.rigid, Some(rigid[0]));
                 assert_eq!(modes.first_stiff[rigid[0]], 0.0);
             }
         }
@@ -391,6 +396,7 @@ mod tests {
                 }
                 let rigid: Vec<usize> = (0..n).filter(|&j| modes.omega[j] == 0.0).collect();
                 assert_eq!(rigid.len(), 1, "n {n} body {body}");
+                assert_eq!(modes.rigid, Some(rigid[0]));
             }
         }
     }

@@ -185,13 +185,15 @@ impl Motion {
         let count = if self.is_grip() { n } else { n + 1 };
         let angle = |j: usize| if j < n { modes.omega[j] * tau } else { w * tau };
         let (mut sin, mut cos) = ([0.0; MAX + 1], [0.0; MAX + 1]);
-        let mut j = 0;
-        while j + 1 < count {
-            ((sin[j], cos[j]), (sin[j + 1], cos[j + 1])) = sin_cos2(angle(j), angle(j + 1));
-            j += 2;
-        }
-        if j < count {
-            (sin[j], cos[j]) = sin_cos(angle(j));
+        match modes.rigid {
+            // The rigid translation (on a free frame), whose motion is polynomial in t, turns
+            // through no angle: its (0, 1) is exact (sin_cos gives it at 0); the others' are taken.
+            Some(r) => {
+                (sin[r], cos[r]) = (0.0, 1.0);
+                let index = |i: usize| if i < r { i } else { i + 1 };
+                turn((&mut sin, &mut cos), count - 1, index, angle);
+            }
+            None => turn((&mut sin, &mut cos), count, |i| i, angle),
         }
         let (sin_w_tau, cos_w_tau) = if self.is_grip() {
             (0.0, 1.0)
@@ -560,6 +562,26 @@ impl Motion {
             terms += kappa * phi * swing / omega;
         }
         (curvature, terms)
+    }
+}
+
+/// sin and cos of `angle(index(i))` for i < `turns`, two at a time, written at `index(i)`.
+#[inline(always)]
+fn turn(
+    (sin, cos): (&mut [f64; MAX + 1], &mut [f64; MAX + 1]),
+    turns: usize,
+    index: impl Fn(usize) -> usize,
+    angle: impl Fn(usize) -> f64,
+) {
+    let mut i = 0;
+    while i + 1 < turns {
+        let (j, k) = (index(i), index(i + 1));
+        ((sin[j], cos[j]), (sin[k], cos[k])) = sin_cos2(angle(j), angle(k));
+        i += 2;
+    }
+    if i < turns {
+        let j = index(i);
+        (sin[j], cos[j]) = sin_cos(angle(j));
     }
 }
 

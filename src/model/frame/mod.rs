@@ -29,16 +29,16 @@
 //! expressions. The cart's displacement reported is the spring's stretch y, relative to the frame; its
 //! velocity is the cart's own (the slip is measured against it).
 
-use std::cell::Cell;
-
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise;
 use super::oscillator::{detuned, forced, free_given};
 use super::params::Params;
 use super::quadrature::integrate;
+use super::recent::Recent;
 use super::setup::{Setup, State};
 use super::transition::{self, Touched};
+use super::trig::{sin_cos, sin_cos2};
 
 /// The ball and the cart (`x` the spring's stretch y, `v` the cart's velocity), and the frame's velocity.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -102,7 +102,12 @@ impl FrameMotion {
         dir: f64,
         cart_mode: Cart,
     ) -> Self {
-        let (sin_wt0, cos_wt0) = (setup.w * start.s.t).sin_cos();
+        // The first phase starts at t = 0, where sin_cos gives exactly (0, 1).
+        let (sin_wt0, cos_wt0) = if start.s.t == 0.0 {
+            (0.0, 1.0)
+        } else {
+            sin_cos(setup.w * start.s.t)
+        };
         let (omega, cart) = if dir == 0.0 {
             (frame.omega_grip, setup.cart_mass + setup.m_eff)
         } else {
@@ -132,21 +137,26 @@ impl FrameMotion {
                 ((amplitude * w).abs() <= DETUNED_GAIN * speeds).then_some(amplitude);
         }
         if !motion.held {
-            motion.v1_start = motion.cart_velocity(motion.p0, start.s.v - start.vf);
+            motion.v1_start = motion.velocities(motion.p0, start.s.v - start.vf).0;
         }
         motion
     }
 
     /// The ball's impulse ∫ F dt since the start of a slide, F0 (cos w t0 - cos w t)/w (Eqs. (1), (2)),
-    /// and the friction F, given sin(w τ) and cos(w τ).
+    /// the friction F and its rate F0 w cos(w t), given sin(w τ) and cos(w τ) (w t = w t0 + w τ).
     #[inline]
-    fn slide_impulse(&self, setup: &Setup, (sin_w_tau, cos_w_tau): (f64, f64)) -> (f64, f64) {
+    fn slide_impulse(&self, setup: &Setup, (sin_w_tau, cos_w_tau): (f64, f64)) -> [f64; 3] {
         let force_amplitude = self.dir * setup.peak_friction();
         let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
+        let cos_wt = self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau;
         let impulse = force_amplitude
             * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau)
             / setup.w;
-        (impulse, force_amplitude * sin_wt.max(0.0))
+        [
+            impulse,
+            force_amplitude * sin_wt.max(0.0),
+            force_amplitude * setup.w * cos_wt,
+        ]
     }
 
     /// The cart held to the frame at `t`: the stretch stays, and cart and frame move as one body of
@@ -166,7 +176,13 @@ impl FrameMotion {
                 accel: 0.0,
             };
         }
-        let (impulse, friction) = self.slide_impulse(setup, (setup.w * (t - s0.t)).sin_cos());
+        let tau = t - s0.t;
+        let w_tau = if tau == 0.0 {
+            (0.0, 1.0)
+        } else {
+            sin_cos(setup.w * tau)
+        };
+        let [impulse, friction, friction_rate] = self.slide_impulse(setup, w_tau);
         let body = self.cart + self.frame;
         let v = s0.v + impulse / body;
         Point {
@@ -181,35 +197,59 @@ impl FrameMotion {
                 vf: v,
             },
             friction,
-            friction_rate: self.dir * setup.friction_limit_rate(t),
+            friction_rate,
             accel: friction / body,
         }
     }
 
-    /// The cart's velocity from the momentum `p` and the stretch's rate `dy`: (P + M_t y')/(M + M_t).
+    /// The cart's velocity and the frame's from the momentum `p` and the stretch's rate `dy`:
+    /// (P + M_t y')/(M + M_t) and (P - M y')/(M + M_t). Each is taken from P and y' directly, not as the
+    /// other less y', which would lose the lighter body's velocity to the heavier's rounding.
     #[inline]
-    fn cart_velocity(&self, p: f64, dy: f64) -> f64 {
-        (p + self.frame * dy) / (self.cart + self.frame)
+    fn velocities(&self, p: f64, dy: f64) -> (f64, f64) {
+        let body = self.cart + self.frame;
+        ((p + self.frame * dy) / body, (p - self.cart * dy) / body)
     }
 
-    /// Everything at `t`; on a moving cart the stretch is solved as z = y + `string` (see the module).
+    /// Everything at `t`.
     #[inline]
     fn at(&self, setup: &Setup, t: f64) -> Point {
         if self.held {
             return self.held_at(setup, t);
         }
+        self.moving_at(setup, t).0
+    }
+
+    /// Everything at `t` on a moving cart, the stretch solved as z = y + `string` (see the module), and
+    /// sin(w t), cos(w t) while the ball grips (for the margins of its grip; sliding, (0, 1) in their
+    /// place). The stretch's angle Ωτ and the normal force's (w t gripping, w τ sliding) are taken
+    /// together; at the phase's start, where the event search begins, they are known.
+    #[inline]
+    fn moving_at(&self, setup: &Setup, t: f64) -> (Point, (f64, f64)) {
         let s0 = &self.start.s;
         let tau = t - s0.t;
+        let grip = self.dir == 0.0;
+        let ((sin_omega_tau, cos_omega_tau), normal) = if tau == 0.0 {
+            let normal = if grip {
+                (self.sin_wt0, self.cos_wt0)
+            } else {
+                (0.0, 1.0)
+            };
+            ((0.0, 1.0), normal)
+        } else if grip {
+            sin_cos2(self.omega * tau, setup.w * t)
+        } else {
+            sin_cos2(self.omega * tau, setup.w * tau)
+        };
         let (z0, dy0) = (s0.x + self.string, s0.v - self.start.vf);
-        let (sin_omega_tau, cos_omega_tau) = (self.omega * tau).sin_cos();
         let (z_free, dy_free) = free_given(z0, dy0, self.omega, tau, sin_omega_tau, cos_omega_tau);
-        if self.dir == 0.0 {
-            let v = self.cart_velocity(self.p0, dy_free);
+        if grip {
+            let (v, vf) = self.velocities(self.p0, dy_free);
             let impulse = -setup.m_eff * (v - self.v1_start);
             // Eq. (5) with the string friction beside the spring force: m_eff (k y + d F_c)/(M + m_eff).
             let gain = setup.m_eff * setup.k / self.cart;
             let accel = -setup.k * z_free / self.cart;
-            return Point {
+            let point = Point {
                 state: FrameState {
                     s: State {
                         t,
@@ -218,18 +258,19 @@ impl FrameMotion {
                         x: z_free - self.string,
                         v,
                     },
-                    vf: v - dy_free,
+                    vf,
                 },
                 friction: gain * z_free,
                 friction_rate: gain * dy_free,
                 accel,
             };
+            return (point, normal);
         }
         let w = setup.w;
         let force_amplitude = self.dir * setup.peak_friction();
-        let (sin_w_tau, cos_w_tau) = (w * tau).sin_cos();
+        let (sin_w_tau, cos_w_tau) = normal;
         // The ball's impulse is also what the cart and the frame together gain.
-        let (impulse, friction) = self.slide_impulse(setup, (sin_w_tau, cos_w_tau));
+        let [impulse, friction, friction_rate] = self.slide_impulse(setup, (sin_w_tau, cos_w_tau));
         let (z, dy) = match self.amplitude {
             Some(amplitude) => {
                 let (g, dg) = detuned(
@@ -248,9 +289,9 @@ impl FrameMotion {
                 (z_free + drive * g, dy_free + drive * dg)
             }
         };
-        let v = self.cart_velocity(self.p0 + impulse, dy);
+        let (v, vf) = self.velocities(self.p0 + impulse, dy);
         let accel = (friction - setup.k * z) / self.cart;
-        Point {
+        let point = Point {
             state: FrameState {
                 s: State {
                     t,
@@ -259,12 +300,13 @@ impl FrameMotion {
                     x: z - self.string,
                     v,
                 },
-                vf: v - dy,
+                vf,
             },
             friction,
-            friction_rate: self.dir * setup.friction_limit_rate(t),
+            friction_rate,
             accel,
-        }
+        };
+        (point, (0.0, 1.0))
     }
 
     /// A bound on |y'| over the rest of the contact: the oscillator's energy, in velocity units, grows at
@@ -427,7 +469,8 @@ impl Contact for FramedCart {
         let s = &state.s;
         let peak = setup.peak_friction();
         let stretch_speed = motion.stretch_speed(setup);
-        let last = Cell::new(*state);
+        // The states at the last few times an event function was evaluated.
+        let last = Recent::new(s.t, *state);
         // Event functions that start on their own zero (the slip after a grip broke or the friction
         // reversed, the stretch's rate after the cart stopped or came unstuck) are measured from their
         // start value, so rounding can never fake a crossing at the start.
@@ -468,7 +511,7 @@ impl Contact for FramedCart {
                 let cart_dir = f64::from(cart_dir);
                 let f = |t: f64| {
                     let p = motion.at(setup, t);
-                    last.set(p.state);
+                    last.record(t, p.state);
                     let rate = -p.friction / setup.m_eff - p.accel;
                     let slip = (-dir * (setup.slip(&p.state.s) - slip_offset), -dir * rate);
                     [slip, stop(&p, cart_dir)]
@@ -502,9 +545,10 @@ impl Contact for FramedCart {
             (_, Cart::Moving(cart_dir)) => {
                 let cart_dir = f64::from(cart_dir);
                 let f = |t: f64| {
-                    let p = motion.at(setup, t);
-                    last.set(p.state);
-                    let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
+                    let (p, normal) = motion.moving_at(setup, t);
+                    last.record(t, p.state);
+                    let [forward, backward] =
+                        setup.grip_margins_given(normal, p.friction, p.friction_rate);
                     [forward, backward, stop(&p, cart_dir)]
                 };
                 // F_s'' = m_eff k y''/(M + m_eff), |y''| = Ω_g² |z| <= Ω_g sqrt(Ω_g² z0² + y0'²);
@@ -544,7 +588,7 @@ impl Contact for FramedCart {
                 let share = self.mass / body;
                 let f = |t: f64| {
                     let p = motion.at(setup, t);
-                    last.set(p.state);
+                    last.record(t, p.state);
                     let rate = -p.friction / setup.m_eff - p.accel;
                     let slip = (-dir * (setup.slip(&p.state.s) - slip_offset), -dir * rate);
                     let push = share * p.friction - setup.k * p.state.s.x;
@@ -570,9 +614,12 @@ impl Contact for FramedCart {
             // A rolling ball on a held cart: ball, cart and frame coast until the ball leaves.
             (_, Cart::Stuck) => None,
         };
+        // The search's last evaluations usually hold the state at the event (the crossing Newton
+        // found, before the evaluations that proved nothing rose earlier) or at the end of contact.
+        let last = last.at(event.map_or(end, |(t, _)| t));
         Found {
             event,
-            last: Some(last.get()),
+            last: Some(last),
         }
     }
 
