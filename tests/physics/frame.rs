@@ -254,11 +254,48 @@ fn what_a_free_frame_does_not_solve_is_refused_by_name() {
             },
             "--stiffness 0",
         ),
+        (
+            Params {
+                frame_mass: 0.3,
+                cart_friction: 5.0,
+                stiffness: 0.0,
+                ..Params::default()
+            },
+            "--stiffness 0",
+        ),
     ] {
         let err = solve(&params).unwrap_err();
         assert!(matches!(err, SolveError::FreeFrame { .. }), "{err:?}");
         assert!(err.to_string().contains(flag), "{err}");
     }
+}
+
+/// Without a spring the frame is not tied to the cart: along the surface the bounce is the clamped free
+/// cart's, and the frame only lowers the normal impulse (e_A for e_y).
+#[test]
+fn a_frame_without_a_spring_is_the_free_cart_with_the_apparent_restitution() {
+    let framed = Params {
+        frame_mass: 0.188,
+        stiffness: 0.0,
+        ..Params::default()
+    };
+    let b = solve(&framed).unwrap();
+    let clamped = solve(&Params {
+        frame_mass: 0.0,
+        ey: b.setup.ey_apparent,
+        ..framed
+    })
+    .unwrap();
+    assert!(b.setup.ey_apparent < framed.ey);
+    assert_eq!(b.phase_summary(), clamped.phase_summary());
+    for (x, y) in [
+        (b.outcome.omega2, clamped.outcome.omega2),
+        (b.outcome.vx2, clamped.outcome.vx2),
+        (b.outcome.vy2, clamped.outcome.vy2),
+    ] {
+        assert!((x - y).abs() <= 1e-12 * y.abs().max(1.0), "{x} against {y}");
+    }
+    assert!(b.frame_velocity().abs() <= 1e-12, "{}", b.frame_velocity());
 }
 
 proptest! {

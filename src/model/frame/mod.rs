@@ -113,7 +113,13 @@ impl FrameMotion {
         } else {
             (frame.omega_slide, setup.cart_mass)
         };
-        let string = -cart_mode.friction(setup) / setup.k;
+        // Without a spring there is no string friction here (refused in `FramedCart::new`), and no
+        // stretch's centre to move.
+        let string = if setup.k > 0.0 {
+            -cart_mode.friction(setup) / setup.k
+        } else {
+            0.0
+        };
         let mut motion = FrameMotion {
             start,
             dir,
@@ -395,8 +401,14 @@ pub struct FramedCart {
 
 impl FramedCart {
     /// The model for `params` on a frame of mass `frame` (kg), refused when the cart oscillates too fast
-    /// to resolve.
+    /// to resolve, or when string friction acts without a spring (the stretch's centre d F_c/k is not
+    /// defined; the compliant ball refuses the same).
     pub fn new(params: &Params, setup: &Setup, frame: f64) -> Result<Self, SolveError> {
+        if setup.k == 0.0 && setup.cart_friction > 0.0 {
+            return Err(SolveError::FreeFrame {
+                what: "string friction (--cart-friction) without a spring (--stiffness 0)",
+            });
+        }
         let omega_slide = (setup.k * (1.0 / setup.cart_mass + 1.0 / frame)).sqrt();
         let omega_grip = (setup.k * (1.0 / (setup.cart_mass + setup.m_eff) + 1.0 / frame)).sqrt();
         let radians = omega_slide.max(omega_grip) * setup.duration;
