@@ -11,7 +11,7 @@ use std::sync::Arc;
 use super::super::contact::Cart;
 use super::super::oscillator::{detuned, forced, free_given, step};
 use super::super::setup::{Setup, State};
-use super::super::trig::{sin_cos, sin_cos2};
+use super::super::trig::{sin_cos, sin_cos_each, sin_cos2};
 use super::modes::{MAX, Modes};
 use super::{Chain, ChainState, ring};
 
@@ -121,7 +121,7 @@ impl<const R: usize> Rows<R> {
 
     /// The rows given sin and cos of the modes' angles and (sin w t, cos w t) (sliding only).
     #[inline(always)]
-    fn at(&self, n: usize, sin: &[f64; MAX], cos: &[f64; MAX], wt: Option<(f64, f64)>) -> [f64; R] {
+    fn at(&self, n: usize, sin: &[f64], cos: &[f64], wt: Option<(f64, f64)>) -> [f64; R] {
         let mut rows = [0.0; R];
         for j in 0..n {
             for r in 0..R {
@@ -382,6 +382,32 @@ impl Motion {
         }
     }
 
+    /// sin and cos of every Ω_j τ, and of w τ while sliding (in the last place), into `sin` and
+    /// `cos` by [`sin_cos_each`] (to about 2 ulp, for [`Motion::rows`]); sin(w τ), cos(w τ) ((0, 1)
+    /// gripping).
+    #[inline(always)]
+    fn angles_each(
+        &self,
+        modes: &Modes,
+        w: f64,
+        tau: f64,
+        (sin, cos): (&mut [f64; MAX + 1], &mut [f64; MAX + 1]),
+    ) -> (f64, f64) {
+        let n = modes.n;
+        let mut angle = [0.0; MAX + 1];
+        for j in 0..n {
+            angle[j] = modes.omega[j] * tau;
+        }
+        angle[n] = w * tau;
+        let count = if self.is_grip() { n } else { n + 1 };
+        sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]);
+        if self.is_grip() {
+            (0.0, 1.0)
+        } else {
+            (sin[n], cos[n])
+        }
+    }
+
     /// Mode j's coordinate and rate at τ without the string friction, given sin and cos of Ω_j τ and
     /// of w τ.
     #[inline]
@@ -447,8 +473,8 @@ impl Motion {
         let tau = t - self.start.t;
         let w = setup.w;
         let n = modes.n;
-        let (mut sin, mut cos) = ([0.0; MAX], [0.0; MAX]);
-        let w_tau = self.angles(modes, w, tau, (&mut sin, &mut cos));
+        let (mut sin, mut cos) = ([0.0; MAX + 1], [0.0; MAX + 1]);
+        let w_tau = self.angles_each(modes, w, tau, (&mut sin, &mut cos));
         let wt = (!self.is_grip()).then(|| {
             let (sin_w_tau, cos_w_tau) = w_tau;
             (
