@@ -292,8 +292,8 @@ pub struct ChainGrip {
     shares: Option<Vec<Shares>>,
 }
 
-/// The most modes a grip has: 2 (N + 1) roots for N masses.
-const ROOTS: usize = 2 * MAX + 2;
+/// How many modes [`ChainGrip::at`] takes the sines of at once (small arrays, set up without a call).
+const CHUNK: usize = 10;
 
 /// The contact's sums u, u', F, F', e, e', e'' and X_1'' (= u'' - e'').
 const SUMS: usize = 8;
@@ -459,20 +459,23 @@ impl ChainGrip {
         let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf)) =
             match (&g.modes, &self.coefficients) {
                 (Some(list), Some(_)) if let Some(shares) = &self.shares => {
-                    // e^{s_i τ} of every mode: the sines and cosines together, e^{Re s_i τ} inlined.
-                    let count = list.len();
-                    let mut angle = [0.0; ROOTS];
-                    for (a, mode) in angle.iter_mut().zip(list) {
-                        *a = mode.s.im * tau;
-                    }
-                    let (mut sin, mut cos) = ([0.0; ROOTS], [0.0; ROOTS]);
-                    sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]);
+                    // e^{s_i τ} of every mode, CHUNK at a time: the sines and cosines together,
+                    // e^{Re s_i τ} inlined.
                     let mut sums = [0.0; SUMS];
-                    for (i, (mode, share)) in list.iter().zip(shares).enumerate() {
-                        let size = fast_exp(mode.s.re * tau);
-                        let (re, im) = (size * cos[i], size * sin[i]);
-                        for k in 0..SUMS {
-                            sums[k] += re * share.re[k] - im * share.im[k];
+                    for (modes, shares) in list.chunks(CHUNK).zip(shares.chunks(CHUNK)) {
+                        let count = modes.len();
+                        let mut angle = [0.0; CHUNK];
+                        for (a, mode) in angle.iter_mut().zip(modes) {
+                            *a = mode.s.im * tau;
+                        }
+                        let (mut sin, mut cos) = ([0.0; CHUNK], [0.0; CHUNK]);
+                        sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]);
+                        for (i, (mode, share)) in modes.iter().zip(shares).enumerate() {
+                            let size = fast_exp(mode.s.re * tau);
+                            let (re, im) = (size * cos[i], size * sin[i]);
+                            for k in 0..SUMS {
+                                sums[k] += re * share.re[k] - im * share.im[k];
+                            }
                         }
                     }
                     let [u, du, f, df, e, de, dde, a1] = sums;
