@@ -207,7 +207,7 @@ mod tests {
 }
 
 /// ln 2 to 32 bits (k times it is exact for |k| < 2^21), and the rest of it.
-const LN2_HEAD: f64 = 6.931_471_803_691_238_2e-1;
+const LN2_HEAD: f64 = 6.931_471_803_691_238e-1;
 const LN2_TAIL: f64 = 1.908_214_929_270_587_7e-10;
 
 /// The Taylor coefficients of (e^r - 1 - r) / r², 1/2! to 1/13!, constant first.
@@ -226,13 +226,14 @@ const EXP: [f64; 12] = [
     1.0 / 6_227_020_800.0,
 ];
 
-/// e^x, inlined, for the damped modes' growth e^{Re s τ} at every probe of the event search: x = k ln 2
-/// + r with |r| <= ln 2 / 2 (ln 2 in two parts), e^r = 1 + (r + r² P(r)) by its Taylor series to r^13
-/// (the first term left out is below 5e-18 relative), scaled by 2^k through the exponent's bits. Within
-/// about an ulp of libm's; |x| > 700 (beyond which 2^k leaves the normal range) and NaN go to libm.
+/// e^x, inlined, for the damped modes' growth e^{Re s τ} at every probe of the event search: with
+/// x = k ln 2 + r and |r| <= ln 2 / 2 (ln 2 in two parts), e^r = 1 + (r + r² P(r)) by its Taylor series
+/// to r^13 (the first term left out is below 5e-18 relative), scaled by 2^k through the exponent's
+/// bits. Within about an ulp of libm's; |x| > 700 (beyond which 2^k leaves the normal range) and NaN go
+/// to libm.
 #[inline]
 pub fn exp(x: f64) -> f64 {
-    if !(x.abs() <= 700.0) {
+    if x.is_nan() || x.abs() > 700.0 {
         return x.exp();
     }
     let rounded = x * std::f64::consts::LOG2_E + ROUNDER;
@@ -285,14 +286,14 @@ const SIN_KERNEL: [f64; 6] = [
     -1.984_126_982_985_795e-4,
     2.755_731_370_707_006_8e-6,
     -2.505_076_025_340_686_3e-8,
-    1.589_690_995_211_550_1e-10,
+    1.589_690_995_211_55e-10,
 ];
 const COS_KERNEL: [f64; 6] = [
-    4.166_666_666_666_660_2e-2,
+    4.166_666_666_666_66e-2,
     -1.388_888_888_887_411e-3,
     2.480_158_728_947_673e-5,
     -2.755_731_435_139_066_3e-7,
-    2.087_572_321_298_174_8e-9,
+    2.087_572_321_298_175e-9,
     -1.135_964_755_778_819_5e-11,
 ];
 

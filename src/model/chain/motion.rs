@@ -123,14 +123,15 @@ impl<const R: usize> Rows<R> {
     #[inline(always)]
     fn at(&self, n: usize, sin: &[f64], cos: &[f64], wt: Option<(f64, f64)>) -> [f64; R] {
         let mut rows = [0.0; R];
-        for j in 0..n {
-            for r in 0..R {
-                rows[r] += self.cos[j][r] * cos[j] + self.sin[j][r] * sin[j];
+        let modes = self.cos[..n].iter().zip(&self.sin[..n]);
+        for ((cos_share, sin_share), (&c, &s)) in modes.zip(cos.iter().zip(sin)) {
+            for ((row, a), b) in rows.iter_mut().zip(cos_share).zip(sin_share) {
+                *row += a * c + b * s;
             }
         }
         if let Some((sin_wt, cos_wt)) = wt {
-            for r in 0..R {
-                rows[r] += self.sin_wt[r] * sin_wt + self.cos_wt[r] * cos_wt;
+            for ((row, a), b) in rows.iter_mut().zip(&self.sin_wt).zip(&self.cos_wt) {
+                *row += a * sin_wt + b * cos_wt;
             }
         }
         rows
@@ -395,8 +396,8 @@ impl Motion {
     ) -> (f64, f64) {
         let n = modes.n;
         let mut angle = [0.0; MAX + 1];
-        for j in 0..n {
-            angle[j] = modes.omega[j] * tau;
+        for (a, omega) in angle.iter_mut().zip(&modes.omega[..n]) {
+            *a = omega * tau;
         }
         angle[n] = w * tau;
         let count = if self.is_grip() { n } else { n + 1 };
@@ -633,6 +634,11 @@ impl Motion {
         let (q, dq, sin_w_tau, cos_w_tau) = self.modal(setup, t);
         let contact = if self.is_held() && self.start.frame == 0 {
             self.held_contact(setup, t)
+        } else if let Some(sums) = &self.sums {
+            // The ball and the first mass as the event search saw them (the phase's sums), so that
+            // the next phase starts where this one's events were measured.
+            let (rows, w_tau) = self.rows(sums, setup, t);
+            self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau)
         } else {
             let frame = if self.is_held() { 0 } else { self.start.frame };
             let (main, framed) = Sums::from_modal(modes, frame, (&q, &dq));
@@ -649,6 +655,8 @@ impl Motion {
                 v[i] = v[i - 1];
             }
             (x[0], v[0]) = (contact.x, 0.0);
+        } else if self.sums.is_some() {
+            (x[0], v[0]) = (contact.x, contact.v);
         }
         ChainState {
             t,

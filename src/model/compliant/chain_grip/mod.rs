@@ -473,8 +473,8 @@ impl ChainGrip {
                         for (i, (mode, share)) in modes.iter().zip(shares).enumerate() {
                             let size = fast_exp(mode.s.re * tau);
                             let (re, im) = (size * cos[i], size * sin[i]);
-                            for k in 0..SUMS {
-                                sums[k] += re * share.re[k] - im * share.im[k];
+                            for ((sum, a), b) in sums.iter_mut().zip(&share.re).zip(&share.im) {
+                                *sum += re * a - im * b;
                             }
                         }
                     }
