@@ -470,7 +470,9 @@ impl Contact for ChainOfMasses {
                 };
                 let (curvature, terms) = motion.margin_curvature(setup);
                 let noise = ROUNDING * terms;
-                let step = setup.event_step(self.chain.grip().fastest);
+                // The margins' own rate, sqrt(|F_s''| bound / its terms), not the fastest mode's.
+                let step =
+                    setup.event_step((curvature / terms).sqrt().min(self.chain.grip().fastest));
                 first_rise(f, t0, end, step, [curvature; 2], [noise; 2]).map(|(t, branch)| {
                     let sign = if branch == 0 { 1.0 } else { -1.0 };
                     (t, Cause::GripBreak(sign))

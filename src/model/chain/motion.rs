@@ -11,7 +11,7 @@ use std::sync::Arc;
 use super::super::contact::Cart;
 use super::super::oscillator::{detuned, forced, free_given, step};
 use super::super::setup::{Setup, State};
-use super::super::trig::{sin_cos, sin_cos2};
+use super::super::trig::{sin_cos, sin_cos_each, sin_cos2};
 use super::modes::{MAX, Modes};
 use super::{Chain, ChainState, ring};
 
@@ -50,6 +50,181 @@ pub struct Motion {
     /// The first mass's velocity at the start as the modal sum gives it (the grip's impulse on the ball
     /// is measured from it, so that it is exactly zero at the start).
     v1_start: f64,
+    /// The contact's modal sums written out for this phase, on the wall ([`Sums`]).
+    sums: Option<Sums>,
+}
+
+/// The sums [`Motion::moving_contact`] needs over the modes (rows of Φ, or Φ_1j Ω_j², against q or q'),
+/// taken for a phase as fixed combinations of sin Ω_j τ, cos Ω_j τ, sin w t and cos w t. A free mode is
+/// q = X cos Ωτ + (V/Ω) sin Ωτ, q' = V cos Ωτ - Ω X sin Ωτ; a detuned one adds its particular solution
+/// a sin w t to the free motion from X = q0 - a sin w t0, V = q0' - a w cos w t0 (the same closed form
+/// as [`detuned`], regrouped). Each evaluation is then two products a mode and row; the modes of zero
+/// frequency and those forced near resonance ([`forced`]) are left to `odd`, evaluated one by one, as
+/// is the string friction's step. For a moving first mass on the wall (on a free frame, and held, the
+/// phase sums the modal coordinates of [`Motion::modal`]).
+#[derive(Clone, Debug)]
+struct Sums {
+    /// X_1, V_1, Σ Φ_1j Ω_j² q_j and its rate.
+    main: Rows<4>,
+    /// The modes left out of the combinations.
+    odd: [usize; MAX],
+    odd_n: usize,
+}
+
+/// `R` sums over the modes as combinations of sin Ω_j τ, cos Ω_j τ, sin w t and cos w t.
+#[derive(Clone, Debug)]
+struct Rows<const R: usize> {
+    /// Per mode, each row's coefficient of cos Ω_j τ and of sin Ω_j τ.
+    cos: [[f64; R]; MAX],
+    sin: [[f64; R]; MAX],
+    /// Each row's coefficients of sin w t and cos w t.
+    sin_wt: [f64; R],
+    cos_wt: [f64; R],
+}
+
+/// One mode's free motion X cos Ωτ + Y sin Ωτ, rate V cos Ωτ - Ω X sin Ωτ (Y = V/Ω), its particular
+/// solution's amplitude a, and w.
+#[derive(Clone, Copy)]
+struct Swing {
+    x: f64,
+    y: f64,
+    v: f64,
+    omega_x: f64,
+    amplitude: f64,
+    w: f64,
+}
+
+impl<const R: usize> Rows<R> {
+    fn new() -> Rows<R> {
+        Rows {
+            cos: [[0.0; R]; MAX],
+            sin: [[0.0; R]; MAX],
+            sin_wt: [0.0; R],
+            cos_wt: [0.0; R],
+        }
+    }
+
+    /// Mode j's share, each row weighing it by `weights` (and summing its rate where marked).
+    fn fill(&mut self, j: usize, weights: [(f64, bool); R], m: Swing) {
+        for (r, (weight, rate)) in weights.into_iter().enumerate() {
+            if rate {
+                self.cos[j][r] = weight * m.v;
+                self.sin[j][r] = -(weight * m.omega_x);
+                self.cos_wt[r] += weight * m.amplitude * m.w;
+            } else {
+                self.cos[j][r] = weight * m.x;
+                self.sin[j][r] = weight * m.y;
+                self.sin_wt[r] += weight * m.amplitude;
+            }
+        }
+    }
+
+    /// The rows given sin and cos of the modes' angles and (sin w t, cos w t) (sliding only).
+    #[inline(always)]
+    fn at(&self, n: usize, sin: &[f64], cos: &[f64], wt: Option<(f64, f64)>) -> [f64; R] {
+        let mut rows = [0.0; R];
+        let modes = self.cos[..n].iter().zip(&self.sin[..n]);
+        for ((cos_share, sin_share), (&c, &s)) in modes.zip(cos.iter().zip(sin)) {
+            for ((row, a), b) in rows.iter_mut().zip(cos_share).zip(sin_share) {
+                *row += a * c + b * s;
+            }
+        }
+        if let Some((sin_wt, cos_wt)) = wt {
+            for ((row, a), b) in rows.iter_mut().zip(&self.sin_wt).zip(&self.cos_wt) {
+                *row += a * sin_wt + b * cos_wt;
+            }
+        }
+        rows
+    }
+}
+
+/// Adds `weights` times a mode's coordinate and rate `(q, dq)` to `rows`.
+#[inline]
+fn add<const R: usize>(rows: &mut [f64; R], weights: [(f64, bool); R], (q, dq): (f64, f64)) {
+    for (row, (weight, rate)) in rows.iter_mut().zip(weights) {
+        *row += weight * if rate { dq } else { q };
+    }
+}
+
+impl Sums {
+    /// The sums for modes `modes` from q0, q0' with the responses `response`.
+    fn new(
+        modes: &Modes,
+        w: f64,
+        (q0, dq0): (&[f64; MAX], &[f64; MAX]),
+        response: &[Response; MAX],
+        (sin_wt0, cos_wt0): (f64, f64),
+    ) -> Sums {
+        let mut sums = Sums {
+            main: Rows::new(),
+            odd: [0; MAX],
+            odd_n: 0,
+        };
+        for j in 0..modes.n {
+            let omega = modes.omega[j];
+            let amplitude = match response[j] {
+                Response::Free if omega > 0.0 => 0.0,
+                Response::Detuned { amplitude } if omega > 0.0 => amplitude,
+                _ => {
+                    sums.odd[sums.odd_n] = j;
+                    sums.odd_n += 1;
+                    continue;
+                }
+            };
+            let (x, v) = if amplitude == 0.0 {
+                (q0[j], dq0[j])
+            } else {
+                (
+                    q0[j] - amplitude * sin_wt0,
+                    dq0[j] - amplitude * w * cos_wt0,
+                )
+            };
+            let swing = Swing {
+                x,
+                y: v / omega,
+                v,
+                omega_x: omega * x,
+                amplitude,
+                w,
+            };
+            sums.main.fill(j, Sums::main_weights(modes, j), swing);
+        }
+        sums
+    }
+
+    /// The main rows' weights on mode j and whether each sums the rates.
+    #[inline]
+    fn main_weights(modes: &Modes, j: usize) -> [(f64, bool); 4] {
+        let (phi, stiff) = (modes.shape[0][j], modes.first_stiff[j]);
+        [(phi, false), (phi, true), (stiff, false), (stiff, true)]
+    }
+
+    /// The frame's rows' weights on mode j.
+    #[inline]
+    fn frame_weights(modes: &Modes, frame: usize, j: usize) -> [(f64, bool); 3] {
+        let (f, last) = (modes.shape[frame][j], modes.shape[frame - 1][j]);
+        [(f, false), (last, false), (f, true)]
+    }
+
+    /// The rows from every mode's coordinate and rate.
+    fn from_modal(
+        modes: &Modes,
+        frame: usize,
+        (q, dq): (&[f64; MAX], &[f64; MAX]),
+    ) -> ([f64; 4], [f64; 3]) {
+        let (mut main, mut framed) = ([0.0; 4], [0.0; 3]);
+        for j in 0..modes.n {
+            add(&mut main, Sums::main_weights(modes, j), (q[j], dq[j]));
+            if frame > 0 {
+                add(
+                    &mut framed,
+                    Sums::frame_weights(modes, frame, j),
+                    (q[j], dq[j]),
+                );
+            }
+        }
+        (main, framed)
+    }
 }
 
 /// The state of the ball and the first mass at one time, with the friction and the first mass's
@@ -107,6 +282,8 @@ impl Motion {
                 };
             }
         }
+        let sums = (start.frame == 0 && !held)
+            .then(|| Sums::new(modes, w, (&q0, &dq0), &response, (sin_wt0, cos_wt0)));
         Motion {
             chain,
             dir,
@@ -119,6 +296,7 @@ impl Motion {
             response,
             push: cart.friction(setup),
             v1_start,
+            sums,
         }
     }
 
@@ -139,6 +317,7 @@ impl Motion {
         Motion {
             q0: modes.project(&x),
             dq0: modes.project(&v),
+            sums: None,
             chain,
             dir,
             cart: Cart::Stuck,
@@ -172,6 +351,96 @@ impl Motion {
         self.dir == 0.0
     }
 
+    /// sin and cos of every Ω_j τ into `sin` and `cos`, two at a time, and of w τ while sliding (in
+    /// the last place, returned; (0, 1) gripping). The rigid translation on a free frame, whose motion
+    /// is polynomial in t, turns through no angle: its (0, 1) is exact and is not computed.
+    #[inline(always)]
+    fn angles(
+        &self,
+        modes: &Modes,
+        w: f64,
+        tau: f64,
+        (sin, cos): (&mut [f64; MAX + 1], &mut [f64; MAX + 1]),
+    ) -> (f64, f64) {
+        let n = modes.n;
+        let count = if self.is_grip() { n } else { n + 1 };
+        let angle = |j: usize| if j < n { modes.omega[j] * tau } else { w * tau };
+        match modes.rigid {
+            Some(r) => {
+                (sin[r], cos[r]) = (0.0, 1.0);
+                let index = |i: usize| if i < r { i } else { i + 1 };
+                turn((sin, cos), count - 1, index, angle);
+            }
+            None => turn((sin, cos), count, |i| i, angle),
+        }
+        if self.is_grip() {
+            (0.0, 1.0)
+        } else {
+            (sin[n], cos[n])
+        }
+    }
+
+    /// sin and cos of every Ω_j τ, and of w τ while sliding (in the last place), into `sin` and
+    /// `cos` by [`sin_cos_each`] (to about 2 ulp, for [`Motion::rows`]); sin(w τ), cos(w τ) ((0, 1)
+    /// gripping).
+    #[inline(always)]
+    fn angles_each(
+        &self,
+        modes: &Modes,
+        w: f64,
+        tau: f64,
+        (sin, cos): (&mut [f64; MAX + 1], &mut [f64; MAX + 1]),
+    ) -> (f64, f64) {
+        let n = modes.n;
+        let mut angle = [0.0; MAX + 1];
+        for (a, omega) in angle.iter_mut().zip(&modes.omega[..n]) {
+            *a = omega * tau;
+        }
+        angle[n] = w * tau;
+        let count = if self.is_grip() { n } else { n + 1 };
+        sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]);
+        if self.is_grip() {
+            (0.0, 1.0)
+        } else {
+            (sin[n], cos[n])
+        }
+    }
+
+    /// Mode j's coordinate and rate at τ without the string friction, given sin and cos of Ω_j τ and
+    /// of w τ.
+    #[inline]
+    fn mode_at(
+        &self,
+        modes: &Modes,
+        w: f64,
+        (j, tau): (usize, f64),
+        (s, c): (f64, f64),
+        w_tau: (f64, f64),
+    ) -> (f64, f64) {
+        let omega = modes.omega[j];
+        let (x_free, v_free) = free_given(self.q0[j], self.dq0[j], omega, tau, s, c);
+        match self.response[j] {
+            Response::Free => (x_free, v_free),
+            Response::Detuned { amplitude } => {
+                let phase0 = (self.sin_wt0, self.cos_wt0);
+                let (x_forced, v_forced) = detuned(omega, w, tau, phase0, w_tau, (s, c));
+                (x_free + amplitude * x_forced, v_free + amplitude * v_forced)
+            }
+            Response::Forced { drive } => {
+                let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
+                (x_free + drive * g, v_free + drive * dg)
+            }
+        }
+    }
+
+    /// The string friction's share of mode j at τ (switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω²).
+    #[inline]
+    fn pushed(&self, modes: &Modes, (j, tau): (usize, f64), (s, c): (f64, f64)) -> (f64, f64) {
+        let (x_step, v_step) = step(s, c, modes.omega[j], tau);
+        let drive = self.push_shape(j) * self.push;
+        (drive * x_step, drive * v_step)
+    }
+
     /// The modal coordinates and their rates at `t`, written into `q` and `dq` (each of the modes' entries;
     /// filled in place rather than returned, which would copy the arrays), with sin(w τ) and cos(w τ),
     /// τ = t - t0.
@@ -180,55 +449,50 @@ impl Motion {
         let modes = self.modes();
         let tau = t - self.start.t;
         let w = setup.w;
-        // sin and cos of every Ω_j τ, and of w τ while sliding (in the last place), two at a time.
-        let n = modes.n;
-        let count = if self.is_grip() { n } else { n + 1 };
-        let angle = |j: usize| if j < n { modes.omega[j] * tau } else { w * tau };
         let (mut sin, mut cos) = ([0.0; MAX + 1], [0.0; MAX + 1]);
-        match modes.rigid {
-            // The rigid translation (on a free frame), whose motion is polynomial in t, turns
-            // through no angle: its (0, 1) is exact (sin_cos gives it at 0); the others' are taken.
-            Some(r) => {
-                (sin[r], cos[r]) = (0.0, 1.0);
-                let index = |i: usize| if i < r { i } else { i + 1 };
-                turn((&mut sin, &mut cos), count - 1, index, angle);
-            }
-            None => turn((&mut sin, &mut cos), count, |i| i, angle),
-        }
-        let (sin_w_tau, cos_w_tau) = if self.is_grip() {
-            (0.0, 1.0)
-        } else {
-            (sin[n], cos[n])
-        };
-        for j in 0..n {
-            let omega = modes.omega[j];
-            let (x0, v0) = (self.q0[j], self.dq0[j]);
-            let (s, c) = (sin[j], cos[j]);
-            let (x_free, v_free) = free_given(x0, v0, omega, tau, s, c);
-            (q[j], dq[j]) = match self.response[j] {
-                Response::Free => (x_free, v_free),
-                Response::Detuned { amplitude } => {
-                    let phase0 = (self.sin_wt0, self.cos_wt0);
-                    let (x_forced, v_forced) =
-                        detuned(omega, w, tau, phase0, (sin_w_tau, cos_w_tau), (s, c));
-                    (x_free + amplitude * x_forced, v_free + amplitude * v_forced)
-                }
-                Response::Forced { drive } => {
-                    let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
-                    (x_free + drive * g, v_free + drive * dg)
-                }
-            };
+        let w_tau = self.angles(modes, w, tau, (&mut sin, &mut cos));
+        for j in 0..modes.n {
+            (q[j], dq[j]) = self.mode_at(modes, w, (j, tau), (sin[j], cos[j]), w_tau);
         }
         if self.push != 0.0 {
-            // The string friction switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω².
-            for j in 0..n {
-                let (x_step, v_step) = step(sin[j], cos[j], modes.omega[j], tau);
-                let drive = self.push_shape(j) * self.push;
-                q[j] += drive * x_step;
-                dq[j] += drive * v_step;
+            for j in 0..modes.n {
+                let (x, v) = self.pushed(modes, (j, tau), (sin[j], cos[j]));
+                q[j] += x;
+                dq[j] += v;
             }
         }
-        (sin_w_tau, cos_w_tau)
+        w_tau
+    }
+
+    /// The rows of [`Sums`] at `t` through the phase's combinations `sums`, with sin(w τ) and
+    /// cos(w τ).
+    #[inline(always)]
+    fn rows(&self, sums: &Sums, setup: &Setup, t: f64) -> ([f64; 4], (f64, f64)) {
+        let modes = self.modes();
+        let tau = t - self.start.t;
+        let w = setup.w;
+        let n = modes.n;
+        let (mut sin, mut cos) = ([0.0; MAX + 1], [0.0; MAX + 1]);
+        let w_tau = self.angles_each(modes, w, tau, (&mut sin, &mut cos));
+        let wt = (!self.is_grip()).then(|| {
+            let (sin_w_tau, cos_w_tau) = w_tau;
+            (
+                self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau,
+                self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau,
+            )
+        });
+        let mut rows = sums.main.at(n, &sin, &cos, wt);
+        for &j in &sums.odd[..sums.odd_n] {
+            let motion = self.mode_at(modes, w, (j, tau), (sin[j], cos[j]), w_tau);
+            add(&mut rows, Sums::main_weights(modes, j), motion);
+        }
+        if self.push != 0.0 {
+            for j in 0..n {
+                let motion = self.pushed(modes, (j, tau), (sin[j], cos[j]));
+                add(&mut rows, Sums::main_weights(modes, j), motion);
+            }
+        }
+        (rows, w_tau)
     }
 
     /// The ball's impulse ∫ F dt since t0 and the friction F at t0 + τ while it slides, Eqs. (1), (2):
@@ -249,45 +513,36 @@ impl Motion {
         if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
         }
+        if let Some(sums) = &self.sums {
+            let (rows, w_tau) = self.rows(sums, setup, t);
+            return self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau);
+        }
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
-        self.moving_contact(setup, t, (&q, &dq), (sin_w_tau, cos_w_tau))
+        let moving_frame = if self.is_held() { 0 } else { frame };
+        let (main, framed) = Sums::from_modal(self.modes(), moving_frame, (&q, &dq));
+        self.moving_contact(setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
     }
 
-    /// [`Motion::contact`] of a moving first mass given the modal coordinates and rates at `t` and
-    /// sin(w τ), cos(w τ) there (from [`Motion::modal`]).
+    /// [`Motion::contact`] of a moving first mass given the rows of [`Sums`] at `t` (the main and the
+    /// frame's) and sin(w τ),
+    /// cos(w τ) there.
     #[inline]
     fn moving_contact(
         &self,
         setup: &Setup,
         t: f64,
-        (q, dq): (&[f64; MAX], &[f64; MAX]),
+        (main, framed): (&[f64; 4], &[f64; 3]),
         (sin_w_tau, cos_w_tau): (f64, f64),
     ) -> Contact {
         let frame = self.start.frame;
         let modes = self.modes();
-        let (mut x, mut v, mut stiff, mut stiff_rate) = (0.0, 0.0, 0.0, 0.0);
-        for j in 0..modes.n {
-            let phi = modes.shape[0][j];
-            x += phi * q[j];
-            v += phi * dq[j];
-            stiff += modes.first_stiff[j] * q[j];
-            stiff_rate += modes.first_stiff[j] * dq[j];
-        }
+        let ([mut x, v, stiff, stiff_rate], [xf, last, vf]) = (*main, *framed);
         let mut frame_motion = (0.0, 0.0);
         if frame > 0 && !self.is_held() {
             // The first mass's displacement is reported relative to the free frame.
-            let xf = (0..modes.n)
-                .map(|j| modes.shape[frame][j] * q[j])
-                .sum::<f64>();
             x -= xf;
             // The frame feels the last link's spring and the string friction's reaction -push.
-            let last = (0..modes.n)
-                .map(|j| modes.shape[frame - 1][j] * q[j])
-                .sum::<f64>();
-            let vf = (0..modes.n)
-                .map(|j| modes.shape[frame][j] * dq[j])
-                .sum::<f64>();
             let spring = self.chain.link_stiffness * (last - xf);
             frame_motion = (vf, (spring - self.push) / modes.mass[frame]);
         }
@@ -380,8 +635,15 @@ impl Motion {
         let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
         let contact = if self.is_held() && self.start.frame == 0 {
             self.held_contact(setup, t)
+        } else if let Some(sums) = &self.sums {
+            // The ball and the first mass as the event search saw them (the phase's sums), so that
+            // the next phase starts where this one's events were measured.
+            let (rows, w_tau) = self.rows(sums, setup, t);
+            self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau)
         } else {
-            self.moving_contact(setup, t, (&q, &dq), (sin_w_tau, cos_w_tau))
+            let frame = if self.is_held() { 0 } else { self.start.frame };
+            let (main, framed) = Sums::from_modal(modes, frame, (&q, &dq));
+            self.moving_contact(setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
         }
         .state;
         let (mut x, mut v) = (modes.expand(&q), modes.expand(&dq));
@@ -394,6 +656,8 @@ impl Motion {
                 v[i] = v[i - 1];
             }
             (x[0], v[0]) = (contact.x, 0.0);
+        } else if self.sums.is_some() {
+            (x[0], v[0]) = (contact.x, contact.v);
         }
         ChainState {
             t,

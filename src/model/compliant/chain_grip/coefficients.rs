@@ -14,22 +14,28 @@ fn project(g: &GripModes, list: &[Mode], z: &[f64]) -> (Vec<C64>, [f64; STATE]) 
     let n = g.n;
     let e = z[0] - (0..n).map(|j| g.phi1[j] * z[j + 1]).sum::<f64>();
     let mut rebuilt = [0.0; STATE];
+    // The masses' displacements and rates, and their rebuilt copies, as slices of n (no index checks
+    // in the loops over the masses).
+    let (masses, rates) = (&z[1..=n], &z[n + 2..2 * n + 2]);
     let c = list
         .iter()
         .map(|mode| {
+            let q = &mode.q[..n];
             // w_iᵀ [[C, D], [D, 0]] z = c_b e_i e + φᵀ D y' + s φᵀ D y.
             let mut dy = mode.u * (g.m_eff * z[n + 1]);
             let mut y = mode.u * (g.m_eff * z[0]);
-            for j in 0..n {
-                dy += mode.q[j] * z[n + 2 + j];
-                y += mode.q[j] * z[j + 1];
+            for ((&q, &x), &v) in q.iter().zip(masses).zip(rates) {
+                dy += q * v;
+                y += q * x;
             }
             let c = (mode.e * (g.cb * e) + dy + mode.s * y) / mode.norm * mode.weight;
+            let rate = c * mode.s;
             rebuilt[0] += (c * mode.u).re;
-            rebuilt[n + 1] += (c * mode.s * mode.u).re;
-            for j in 0..n {
-                rebuilt[j + 1] += (c * mode.q[j]).re;
-                rebuilt[n + 2 + j] += (c * mode.s * mode.q[j]).re;
+            rebuilt[n + 1] += (rate * mode.u).re;
+            let (head, tail) = rebuilt.split_at_mut(n + 2);
+            for ((&q, x), v) in q.iter().zip(&mut head[1..=n]).zip(&mut tail[..n]) {
+                *x += (c * q).re;
+                *v += (rate * q).re;
             }
             c
         })

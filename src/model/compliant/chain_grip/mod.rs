@@ -43,7 +43,7 @@
 
 use std::sync::{Arc, Mutex, OnceLock};
 
-use super::super::trig::sin_cos;
+use super::super::trig::{exp as fast_exp, sin_cos, sin_cos_each};
 use nalgebra::{Cholesky, Complex, DMatrix, DVector};
 
 mod coefficients;
@@ -288,6 +288,43 @@ pub struct ChainGrip {
     beta: Option<Vec<C64>>,
     /// Without them, z̃ at the start and after every step h of the exponential, as far as asked for.
     checkpoints: Arc<Mutex<Vec<DVector<f64>>>>,
+    /// On the wall without a push, each mode's [`Shares`] of the contact's sums.
+    shares: Option<Vec<Shares>>,
+}
+
+/// How many modes [`ChainGrip::at`] takes the sines of at once (small arrays, set up without a call).
+const CHUNK: usize = 10;
+
+/// The contact's sums u, u', F, F', e, e', e'' and X_1'' (= u'' - e'').
+const SUMS: usize = 8;
+
+/// One mode's weighted coefficient c_i times what the mode carries into each of [`SUMS`] (u_i, s_i u_i,
+/// F_i, s_i F_i, e_i, s_i e_i, s_i² e_i, s_i² (u_i - e_i)), real and imaginary parts apart: each sum at
+/// τ is then Re Σ_i e^{s_i τ} (c_i X_i), two products a mode and sum. Taken once per grip.
+#[derive(Clone, Debug)]
+struct Shares {
+    re: [f64; SUMS],
+    im: [f64; SUMS],
+}
+
+impl Shares {
+    fn new(mode: &Mode, ci: C64) -> Shares {
+        let rate = ci * mode.s;
+        let sums = [
+            ci * mode.u,
+            rate * mode.u,
+            ci * mode.force,
+            rate * mode.force,
+            ci * mode.e,
+            rate * mode.e,
+            rate * mode.s * mode.e,
+            rate * mode.s * (mode.u - mode.e),
+        ];
+        Shares {
+            re: sums.map(|z| z.re),
+            im: sums.map(|z| z.im),
+        }
+    }
 }
 
 impl ChainGrip {
@@ -346,6 +383,15 @@ impl ChainGrip {
         if push != 0.0 && beta.is_none() {
             coefficients = None;
         }
+        let shares = match (&modes.modes, &coefficients) {
+            (Some(list), Some(c)) if push == 0.0 && modes.translation.is_none() => Some(
+                list.iter()
+                    .zip(c)
+                    .map(|(mode, &ci)| Shares::new(mode, ci))
+                    .collect(),
+            ),
+            _ => None,
+        };
         ChainGrip {
             modes,
             start,
@@ -356,6 +402,7 @@ impl ChainGrip {
             push,
             beta,
             checkpoints: Arc::new(Mutex::new(Vec::new())),
+            shares,
         }
     }
 
@@ -411,6 +458,30 @@ impl ChainGrip {
         // On a free frame also r'' and X_f - Y with its two rates (otherwise 0).
         let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf)) =
             match (&g.modes, &self.coefficients) {
+                (Some(list), Some(_)) if let Some(shares) = &self.shares => {
+                    // e^{s_i τ} of every mode, CHUNK at a time: the sines and cosines together,
+                    // e^{Re s_i τ} inlined.
+                    let mut sums = [0.0; SUMS];
+                    for (modes, shares) in list.chunks(CHUNK).zip(shares.chunks(CHUNK)) {
+                        let count = modes.len();
+                        let mut angle = [0.0; CHUNK];
+                        for (a, mode) in angle.iter_mut().zip(modes) {
+                            *a = mode.s.im * tau;
+                        }
+                        let (mut sin, mut cos) = ([0.0; CHUNK], [0.0; CHUNK]);
+                        sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]);
+                        for (i, (mode, share)) in modes.iter().zip(shares).enumerate() {
+                            let size = fast_exp(mode.s.re * tau);
+                            let (re, im) = (size * cos[i], size * sin[i]);
+                            for ((sum, a), b) in sums.iter_mut().zip(&share.re).zip(&share.im) {
+                                *sum += re * a - im * b;
+                            }
+                        }
+                    }
+                    let [u, du, f, df, e, de, dde, a1] = sums;
+                    let none = (0.0, 0.0, 0.0);
+                    (du, f, df, e, de, dde, u - e, du - de, a1, 0.0, none)
+                }
                 (Some(list), Some(c)) => {
                     let zero = C64::new(0.0, 0.0);
                     let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde, mut a1) =
