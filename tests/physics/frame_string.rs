@@ -5,7 +5,6 @@
 //! compliant ball) against the exact clamped solvers and its own limits.
 
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 
 use crate::frame::{assert_momentum_conserved, close, random_frame, step_for};
 use crate::support::compliant::solved_or_refused;
@@ -52,17 +51,6 @@ fn release_pairs(
             (speeds * p.duration).max(travel.peak_x),
         ),
     ]
-}
-
-/// The agreement property tests draw from a fixed seed: over a few thousand draws, a cart of about 10 mg on a
-/// stiff spring (50 and more swings in the contact) leaves at a velocity that differs from the integration's
-/// by up to 5e-9 of its own peak speed, over the 1e-9 asked, while the ball agrees to 1e-11. Drawn afresh on
-/// every run, one run in a few dozen met such a cart; `PROPTEST_CASES` still searches deeper.
-fn fixed_seed() -> ProptestConfig {
-    ProptestConfig {
-        rng_seed: RngSeed::Fixed(0x23_f4a3),
-        ..crate::support::prop::config(64)
-    }
 }
 
 /// The exact bounce against the integration, to `tol` relative; the phases must match too.
@@ -185,9 +173,19 @@ fn a_heavy_frame_approaches_the_clamped_cart_with_string_friction() {
     }
 }
 
-/// The integration's step on a free or a clamped frame, for a compliant ball as well: small against
-/// its contact mode too.
+/// The integration's step on a free or a clamped frame, for a compliant ball as well: small against its
+/// contact mode, and against the cart's own swing on the ball's spring while the ball grips (a 10 mg
+/// cart on a 1e5 N/m ball rings at 1e5 rad/s, ten times faster than on its own spring).
 fn compliant_step(p: &Params) -> f64 {
+    let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+    let reduced = m_eff * p.cart_mass / (m_eff + p.cart_mass);
+    let cart_on_ball = ((p.ball_stiffness + p.stiffness) / reduced).sqrt();
+    ball_step(p).min(0.002 / cart_on_ball)
+}
+
+/// The integration's step against the contact time, the cart's swing on its frame and the ball's
+/// contact mode, not the cart's swing on the ball's spring.
+fn ball_step(p: &Params) -> f64 {
     let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
     let ball = (p.ball_stiffness / m_eff).sqrt();
     let on_frame = if p.frame_mass > 0.0 {
@@ -223,6 +221,7 @@ fn random_compliant_frame(rng: &mut Rng) -> Params {
 #[test]
 fn the_integration_on_a_clamped_frame_is_the_exact_clamped_solvers() {
     let mut rng = Rng(0xc1a4_bed0_0023_0005);
+    let mut compliant_checked = 0;
     for case in 0..30 {
         // The rigid ball with string friction, and the compliant ball with and without.
         let rigid = Params {
@@ -235,23 +234,38 @@ fn the_integration_on_a_clamped_frame_is_the_exact_clamped_solvers() {
             frame_normal_mass: 0.0,
             ..random_compliant_frame(&mut rng)
         };
-        for p in [rigid, compliant] {
-            let exact = solve(&p).unwrap();
+        // A compliant ball too fast for the clamped solver (a stiff dashpot on a cart of milligrams)
+        // is refused, as it says.
+        let compliant = solved_or_refused(&compliant)
+            .unwrap()
+            .map(|b| (compliant, b));
+        compliant_checked += usize::from(compliant.is_some());
+        for (p, exact) in [(rigid, solve(&rigid).unwrap())]
+            .into_iter()
+            .chain(compliant)
+        {
             let reference = integrate_frame(&p, compliant_step(&p));
             check_against(&p, &exact, &reference, 1e-8, &format!("case {case}"));
             assert_eq!(reference.vf2, 0.0);
         }
     }
+    assert!(
+        compliant_checked >= 25,
+        "{compliant_checked} compliant balls solved"
+    );
 }
 
-/// The compliant ball on a free frame, integrated, for `ball_stiffness`.
+/// The compliant ball on a free frame, integrated, for `ball_stiffness`, on a cart of 2 g or more: its
+/// swing on a 1e9 N/m ball (7e5 rad/s) takes 0.01 rad a step of [`ball_step`], and its dashpot 0.07 of
+/// its time constant, enough for the 2e-3 asked. A cart of 10 mg would need steps of 1e-12 s (the
+/// dashpot damps it at c_b/M = 1e9 /s), a billion of them.
 fn compliant_on_frame(p: &Params, ball_stiffness: f64) -> FrameNumerical {
     let p = Params {
         ball_stiffness,
         ball_damping: 1.0,
         ..*p
     };
-    integrate_frame(&p, compliant_step(&p))
+    integrate_frame(&p, ball_step(&p))
 }
 
 #[test]
@@ -262,6 +276,10 @@ fn a_stiff_compliant_ball_on_a_free_frame_approaches_the_rigid_one() {
         let p = Params {
             duration: 5e-3,
             ..random_string_frame(&mut rng)
+        };
+        let p = Params {
+            cart_mass: p.cart_mass.max(2e-3),
+            ..p
         };
         let rigid = solve(&p).unwrap();
         // A ball that slides throughout feels mu N whatever its compliance: only grips tell.
@@ -294,14 +312,19 @@ fn a_stiff_compliant_ball_on_a_free_frame_approaches_the_rigid_one() {
 #[test]
 fn the_compliant_ball_on_a_heavy_frame_approaches_the_clamped_compliant_solver() {
     let mut rng = Rng(0xbea4_f4a3_0023_0007);
+    let mut checked = 0;
     for _ in 0..12 {
         let p = random_compliant_frame(&mut rng);
-        let clamped = solve(&Params {
+        // A ball too fast for the clamped solver is refused (its dashpot on a cart of milligrams).
+        let Some(clamped) = solved_or_refused(&Params {
             frame_mass: 0.0,
             frame_normal_mass: 0.0,
             ..p
         })
-        .unwrap();
+        .unwrap() else {
+            continue;
+        };
+        checked += 1;
         let heavy = Params {
             frame_mass: 1e6,
             frame_normal_mass: 0.0,
@@ -317,10 +340,11 @@ fn the_compliant_ball_on_a_heavy_frame_approaches_the_clamped_compliant_solver()
         );
         assert!(reference.vf2.abs() < 1e-5 * p.speed, "{what}");
     }
+    assert!(checked >= 10, "{checked} compliant balls solved");
 }
 
 proptest! {
-    #![proptest_config(fixed_seed())]
+    #![proptest_config(crate::support::prop::config(64))]
 
     #[test]
     fn random_string_frames_agree_with_the_integration(seed in any::<u64>()) {
@@ -446,7 +470,7 @@ fn a_compliant_ball_with_string_friction_on_a_heavy_frame_approaches_the_clamped
 }
 
 proptest! {
-    #![proptest_config(fixed_seed())]
+    #![proptest_config(crate::support::prop::config(64))]
 
     #[test]
     fn random_compliant_string_frames_agree_with_the_integration(seed in any::<u64>()) {
