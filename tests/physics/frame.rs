@@ -262,7 +262,7 @@ fn what_a_free_frame_does_not_solve_is_refused_by_name() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(crate::support::prop::config(200))]
 
     #[test]
     fn random_frames_solve_finite_balanced_and_held_in_grips(
