@@ -304,7 +304,8 @@ fn a_stiff_compliant_ball_on_a_free_frame_approaches_the_rigid_one() {
             "{errors:?} ({p:?}, {})",
             rigid.phase_summary()
         );
-        assert!(errors[1] < 0.5 * errors[0], "{errors:?} ({p:?})");
+        // Unless both are rounding (a grip on a held cart, where the ball rolls without force).
+        assert!(errors[1] < 0.5 * errors[0] + 1e-12, "{errors:?} ({p:?})");
         checked += 1;
     }
 }
@@ -400,11 +401,14 @@ fn check_compliant(p: &Params, exact: &Bounce, reference: &FrameNumerical, tol: 
 #[test]
 fn a_compliant_ball_with_string_friction_on_a_free_frame_agrees_with_the_integration() {
     let mut rng = Rng(0xc0ff_5791_0023_0008);
-    let (mut held, mut moved, mut both) = (0, 0, 0);
+    let (mut held, mut moved, mut both, mut solved) = (0, 0, 0, 0);
     for case in 0..60 {
         let p = random_compliant_string_frame(&mut rng);
-        let exact =
-            solve(&p).expect("a compliant ball with string friction on a free frame solves");
+        // A ball too fast to resolve (a stiff dashpot on a cart of milligrams) is refused, as it says.
+        let Some(exact) = solved_or_refused(&p).unwrap() else {
+            continue;
+        };
+        solved += 1;
         let reference = integrate_frame(&p, compliant_step(&p));
         check_compliant(&p, &exact, &reference, 1e-9, &format!("case {case}"));
         let stuck = exact
@@ -416,30 +420,33 @@ fn a_compliant_ball_with_string_friction_on_a_free_frame_agrees_with_the_integra
         moved += usize::from(stuck < exact.phases.len());
         both += usize::from(stuck > 0 && stuck < exact.phases.len());
     }
-    // Every regime is exercised: held, moving, and a cart that changes between them.
+    // Every regime is exercised: held, moving, and a cart that changes between them (and a refusal
+    // is rare: at least 50 of the 60 solve).
     assert!(
-        held >= 5 && moved >= 5 && both >= 3,
-        "{held} {moved} {both}"
+        held >= 5 && moved >= 5 && both >= 3 && solved >= 50,
+        "{held} {moved} {both} {solved}"
     );
 }
 
 #[test]
 fn a_compliant_ball_with_string_friction_on_a_heavy_frame_approaches_the_clamped_one() {
     let mut rng = Rng(0xbea4_c0ff_0023_0009);
+    let mut checked = 0;
     for _ in 0..12 {
         let p = random_compliant_string_frame(&mut rng);
-        let clamped = solve(&Params {
-            frame_mass: 0.0,
-            frame_normal_mass: 0.0,
-            ..p
-        })
-        .unwrap();
-        let heavy = solve(&Params {
-            frame_mass: 1e6,
-            frame_normal_mass: 0.0,
-            ..p
-        })
-        .unwrap();
+        // A ball too fast to resolve is refused, clamped or not.
+        let solved = |frame_mass| {
+            solved_or_refused(&Params {
+                frame_mass,
+                frame_normal_mass: 0.0,
+                ..p
+            })
+            .unwrap()
+        };
+        let (Some(clamped), Some(heavy)) = (solved(0.0), solved(1e6)) else {
+            continue;
+        };
+        checked += 1;
         let what = format!(
             "{} vs {} ({p:?})",
             heavy.phase_summary(),
@@ -467,6 +474,7 @@ fn a_compliant_ball_with_string_friction_on_a_heavy_frame_approaches_the_clamped
             "{eh:?} vs {ec:?}"
         );
     }
+    assert!(checked >= 10, "{checked} compliant balls solved");
 }
 
 proptest! {
