@@ -283,8 +283,8 @@ impl<const N: usize> Compensated<N> {
     /// The sum with `step` added: the value the events are tested on is the value kept.
     fn plus(&self, step: &[f64; N]) -> Self {
         let mut next = *self;
-        for i in 0..N {
-            let z = step[i] - self.carry[i];
+        for (i, step) in step.iter().enumerate() {
+            let z = step - self.carry[i];
             next.sum[i] = self.sum[i] + z;
             next.carry[i] = (next.sum[i] - self.sum[i]) - z;
         }
