@@ -161,13 +161,12 @@ fn a_heavy_frame_approaches_the_clamped_cart_with_string_friction() {
         );
         assert!(h.frame_velocity().abs() < 1e-5 * p.speed);
         let (eh, ec) = (h.energy(), c.energy());
+        // The frame's recoil moves every energy term by up to about m/M_t (1e-7) of the initial
+        // energy, a small loss to string friction by much more than 1e-4 of itself (2.3e-5 J by
+        // 2.4e-9 J, 1e-4 of it, in a 5 J bounce).
         assert!(
-            close(
-                eh.cart_friction_loss,
-                ec.cart_friction_loss,
-                1e-4,
-                1e-6 * ec.initial
-            ),
+            (eh.cart_friction_loss - ec.cart_friction_loss).abs()
+                <= 1e-4 * ec.cart_friction_loss + 1e-7 * ec.initial,
             "{eh:?} vs {ec:?}"
         );
     }
@@ -464,13 +463,12 @@ fn a_compliant_ball_with_string_friction_on_a_heavy_frame_approaches_the_clamped
         );
         assert!(heavy.frame_velocity().abs() < 1e-5 * p.speed, "{what}");
         let (eh, ec) = (heavy.energy(), clamped.energy());
+        // The frame's recoil moves every energy term by up to about m/M_t (1e-7) of the initial
+        // energy, a small loss to string friction by much more than 1e-4 of itself (2.3e-5 J by
+        // 2.4e-9 J, 1e-4 of it, in a 5 J bounce).
         assert!(
-            close(
-                eh.cart_friction_loss,
-                ec.cart_friction_loss,
-                1e-4,
-                1e-6 * ec.initial
-            ),
+            (eh.cart_friction_loss - ec.cart_friction_loss).abs()
+                <= 1e-4 * ec.cart_friction_loss + 1e-7 * ec.initial,
             "{eh:?} vs {ec:?}"
         );
     }
