@@ -286,25 +286,28 @@ fn a_stiff_compliant_ball_on_a_free_frame_approaches_the_rigid_one() {
             continue;
         }
         // The ball's spring takes up the slip within about sqrt(m_eff/k_b): the difference from the
-        // rigid ball shrinks with it.
-        let errors = [1e7, 1e9].map(|kb| {
+        // rigid ball is within that time over the contact's (up to 0.3 of it seen at 1e7 N/m, 0.06 at
+        // 1e9). It shrinks along that envelope but not monotonically: it changes sign on the way,
+        // near 1e7 N/m for some bounces (2.6e-7 there, 2.1e-6 at 1e9 N/m, the integration agreeing
+        // with the exact compliant solver at both), so halving from one to the other is no test.
+        let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+        for kb in [1e7, 1e9] {
             let c = compliant_on_frame(&p, kb);
             let speeds = p.speed;
-            [
+            let error = [
                 (c.vx2 - rigid.outcome.vx2).abs() / speeds,
                 (c.omega2 - rigid.outcome.omega2).abs() * p.radius / speeds,
                 (c.vf2 - rigid.frame_velocity()).abs() / speeds,
             ]
             .into_iter()
-            .fold(0.0, f64::max)
-        });
-        assert!(
-            errors[1] < 2e-3,
-            "{errors:?} ({p:?}, {})",
-            rigid.phase_summary()
-        );
-        // Unless both are rounding (a grip on a held cart, where the ball rolls without force).
-        assert!(errors[1] < 0.5 * errors[0] + 1e-12, "{errors:?} ({p:?})");
+            .fold(0.0, f64::max);
+            let envelope = (m_eff / kb).sqrt() / p.duration;
+            assert!(
+                error < envelope,
+                "k_b {kb:e}: {error:e} > {envelope:e} ({p:?}, {})",
+                rigid.phase_summary()
+            );
+        }
         checked += 1;
     }
 }
