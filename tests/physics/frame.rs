@@ -299,7 +299,7 @@ fn a_frame_without_a_spring_is_the_free_cart_with_the_apparent_restitution() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(crate::support::prop::config(200))]
 
     #[test]
     fn random_frames_solve_finite_balanced_and_held_in_grips(

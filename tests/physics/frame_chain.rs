@@ -40,7 +40,7 @@ fn the_framed_chain_agrees_with_an_independent_integration() {
     for case in 0..100 {
         let p = random_framed_chain(&mut rng);
         let exact = solve(&p).expect("a framed chain solves");
-        let reference = chain_integrator::integrate(&p, chain_integrator::step_for(&p) / 8.0);
+        let reference = chain_integrator::integrate(&p, chain_integrator::step_for(&p) / 4.0);
         let o = &exact.outcome;
         let tol = 1e-9;
         let what = format!("case {case}: {p:?} ({})", exact.phase_summary());

@@ -44,7 +44,7 @@ fn string_friction_on_a_framed_chain_agrees_with_an_independent_integration() {
     for case in 0..60 {
         let p = random_framed_string(&mut rng);
         let exact = solve(&p).expect("string friction on a framed chain solves");
-        let reference = chain_integrator::integrate(&p, chain_integrator::step_for(&p) / 8.0);
+        let reference = chain_integrator::integrate(&p, chain_integrator::step_for(&p) / 4.0);
         let o = &exact.outcome;
         let tol = 1e-9;
         let what = format!("case {case}: {p:?} ({})", exact.phase_summary());

@@ -5,7 +5,6 @@
 //! compliant ball) against the exact clamped solvers and its own limits.
 
 use proptest::prelude::*;
-use proptest::test_runner::RngSeed;
 
 use crate::frame::{assert_momentum_conserved, close, random_frame, step_for};
 use crate::support::compliant::solved_or_refused;
@@ -52,17 +51,6 @@ fn release_pairs(
             (speeds * p.duration).max(travel.peak_x),
         ),
     ]
-}
-
-/// The agreement property tests draw from a fixed seed: over a few thousand draws, a cart of about 10 mg on a
-/// stiff spring (50 and more swings in the contact) leaves at a velocity that differs from the integration's
-/// by up to 5e-9 of its own peak speed, over the 1e-9 asked, while the ball agrees to 1e-11. Drawn afresh on
-/// every run, one run in a few dozen met such a cart; `PROPTEST_CASES` still searches deeper.
-fn fixed_seed() -> ProptestConfig {
-    ProptestConfig {
-        rng_seed: RngSeed::Fixed(0x23_f4a3),
-        ..crate::support::prop::config(64)
-    }
 }
 
 /// The exact bounce against the integration, to `tol` relative; the phases must match too.
@@ -173,21 +161,30 @@ fn a_heavy_frame_approaches_the_clamped_cart_with_string_friction() {
         );
         assert!(h.frame_velocity().abs() < 1e-5 * p.speed);
         let (eh, ec) = (h.energy(), c.energy());
+        // The frame's recoil moves every energy term by up to about m/M_t (1e-7) of the initial
+        // energy, a small loss to string friction by much more than 1e-4 of itself (2.3e-5 J by
+        // 2.4e-9 J, 1e-4 of it, in a 5 J bounce).
         assert!(
-            close(
-                eh.cart_friction_loss,
-                ec.cart_friction_loss,
-                1e-4,
-                1e-6 * ec.initial
-            ),
+            (eh.cart_friction_loss - ec.cart_friction_loss).abs()
+                <= 1e-4 * ec.cart_friction_loss + 1e-7 * ec.initial,
             "{eh:?} vs {ec:?}"
         );
     }
 }
 
-/// The integration's step on a free or a clamped frame, for a compliant ball as well: small against
-/// its contact mode too.
+/// The integration's step on a free or a clamped frame, for a compliant ball as well: small against its
+/// contact mode, and against the cart's own swing on the ball's spring while the ball grips (a 10 mg
+/// cart on a 1e5 N/m ball rings at 1e5 rad/s, ten times faster than on its own spring).
 fn compliant_step(p: &Params) -> f64 {
+    let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+    let reduced = m_eff * p.cart_mass / (m_eff + p.cart_mass);
+    let cart_on_ball = ((p.ball_stiffness + p.stiffness) / reduced).sqrt();
+    ball_step(p).min(0.002 / cart_on_ball)
+}
+
+/// The integration's step against the contact time, the cart's swing on its frame and the ball's
+/// contact mode, not the cart's swing on the ball's spring.
+fn ball_step(p: &Params) -> f64 {
     let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
     let ball = (p.ball_stiffness / m_eff).sqrt();
     let on_frame = if p.frame_mass > 0.0 {
@@ -223,6 +220,7 @@ fn random_compliant_frame(rng: &mut Rng) -> Params {
 #[test]
 fn the_integration_on_a_clamped_frame_is_the_exact_clamped_solvers() {
     let mut rng = Rng(0xc1a4_bed0_0023_0005);
+    let mut compliant_checked = 0;
     for case in 0..30 {
         // The rigid ball with string friction, and the compliant ball with and without.
         let rigid = Params {
@@ -235,23 +233,38 @@ fn the_integration_on_a_clamped_frame_is_the_exact_clamped_solvers() {
             frame_normal_mass: 0.0,
             ..random_compliant_frame(&mut rng)
         };
-        for p in [rigid, compliant] {
-            let exact = solve(&p).unwrap();
+        // A compliant ball too fast for the clamped solver (a stiff dashpot on a cart of milligrams)
+        // is refused, as it says.
+        let compliant = solved_or_refused(&compliant)
+            .unwrap()
+            .map(|b| (compliant, b));
+        compliant_checked += usize::from(compliant.is_some());
+        for (p, exact) in [(rigid, solve(&rigid).unwrap())]
+            .into_iter()
+            .chain(compliant)
+        {
             let reference = integrate_frame(&p, compliant_step(&p));
             check_against(&p, &exact, &reference, 1e-8, &format!("case {case}"));
             assert_eq!(reference.vf2, 0.0);
         }
     }
+    assert!(
+        compliant_checked >= 25,
+        "{compliant_checked} compliant balls solved"
+    );
 }
 
-/// The compliant ball on a free frame, integrated, for `ball_stiffness`.
+/// The compliant ball on a free frame, integrated, for `ball_stiffness`, on a cart of 2 g or more: its
+/// swing on a 1e9 N/m ball (7e5 rad/s) takes 0.01 rad a step of [`ball_step`], and its dashpot 0.07 of
+/// its time constant, enough for the 2e-3 asked. A cart of 10 mg would need steps of 1e-12 s (the
+/// dashpot damps it at c_b/M = 1e9 /s), a billion of them.
 fn compliant_on_frame(p: &Params, ball_stiffness: f64) -> FrameNumerical {
     let p = Params {
         ball_stiffness,
         ball_damping: 1.0,
         ..*p
     };
-    integrate_frame(&p, compliant_step(&p))
+    integrate_frame(&p, ball_step(&p))
 }
 
 #[test]
@@ -263,30 +276,38 @@ fn a_stiff_compliant_ball_on_a_free_frame_approaches_the_rigid_one() {
             duration: 5e-3,
             ..random_string_frame(&mut rng)
         };
+        let p = Params {
+            cart_mass: p.cart_mass.max(2e-3),
+            ..p
+        };
         let rigid = solve(&p).unwrap();
         // A ball that slides throughout feels mu N whatever its compliance: only grips tell.
         if rigid.phases.iter().all(|ph| ph.kind != PhaseKind::Grip) {
             continue;
         }
         // The ball's spring takes up the slip within about sqrt(m_eff/k_b): the difference from the
-        // rigid ball shrinks with it.
-        let errors = [1e7, 1e9].map(|kb| {
+        // rigid ball is within that time over the contact's (up to 0.3 of it seen at 1e7 N/m, 0.06 at
+        // 1e9). It shrinks along that envelope but not monotonically: it changes sign on the way,
+        // near 1e7 N/m for some bounces (2.6e-7 there, 2.1e-6 at 1e9 N/m, the integration agreeing
+        // with the exact compliant solver at both), so halving from one to the other is no test.
+        let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
+        for kb in [1e7, 1e9] {
             let c = compliant_on_frame(&p, kb);
             let speeds = p.speed;
-            [
+            let error = [
                 (c.vx2 - rigid.outcome.vx2).abs() / speeds,
                 (c.omega2 - rigid.outcome.omega2).abs() * p.radius / speeds,
                 (c.vf2 - rigid.frame_velocity()).abs() / speeds,
             ]
             .into_iter()
-            .fold(0.0, f64::max)
-        });
-        assert!(
-            errors[1] < 2e-3,
-            "{errors:?} ({p:?}, {})",
-            rigid.phase_summary()
-        );
-        assert!(errors[1] < 0.5 * errors[0], "{errors:?} ({p:?})");
+            .fold(0.0, f64::max);
+            let envelope = (m_eff / kb).sqrt() / p.duration;
+            assert!(
+                error < envelope,
+                "k_b {kb:e}: {error:e} > {envelope:e} ({p:?}, {})",
+                rigid.phase_summary()
+            );
+        }
         checked += 1;
     }
 }
@@ -294,14 +315,19 @@ fn a_stiff_compliant_ball_on_a_free_frame_approaches_the_rigid_one() {
 #[test]
 fn the_compliant_ball_on_a_heavy_frame_approaches_the_clamped_compliant_solver() {
     let mut rng = Rng(0xbea4_f4a3_0023_0007);
+    let mut checked = 0;
     for _ in 0..12 {
         let p = random_compliant_frame(&mut rng);
-        let clamped = solve(&Params {
+        // A ball too fast for the clamped solver is refused (its dashpot on a cart of milligrams).
+        let Some(clamped) = solved_or_refused(&Params {
             frame_mass: 0.0,
             frame_normal_mass: 0.0,
             ..p
         })
-        .unwrap();
+        .unwrap() else {
+            continue;
+        };
+        checked += 1;
         let heavy = Params {
             frame_mass: 1e6,
             frame_normal_mass: 0.0,
@@ -317,10 +343,11 @@ fn the_compliant_ball_on_a_heavy_frame_approaches_the_clamped_compliant_solver()
         );
         assert!(reference.vf2.abs() < 1e-5 * p.speed, "{what}");
     }
+    assert!(checked >= 10, "{checked} compliant balls solved");
 }
 
 proptest! {
-    #![proptest_config(fixed_seed())]
+    #![proptest_config(crate::support::prop::config(64))]
 
     #[test]
     fn random_string_frames_agree_with_the_integration(seed in any::<u64>()) {
@@ -376,11 +403,14 @@ fn check_compliant(p: &Params, exact: &Bounce, reference: &FrameNumerical, tol: 
 #[test]
 fn a_compliant_ball_with_string_friction_on_a_free_frame_agrees_with_the_integration() {
     let mut rng = Rng(0xc0ff_5791_0023_0008);
-    let (mut held, mut moved, mut both) = (0, 0, 0);
+    let (mut held, mut moved, mut both, mut solved) = (0, 0, 0, 0);
     for case in 0..60 {
         let p = random_compliant_string_frame(&mut rng);
-        let exact =
-            solve(&p).expect("a compliant ball with string friction on a free frame solves");
+        // A ball too fast to resolve (a stiff dashpot on a cart of milligrams) is refused, as it says.
+        let Some(exact) = solved_or_refused(&p).unwrap() else {
+            continue;
+        };
+        solved += 1;
         let reference = integrate_frame(&p, compliant_step(&p));
         check_compliant(&p, &exact, &reference, 1e-9, &format!("case {case}"));
         let stuck = exact
@@ -392,30 +422,33 @@ fn a_compliant_ball_with_string_friction_on_a_free_frame_agrees_with_the_integra
         moved += usize::from(stuck < exact.phases.len());
         both += usize::from(stuck > 0 && stuck < exact.phases.len());
     }
-    // Every regime is exercised: held, moving, and a cart that changes between them.
+    // Every regime is exercised: held, moving, and a cart that changes between them (and a refusal
+    // is rare: at least 50 of the 60 solve).
     assert!(
-        held >= 5 && moved >= 5 && both >= 3,
-        "{held} {moved} {both}"
+        held >= 5 && moved >= 5 && both >= 3 && solved >= 50,
+        "{held} {moved} {both} {solved}"
     );
 }
 
 #[test]
 fn a_compliant_ball_with_string_friction_on_a_heavy_frame_approaches_the_clamped_one() {
     let mut rng = Rng(0xbea4_c0ff_0023_0009);
+    let mut checked = 0;
     for _ in 0..12 {
         let p = random_compliant_string_frame(&mut rng);
-        let clamped = solve(&Params {
-            frame_mass: 0.0,
-            frame_normal_mass: 0.0,
-            ..p
-        })
-        .unwrap();
-        let heavy = solve(&Params {
-            frame_mass: 1e6,
-            frame_normal_mass: 0.0,
-            ..p
-        })
-        .unwrap();
+        // A ball too fast to resolve is refused, clamped or not.
+        let solved = |frame_mass| {
+            solved_or_refused(&Params {
+                frame_mass,
+                frame_normal_mass: 0.0,
+                ..p
+            })
+            .unwrap()
+        };
+        let (Some(clamped), Some(heavy)) = (solved(0.0), solved(1e6)) else {
+            continue;
+        };
+        checked += 1;
         let what = format!(
             "{} vs {} ({p:?})",
             heavy.phase_summary(),
@@ -433,20 +466,20 @@ fn a_compliant_ball_with_string_friction_on_a_heavy_frame_approaches_the_clamped
         );
         assert!(heavy.frame_velocity().abs() < 1e-5 * p.speed, "{what}");
         let (eh, ec) = (heavy.energy(), clamped.energy());
+        // The frame's recoil moves every energy term by up to about m/M_t (1e-7) of the initial
+        // energy, a small loss to string friction by much more than 1e-4 of itself (2.3e-5 J by
+        // 2.4e-9 J, 1e-4 of it, in a 5 J bounce).
         assert!(
-            close(
-                eh.cart_friction_loss,
-                ec.cart_friction_loss,
-                1e-4,
-                1e-6 * ec.initial
-            ),
+            (eh.cart_friction_loss - ec.cart_friction_loss).abs()
+                <= 1e-4 * ec.cart_friction_loss + 1e-7 * ec.initial,
             "{eh:?} vs {ec:?}"
         );
     }
+    assert!(checked >= 10, "{checked} compliant balls solved");
 }
 
 proptest! {
-    #![proptest_config(fixed_seed())]
+    #![proptest_config(crate::support::prop::config(64))]
 
     #[test]
     fn random_compliant_string_frames_agree_with_the_integration(seed in any::<u64>()) {
@@ -493,8 +526,9 @@ fn the_string_presets_on_the_racquets_frame_agree_with_the_integration() {
 }
 
 /// A seed the property test once drew: a 13 mg cart on 8 kN/m swinging at 25 000 rad/s, held and
-/// pushed free in turn. Its release velocity differs from the integration's by 1.1e-8 m/s, 2e-9 of the
-/// ball's speed but 3e-10 of the cart's own peak speed (34 m/s), against which it is now measured.
+/// pushed free in turn. Its release velocity differed from the integration's by 1.1e-8 m/s while the
+/// integration's clock and positions drifted (plain sums) and its events were taken 1e-11 late; it now
+/// differs by 9e-11 m/s, 8e-12 of the ball's speed.
 #[test]
 fn a_cart_of_milligrams_agrees_within_its_own_swing() {
     let mut rng = Rng(16_202_890_283_908_862_478 | 1);
@@ -504,8 +538,9 @@ fn a_cart_of_milligrams_agrees_within_its_own_swing() {
     check_against(&p, &exact, &reference, 1e-9, "milligram cart");
 }
 
-/// A compliant ball the property test once drew on a 12 mg cart: its release velocity differs from the
-/// integration's by 4.7e-8 m/s, 1.3e-9 of the ball's speed, within 1e-9 of the cart's own peak speed.
+/// A compliant ball the property test once drew on a 12 mg cart: its release velocity differed from the
+/// integration's by 4.8e-8 m/s with a step blind to the cart's swing on the ball's spring (88 000 rad/s),
+/// and differs by 3e-11 m/s (3e-13 of the cart's peak speed) with [`compliant_step`].
 #[test]
 fn a_compliant_ball_on_a_cart_of_milligrams_agrees_within_its_swing() {
     let p = Params {
@@ -526,7 +561,7 @@ fn a_compliant_ball_on_a_cart_of_milligrams_agrees_within_its_swing() {
         ..Params::default()
     };
     let exact = solve(&p).unwrap();
-    let reference = integrate_frame(&p, step_for(&p));
+    let reference = integrate_frame(&p, compliant_step(&p));
     check_compliant(
         &p,
         &exact,
