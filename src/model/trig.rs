@@ -141,71 +141,6 @@ pub fn sin(x: f64) -> f64 {
     sin_cos(x).0
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Against the library: within a unit in the last place of the larger of the result and 1/4
-    /// (about 6e-17 absolute near a zero of sin or cos), over the angles the closed forms take.
-    #[test]
-    fn agrees_with_the_library() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut uniform = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let mut worst: f64 = 0.0;
-        for span in [1e-8, 1e-3, 0.8, 3.2, 10.0, 1e3, 1e5, 1.5e6] {
-            for _ in 0..200_000 {
-                let x = (2.0 * uniform() - 1.0) * span;
-                let (s, c) = sin_cos(x);
-                let (ls, lc) = x.sin_cos();
-                for (got, want) in [(s, ls), (c, lc)] {
-                    let ulp = f64::EPSILON * want.abs().max(0.25);
-                    worst = worst.max((got - want).abs() / ulp);
-                }
-            }
-        }
-        assert!(worst <= 1.0, "{worst} ulp");
-    }
-
-    #[test]
-    fn two_at_once_are_bit_for_bit_the_single_ones() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut uniform = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        for span in [1e-8, 0.8, 3.2, 1e3, 1.5e6, 2e6] {
-            for _ in 0..100_000 {
-                let (x, y) = (
-                    (2.0 * uniform() - 1.0) * span,
-                    (2.0 * uniform() - 1.0) * span,
-                );
-                let (a, b) = sin_cos2(x, y);
-                let bits = |(s, c): (f64, f64)| (s.to_bits(), c.to_bits());
-                assert_eq!(bits(a), bits(sin_cos(x)), "{x}");
-                assert_eq!(bits(b), bits(sin_cos(y)), "{y}");
-            }
-        }
-        let (a, _) = sin_cos2(f64::NAN, 1.0);
-        assert!(a.0.is_nan());
-    }
-
-    #[test]
-    fn exact_where_it_must_be() {
-        assert_eq!(sin_cos(0.0), (0.0, 1.0));
-        assert_eq!(sin_cos(1e-300), (1e-300, 1.0));
-        assert!(sin_cos(f64::NAN).0.is_nan());
-        let (s, c) = sin_cos(1e9);
-        assert_eq!((s, c), 1e9f64.sin_cos());
-    }
-}
-
 /// ln 2 to 32 bits (k times it is exact for |k| < 2^21), and the rest of it.
 const LN2_HEAD: f64 = 6.931_471_803_691_238e-1;
 const LN2_TAIL: f64 = 1.908_214_929_270_587_7e-10;
@@ -245,37 +180,6 @@ pub fn exp(x: f64) -> f64 {
         .fold(EXP[11], |acc, &coefficient| acc * r + coefficient);
     let scale = f64::from_bits(((k as i64 + 1023) as u64) << 52);
     (1.0 + (r + r * r * p)) * scale
-}
-
-#[cfg(test)]
-mod exp_tests {
-    use super::exp;
-
-    /// Against the library: within 2 units in the last place over the exponents the grips take, and
-    /// exact where it must be.
-    #[test]
-    fn agrees_with_the_library() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut uniform = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
-        let mut worst: f64 = 0.0;
-        for span in [1e-12, 1e-3, 0.4, 3.0, 50.0, 700.0] {
-            for _ in 0..200_000 {
-                let x = (2.0 * uniform() - 1.0) * span;
-                let (got, want) = (exp(x), x.exp());
-                worst = worst.max((got - want).abs() / (f64::EPSILON * want));
-            }
-        }
-        assert!(worst <= 2.0, "{worst} ulp");
-        assert_eq!(exp(0.0), 1.0);
-        assert_eq!(exp(-800.0), 0.0);
-        assert!(exp(f64::NAN).is_nan());
-        assert_eq!(exp(f64::INFINITY), f64::INFINITY);
-    }
 }
 
 /// sin r / r - 1 and (cos r - 1 + r²/2) / r⁴ on |r| <= π/4 as polynomials in r² (fdlibm's minimax
@@ -341,20 +245,92 @@ pub fn sin_cos_each(angles: &[f64], sin: &mut [f64], cos: &mut [f64]) {
 }
 
 #[cfg(test)]
-mod each_tests {
-    use super::sin_cos_each;
+mod tests {
+    use super::*;
 
-    /// Against the library: within 2 units in the last place of the larger of the result and 1/4,
-    /// over the angles the closed forms take; NaN stays NaN.
-    #[test]
-    fn agrees_with_the_library() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut uniform = || {
+    /// Uniform draws in [0, 1) from `seed` (xorshift), the same on every run.
+    fn uniform(mut state: u64) -> impl FnMut() -> f64 {
+        move || {
             state ^= state << 13;
             state ^= state >> 7;
             state ^= state << 17;
             (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        }
+    }
+
+    /// Against the library: within a unit in the last place of the larger of the result and 1/4
+    /// (about 6e-17 absolute near a zero of sin or cos), over the angles the closed forms take.
+    #[test]
+    fn agrees_with_the_library() {
+        let mut uniform = uniform(0x2545_f491_4f6c_dd1du64);
+        let mut worst: f64 = 0.0;
+        for span in [1e-8, 1e-3, 0.8, 3.2, 10.0, 1e3, 1e5, 1.5e6] {
+            for _ in 0..200_000 {
+                let x = (2.0 * uniform() - 1.0) * span;
+                let (s, c) = sin_cos(x);
+                let (ls, lc) = x.sin_cos();
+                for (got, want) in [(s, ls), (c, lc)] {
+                    let ulp = f64::EPSILON * want.abs().max(0.25);
+                    worst = worst.max((got - want).abs() / ulp);
+                }
+            }
+        }
+        assert!(worst <= 1.0, "{worst} ulp");
+    }
+
+    #[test]
+    fn two_at_once_are_bit_for_bit_the_single_ones() {
+        let mut uniform = uniform(0x9e37_79b9_7f4a_7c15u64);
+        for span in [1e-8, 0.8, 3.2, 1e3, 1.5e6, 2e6] {
+            for _ in 0..100_000 {
+                let (x, y) = (
+                    (2.0 * uniform() - 1.0) * span,
+                    (2.0 * uniform() - 1.0) * span,
+                );
+                let (a, b) = sin_cos2(x, y);
+                let bits = |(s, c): (f64, f64)| (s.to_bits(), c.to_bits());
+                assert_eq!(bits(a), bits(sin_cos(x)), "{x}");
+                assert_eq!(bits(b), bits(sin_cos(y)), "{y}");
+            }
+        }
+        let (a, _) = sin_cos2(f64::NAN, 1.0);
+        assert!(a.0.is_nan());
+    }
+
+    #[test]
+    fn exact_where_it_must_be() {
+        assert_eq!(sin_cos(0.0), (0.0, 1.0));
+        assert_eq!(sin_cos(1e-300), (1e-300, 1.0));
+        assert!(sin_cos(f64::NAN).0.is_nan());
+        let (s, c) = sin_cos(1e9);
+        assert_eq!((s, c), 1e9f64.sin_cos());
+    }
+
+    /// Against the library: within 2 units in the last place over the exponents the grips take, and
+    /// exact where it must be.
+    #[test]
+    fn exp_agrees_with_the_library() {
+        let mut uniform = uniform(0x2545_f491_4f6c_dd1du64);
+        let mut worst: f64 = 0.0;
+        for span in [1e-12, 1e-3, 0.4, 3.0, 50.0, 700.0] {
+            for _ in 0..200_000 {
+                let x = (2.0 * uniform() - 1.0) * span;
+                let (got, want) = (exp(x), x.exp());
+                worst = worst.max((got - want).abs() / (f64::EPSILON * want));
+            }
+        }
+        assert!(worst <= 2.0, "{worst} ulp");
+        assert_eq!(exp(0.0), 1.0);
+        assert_eq!(exp(-800.0), 0.0);
+        assert!(exp(f64::NAN).is_nan());
+        assert_eq!(exp(f64::INFINITY), f64::INFINITY);
+    }
+
+    /// Against the library: within 2 units in the last place of the larger of the result and 1/4,
+    /// over the angles the closed forms take; NaN stays NaN.
+    #[test]
+    fn each_agrees_with_the_library() {
+        let mut uniform = uniform(0x9e37_79b9_7f4a_7c15u64);
         let mut worst: f64 = 0.0;
         for span in [1e-8, 1e-3, 0.8, 3.2, 10.0, 1e3, 1e5, 1.5e6] {
             for _ in 0..20_000 {
