@@ -7,6 +7,7 @@
 //! physical checks also run on the single cart.
 
 use crate::support::chain_compliant_integrator;
+use crate::support::compliant::incoming;
 use crate::support::compliant_integrator;
 
 use chain_compliant_integrator::{Reference, fastest, integrate, step_for};
@@ -46,12 +47,6 @@ fn solver_cases() -> Vec<Params> {
 /// The reference at its usual step.
 fn reference(p: &Params) -> Reference {
     integrate(p, step_for(p, PER_RADIAN))
-}
-
-/// The tangential speed scale |v_x1| + r |omega1| (at least a hundredth of the speed).
-fn incoming(p: &Params) -> f64 {
-    let vx1 = p.speed * (90.0 - p.angle_deg).to_radians().sin();
-    (vx1.abs() + p.radius * p.spin.abs()).max(0.01 * p.speed)
 }
 
 /// k_b over the friction's peak mu N0: the stretch's scale as a force, 1/m.

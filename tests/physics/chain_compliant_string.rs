@@ -5,6 +5,7 @@
 //! approaching the rigid ball on the chain with the same F_c; and properties over random inputs.
 
 use crate::support::chain_compliant_integrator;
+use crate::support::compliant::incoming;
 use crate::support::compliant_integrator;
 
 use chain_compliant_integrator::{Reference, integrate, step_for};
@@ -37,12 +38,6 @@ fn random_params(rng: &mut Rng) -> Params {
     };
     p.cart_friction = rng.log_uniform(1e-3, 3.0) * peak_friction(&p);
     p
-}
-
-/// The tangential speed scale |v_x1| + r |omega1| (at least a hundredth of the speed).
-fn incoming(p: &Params) -> f64 {
-    let vx1 = p.speed * (90.0 - p.angle_deg).to_radians().sin();
-    (vx1.abs() + p.radius * p.spin.abs()).max(0.01 * p.speed)
 }
 
 /// The phases with what the first mass did, e.g. `slide/stuck grip/moving`.

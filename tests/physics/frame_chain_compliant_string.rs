@@ -7,6 +7,7 @@
 //! chain with the same string friction, the longest chain on a frame (its 16 links and the frame, 17
 //! masses), and property tests.
 
+use crate::support::compliant::incoming;
 use proptest::prelude::*;
 
 use crate::support::chain_compliant_integrator::{Reference, integrate, step_for};
@@ -35,12 +36,6 @@ fn random_params(rng: &mut Rng, links: usize) -> Params {
     }
     p.cart_friction = rng.log_uniform(1e-3, 3.0) * peak_friction(&p);
     p
-}
-
-/// The tangential speed scale |v_x1| + r |omega1| (at least a hundredth of the speed).
-fn incoming(p: &Params) -> f64 {
-    let vx1 = p.speed * (90.0 - p.angle_deg).to_radians().sin();
-    (vx1.abs() + p.radius * p.spin.abs()).max(0.01 * p.speed)
 }
 
 /// How far the solver is from the reference, each relative to its scale.

@@ -3,6 +3,7 @@
 //! the frame as a free last mass, the heavy frame against the wall, momentum along the surface, the
 //! energy budget, and property tests over random frames.
 
+use crate::support::compliant::incoming;
 use proptest::prelude::*;
 
 use crate::support::chain_compliant_integrator::{Reference, integrate, step_for};
@@ -21,12 +22,6 @@ fn random_framed(rng: &mut Rng, chain: usize) -> Params {
         p.frame_normal_mass = rng.log_uniform(0.05, 20.0);
     }
     p
-}
-
-/// The tangential speed scale |v_x1| + r |omega1| (at least a hundredth of the speed).
-fn incoming(p: &Params) -> f64 {
-    let vx1 = p.speed * (90.0 - p.angle_deg).to_radians().sin();
-    (vx1.abs() + p.radius * p.spin.abs()).max(0.01 * p.speed)
 }
 
 /// How far the solver is from the reference, each relative to its scale.

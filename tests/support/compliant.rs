@@ -7,6 +7,12 @@ use snapback::model::{Bounce, Params, PhaseKind, SolveError, solve};
 use super::prop::log_range;
 use super::rng::Rng;
 
+/// The tangential speed scale |v_x1| + r |omega1| (at least a hundredth of the speed).
+pub fn incoming(p: &Params) -> f64 {
+    let vx1 = p.speed * (90.0 - p.angle_deg).to_radians().sin();
+    (vx1.abs() + p.radius * p.spin.abs()).max(0.01 * p.speed)
+}
+
 /// Random bounces with a moderately stiff ball (its contact mode at most about 35 radians per contact
 /// times a few) on `chain` masses; 10 % of the carts are free (k = 0).
 pub fn random_compliant(rng: &mut Rng, chain: usize) -> Params {
