@@ -503,7 +503,7 @@ impl Motion {
     }
 
     /// The string friction's share of mode j at τ (switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω²).
-    #[inline]
+    #[inline(always)]
     fn pushed(&self, modes: &Modes, (j, tau): (usize, f64), (s, c): (f64, f64)) -> (f64, f64) {
         let (x_step, v_step) = step(s, c, modes.omega[j], tau);
         let drive = self.push_shape(j) * self.push;
