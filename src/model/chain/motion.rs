@@ -50,22 +50,35 @@ pub struct Motion {
     /// The first mass's velocity at the start as the modal sum gives it (the grip's impulse on the ball
     /// is measured from it, so that it is exactly zero at the start).
     v1_start: f64,
-    /// The contact's modal sums written out for this phase, on the wall ([`Sums`]).
-    sums: Option<Sums>,
+    /// The contact's modal sums written out for this phase, for a moving first mass ([`Sums`]).
+    sums: Option<Written>,
+}
+
+/// A phase's [`Sums`]: on the wall, or on a free frame with the frame's three rows after the main four.
+#[derive(Clone, Debug)]
+#[expect(
+    clippy::large_enum_variant,
+    reason = "the wall's sums stay in place: boxed, every clamped phase would pay an allocation"
+)]
+enum Written {
+    Wall(Sums<4, [Share<4>; MAX]>),
+    Frame(Sums<7, Vec<Share<7>>>),
 }
 
 /// The sums [`Motion::moving_contact`] needs over the modes (rows of Φ, or Φ_1j Ω_j², against q or q'),
 /// taken for a phase as fixed combinations of sin Ω_j τ, cos Ω_j τ, sin w t and cos w t. A free mode is
 /// q = X cos Ωτ + (V/Ω) sin Ωτ, q' = V cos Ωτ - Ω X sin Ωτ; a detuned one adds its particular solution
 /// a sin w t to the free motion from X = q0 - a sin w t0, V = q0' - a w cos w t0 (the same closed form
-/// as [`detuned`], regrouped). Each evaluation is then two products a mode and row; the modes of zero
-/// frequency and those forced near resonance ([`forced`]) are left to `odd`, evaluated one by one, as
-/// is the string friction's step. For a moving first mass on the wall (on a free frame, and held, the
-/// phase sums the modal coordinates of [`Motion::modal`]).
+/// as [`detuned`], regrouped). Each evaluation is then two products a mode and row; the modes forced
+/// near resonance ([`forced`]), and any of zero frequency but the rigid translation, are left to
+/// `odd`, evaluated one by one, as is the string friction's step. The rigid translation of a free frame, q = X + V τ (+ a sin w t),
+/// is written in the same combinations with τ and 1 in place of sin Ωτ and cos Ωτ. For a moving first
+/// mass (held, the phase sums the modal coordinates of [`Motion::modal`]): on the wall the `R` = 4
+/// rows X_1, V_1, Σ Φ_1j Ω_j² q_j and its rate ([`Sums::main_weights`]), on a free frame those and the
+/// frame's three, X_f, X_N and V_f ([`Sums::frame_weights`]).
 #[derive(Clone, Debug)]
-struct Sums {
-    /// X_1, V_1, Σ Φ_1j Ω_j² q_j and its rate.
-    main: Rows<4>,
+struct Sums<const R: usize, S> {
+    main: Rows<R, S>,
     /// The modes left out of the combinations.
     odd: [usize; MAX],
     odd_n: usize,
@@ -73,10 +86,10 @@ struct Sums {
 
 /// `R` sums over the modes as combinations of sin Ω_j τ, cos Ω_j τ, sin w t and cos w t.
 #[derive(Clone, Debug)]
-struct Rows<const R: usize> {
-    /// Per mode, each row's coefficient of cos Ω_j τ and of sin Ω_j τ.
-    cos: [[f64; R]; MAX],
-    sin: [[f64; R]; MAX],
+struct Rows<const R: usize, S> {
+    /// Per mode in order, each row's coefficients of cos Ω_j τ and of sin Ω_j τ (zero for a mode
+    /// left out), in [`Shares`].
+    shares: S,
     /// Each row's coefficients of sin w t and cos w t.
     sin_wt: [f64; R],
     cos_wt: [f64; R],
@@ -94,11 +107,33 @@ struct Swing {
     w: f64,
 }
 
-impl<const R: usize> Rows<R> {
-    fn new() -> Rows<R> {
+/// A mode's coefficients of cos Ω_j τ and of sin Ω_j τ in each of `R` rows.
+type Share<const R: usize> = ([f64; R], [f64; R]);
+
+/// Where [`Rows`] keeps its shares: the wall's four rows in place for every possible mode (cleared
+/// inline), the free frame's seven on the heap for the phase's modes only (in place they would take
+/// clearing and copying 2 KB at every phase).
+trait Shares<const R: usize>: AsRef<[Share<R>]> + AsMut<[Share<R>]> {
+    /// Zero shares for `n` modes.
+    fn zeros(n: usize) -> Self;
+}
+
+impl<const R: usize> Shares<R> for [Share<R>; MAX] {
+    fn zeros(_: usize) -> Self {
+        [([0.0; R], [0.0; R]); MAX]
+    }
+}
+
+impl<const R: usize> Shares<R> for Vec<Share<R>> {
+    fn zeros(n: usize) -> Self {
+        vec![([0.0; R], [0.0; R]); n]
+    }
+}
+
+impl<const R: usize, S: Shares<R>> Rows<R, S> {
+    fn new(n: usize) -> Rows<R, S> {
         Rows {
-            cos: [[0.0; R]; MAX],
-            sin: [[0.0; R]; MAX],
+            shares: S::zeros(n),
             sin_wt: [0.0; R],
             cos_wt: [0.0; R],
         }
@@ -107,13 +142,14 @@ impl<const R: usize> Rows<R> {
     /// Mode j's share, each row weighing it by `weights` (and summing its rate where marked).
     fn fill(&mut self, j: usize, weights: [(f64, bool); R], m: Swing) {
         for (r, (weight, rate)) in weights.into_iter().enumerate() {
+            let (cos, sin) = &mut self.shares.as_mut()[j];
             if rate {
-                self.cos[j][r] = weight * m.v;
-                self.sin[j][r] = -(weight * m.omega_x);
+                cos[r] = weight * m.v;
+                sin[r] = -(weight * m.omega_x);
                 self.cos_wt[r] += weight * m.amplitude * m.w;
             } else {
-                self.cos[j][r] = weight * m.x;
-                self.sin[j][r] = weight * m.y;
+                cos[r] = weight * m.x;
+                sin[r] = weight * m.y;
                 self.sin_wt[r] += weight * m.amplitude;
             }
         }
@@ -123,8 +159,8 @@ impl<const R: usize> Rows<R> {
     #[inline(always)]
     fn at(&self, n: usize, sin: &[f64], cos: &[f64], wt: Option<(f64, f64)>) -> [f64; R] {
         let mut rows = [0.0; R];
-        let modes = self.cos[..n].iter().zip(&self.sin[..n]);
-        for ((cos_share, sin_share), (&c, &s)) in modes.zip(cos.iter().zip(sin)) {
+        let shares = self.shares.as_ref()[..n].iter();
+        for ((cos_share, sin_share), (&c, &s)) in shares.zip(cos.iter().zip(sin)) {
             for ((row, a), b) in rows.iter_mut().zip(cos_share).zip(sin_share) {
                 *row += a * c + b * s;
             }
@@ -146,25 +182,28 @@ fn add<const R: usize>(rows: &mut [f64; R], weights: [(f64, bool); R], (q, dq): 
     }
 }
 
-impl Sums {
-    /// The sums for modes `modes` from q0, q0' with the responses `response`.
+impl<const R: usize, S: Shares<R>> Sums<R, S> {
+    /// The sums for modes `modes` from q0, q0' with the responses `response`, each row weighing mode
+    /// j by `weights(j)`.
     fn new(
         modes: &Modes,
         w: f64,
         (q0, dq0): (&[f64; MAX], &[f64; MAX]),
         response: &[Response; MAX],
         (sin_wt0, cos_wt0): (f64, f64),
-    ) -> Sums {
+        weights: impl Fn(usize) -> [(f64, bool); R],
+    ) -> Sums<R, S> {
         let mut sums = Sums {
-            main: Rows::new(),
+            main: Rows::new(modes.n),
             odd: [0; MAX],
             odd_n: 0,
         };
         for j in 0..modes.n {
             let omega = modes.omega[j];
+            let rigid = modes.rigid == Some(j);
             let amplitude = match response[j] {
-                Response::Free if omega > 0.0 => 0.0,
-                Response::Detuned { amplitude } if omega > 0.0 => amplitude,
+                Response::Free if omega > 0.0 || rigid => 0.0,
+                Response::Detuned { amplitude } if omega > 0.0 || rigid => amplitude,
                 _ => {
                     sums.odd[sums.odd_n] = j;
                     sums.odd_n += 1;
@@ -179,19 +218,27 @@ impl Sums {
                     dq0[j] - amplitude * w * cos_wt0,
                 )
             };
+            // The rigid translation's X + V τ, rate V: τ and 1 stand for sin Ωτ and cos Ωτ.
+            let (y, omega_x) = if rigid {
+                (v, 0.0)
+            } else {
+                (v / omega, omega * x)
+            };
             let swing = Swing {
                 x,
-                y: v / omega,
+                y,
                 v,
-                omega_x: omega * x,
+                omega_x,
                 amplitude,
                 w,
             };
-            sums.main.fill(j, Sums::main_weights(modes, j), swing);
+            sums.main.fill(j, weights(j), swing);
         }
         sums
     }
+}
 
+impl Sums<4, [Share<4>; MAX]> {
     /// The main rows' weights on mode j and whether each sums the rates.
     #[inline]
     fn main_weights(modes: &Modes, j: usize) -> [(f64, bool); 4] {
@@ -204,6 +251,16 @@ impl Sums {
     fn frame_weights(modes: &Modes, frame: usize, j: usize) -> [(f64, bool); 3] {
         let (f, last) = (modes.shape[frame][j], modes.shape[frame - 1][j]);
         [(f, false), (last, false), (f, true)]
+    }
+
+    /// The main rows' and then the frame's rows' weights on mode j.
+    #[inline]
+    fn framed_weights(modes: &Modes, frame: usize, j: usize) -> [(f64, bool); 7] {
+        let ([a, b, c, d], [e, f, g]) = (
+            Sums::main_weights(modes, j),
+            Sums::frame_weights(modes, frame, j),
+        );
+        [a, b, c, d, e, f, g]
     }
 
     /// The rows from every mode's coordinate and rate.
@@ -282,8 +339,20 @@ impl Motion {
                 };
             }
         }
-        let sums = (start.frame == 0 && !held)
-            .then(|| Sums::new(modes, w, (&q0, &dq0), &response, (sin_wt0, cos_wt0)));
+        let start_wt = (sin_wt0, cos_wt0);
+        let sums = match start.frame {
+            _ if held => None,
+            0 => {
+                let weights = |j| Sums::main_weights(modes, j);
+                let sums = Sums::new(modes, w, (&q0, &dq0), &response, start_wt, weights);
+                Some(Written::Wall(sums))
+            }
+            frame => {
+                let weights = |j| Sums::framed_weights(modes, frame, j);
+                let sums = Sums::new(modes, w, (&q0, &dq0), &response, start_wt, weights);
+                Some(Written::Frame(sums))
+            }
+        };
         Motion {
             chain,
             dir,
@@ -434,7 +503,7 @@ impl Motion {
     }
 
     /// The string friction's share of mode j at τ (switched on at t0: Φ_1j push (1 - cos Ωτ)/Ω²).
-    #[inline]
+    #[inline(always)]
     fn pushed(&self, modes: &Modes, (j, tau): (usize, f64), (s, c): (f64, f64)) -> (f64, f64) {
         let (x_step, v_step) = step(s, c, modes.omega[j], tau);
         let drive = self.push_shape(j) * self.push;
@@ -465,15 +534,24 @@ impl Motion {
     }
 
     /// The rows of [`Sums`] at `t` through the phase's combinations `sums`, with sin(w τ) and
-    /// cos(w τ).
+    /// cos(w τ); `rigid` is the rigid translation if the combinations hold it.
     #[inline(always)]
-    fn rows(&self, sums: &Sums, setup: &Setup, t: f64) -> ([f64; 4], (f64, f64)) {
+    fn rows<const R: usize, S: Shares<R>>(
+        &self,
+        (sums, rigid): (&Sums<R, S>, Option<usize>),
+        weights: impl Fn(usize) -> [(f64, bool); R],
+        setup: &Setup,
+        t: f64,
+    ) -> ([f64; R], (f64, f64)) {
         let modes = self.modes();
         let tau = t - self.start.t;
         let w = setup.w;
         let n = modes.n;
         let (mut sin, mut cos) = ([0.0; MAX + 1], [0.0; MAX + 1]);
         let w_tau = self.angles_each(modes, w, tau, (&mut sin, &mut cos));
+        if let Some(r) = rigid {
+            (sin[r], cos[r]) = (tau, 1.0);
+        }
         let wt = (!self.is_grip()).then(|| {
             let (sin_w_tau, cos_w_tau) = w_tau;
             (
@@ -484,15 +562,34 @@ impl Motion {
         let mut rows = sums.main.at(n, &sin, &cos, wt);
         for &j in &sums.odd[..sums.odd_n] {
             let motion = self.mode_at(modes, w, (j, tau), (sin[j], cos[j]), w_tau);
-            add(&mut rows, Sums::main_weights(modes, j), motion);
+            add(&mut rows, weights(j), motion);
         }
         if self.push != 0.0 {
             for j in 0..n {
                 let motion = self.pushed(modes, (j, tau), (sin[j], cos[j]));
-                add(&mut rows, Sums::main_weights(modes, j), motion);
+                add(&mut rows, weights(j), motion);
             }
         }
         (rows, w_tau)
+    }
+
+    /// The main and the frame's rows of [`Sums`] at `t` through the phase's combinations `sums`, with
+    /// sin(w τ) and cos(w τ).
+    #[inline(always)]
+    fn frame_rows(
+        &self,
+        sums: &Sums<7, Vec<Share<7>>>,
+        setup: &Setup,
+        t: f64,
+    ) -> ([f64; 4], [f64; 3], (f64, f64)) {
+        let (modes, frame) = (self.modes(), self.start.frame);
+        let weights = |j| Sums::framed_weights(modes, frame, j);
+        // In the combinations unless forced near resonance (Sums::new).
+        let rigid = modes
+            .rigid
+            .filter(|&r| !matches!(self.response[r], Response::Forced { .. }));
+        let ([a, b, c, d, e, f, g], w_tau) = self.rows((sums, rigid), weights, setup, t);
+        ([a, b, c, d], [e, f, g], w_tau)
     }
 
     /// The ball's impulse ∫ F dt since t0 and the friction F at t0 + τ while it slides, Eqs. (1), (2):
@@ -513,9 +610,17 @@ impl Motion {
         if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
         }
-        if let Some(sums) = &self.sums {
-            let (rows, w_tau) = self.rows(sums, setup, t);
-            return self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau);
+        match &self.sums {
+            Some(Written::Wall(sums)) => {
+                let weights = |j| Sums::main_weights(self.modes(), j);
+                let (rows, w_tau) = self.rows((sums, None), weights, setup, t);
+                return self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau);
+            }
+            Some(Written::Frame(sums)) => {
+                let (main, framed, w_tau) = self.frame_rows(sums, setup, t);
+                return self.moving_contact(setup, t, (&main, &framed), w_tau);
+            }
+            None => {}
         }
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
@@ -633,13 +738,19 @@ impl Motion {
         let modes = self.modes();
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
+        // The first mass and the frame as the event search saw them (the phase's sums), so that the
+        // next phase starts where this one's events were measured.
+        let mut searched = None;
         let contact = if self.is_held() && self.start.frame == 0 {
             self.held_contact(setup, t)
-        } else if let Some(sums) = &self.sums {
-            // The ball and the first mass as the event search saw them (the phase's sums), so that
-            // the next phase starts where this one's events were measured.
-            let (rows, w_tau) = self.rows(sums, setup, t);
+        } else if let Some(Written::Wall(sums)) = &self.sums {
+            let weights = |j| Sums::main_weights(modes, j);
+            let (rows, w_tau) = self.rows((sums, None), weights, setup, t);
             self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau)
+        } else if let Some(Written::Frame(sums)) = &self.sums {
+            let (main, framed, w_tau) = self.frame_rows(sums, setup, t);
+            searched = Some((main, framed));
+            self.moving_contact(setup, t, (&main, &framed), w_tau)
         } else {
             let frame = if self.is_held() { 0 } else { self.start.frame };
             let (main, framed) = Sums::from_modal(modes, frame, (&q, &dq));
@@ -656,8 +767,11 @@ impl Motion {
                 v[i] = v[i - 1];
             }
             (x[0], v[0]) = (contact.x, 0.0);
-        } else if self.sums.is_some() {
+        } else if let Some(Written::Wall(_)) = self.sums {
             (x[0], v[0]) = (contact.x, contact.v);
+        } else if let Some(([x1, v1, ..], [xf, _, vf])) = searched {
+            let frame = self.start.frame;
+            (x[0], v[0], x[frame], v[frame]) = (x1, v1, xf, vf);
         }
         ChainState {
             t,
@@ -782,7 +896,7 @@ impl Motion {
 
     /// The string friction's push on mode j per newton: Φ_1j on the wall; on a free frame Φ_1j - Φ_fj,
     /// the push on the first mass with its reaction on the frame (0 for the rigid translation).
-    #[inline]
+    #[inline(always)]
     fn push_shape(&self, j: usize) -> f64 {
         let modes = self.modes();
         match self.start.frame {
