@@ -64,6 +64,18 @@ pub enum Cause {
     Unstick(i8),
 }
 
+impl Cause {
+    /// What ended a phase on a held cart (or first mass) whose event search watches, in this order, the
+    /// ball's slip and the push on the held cart reaching +F_c and -F_c: the cause of `branch`.
+    pub fn of_held(branch: usize) -> Cause {
+        match branch {
+            0 => Cause::SlipZero,
+            1 => Cause::Unstick(1),
+            _ => Cause::Unstick(-1),
+        }
+    }
+}
+
 /// The mode of a phase: what the ball and the cart do.
 pub type Mode = (Ball, Cart);
 

@@ -8,8 +8,6 @@
 mod grip;
 mod slide;
 
-use std::cell::Cell;
-
 pub use grip::Grip;
 pub use slide::Slide;
 
@@ -18,6 +16,7 @@ use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise;
 use super::params::Params;
 use super::quadrature::integrate;
+use super::recent::Recent;
 use super::setup::{Setup, State};
 use super::transition::{self, Touched};
 
@@ -196,7 +195,7 @@ impl Contact for SingleCart {
         let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
         let forces = setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
         // The states at the last few times an event function was evaluated.
-        let last = Recent::new(*state);
+        let last = Recent::new(state.t, *state);
         let event = match (motion, cart) {
             (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
                 let (slip_curvature, cart_curvature) = slide.curvature(setup);
@@ -206,7 +205,7 @@ impl Contact for SingleCart {
                     let cart_dir = f64::from(cart_dir);
                     let f = |t: f64| {
                         let (s, friction) = slide.evaluate(setup, t);
-                        last.record(s);
+                        last.record(s.t, s);
                         let slip = slide.slip_event(setup, &s, friction, slip_offset);
                         let stop = (
                             -cart_dir * (s.v - v_offset),
@@ -229,7 +228,7 @@ impl Contact for SingleCart {
                     // watched.
                     let f = |t: f64| {
                         let (s, friction) = slide.evaluate(setup, t);
-                        last.record(s);
+                        last.record(s.t, s);
                         [slide.slip_event(setup, &s, friction, slip_offset)]
                     };
                     first_rise(f, t0, end, step, [slip_curvature], [slip_noise])
@@ -239,7 +238,7 @@ impl Contact for SingleCart {
             (CartMotion::Slide(slide), Cart::Stuck) => {
                 let f = |t: f64| {
                     let (s, friction) = slide.evaluate(setup, t);
-                    last.record(s);
+                    last.record(s.t, s);
                     let slip = slide.slip_event(setup, &s, friction, slip_offset);
                     let push = friction - setup.k * s.x;
                     let push_rate = slide.dir * setup.friction_limit_rate(t);
@@ -250,14 +249,8 @@ impl Contact for SingleCart {
                 let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
                 let step = setup.event_step(0.0);
                 let curvature = [slip_curvature, push_curvature, push_curvature];
-                first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
-                    let cause = match branch {
-                        0 => Cause::SlipZero,
-                        1 => Cause::Unstick(1),
-                        _ => Cause::Unstick(-1),
-                    };
-                    (t, cause)
-                })
+                first_rise(f, t0, end, step, curvature, noise)
+                    .map(|(t, branch)| (t, Cause::of_held(branch)))
             }
             (CartMotion::Grip(grip), Cart::Moving(cart_dir)) => {
                 let (margin_curvature, cart_curvature) = grip.curvature(setup);
@@ -268,7 +261,7 @@ impl Contact for SingleCart {
                     let cart_dir = f64::from(cart_dir);
                     let f = |t: f64| {
                         let (s, [forward, backward]) = grip.evaluate(setup, t);
-                        last.record(s);
+                        last.record(s.t, s);
                         let stop = (
                             -cart_dir * (s.v - v_offset),
                             -cart_dir * grip.cart_acceleration(setup, &s),
@@ -290,7 +283,7 @@ impl Contact for SingleCart {
                     // Without string friction only the margins are watched.
                     let f = |t: f64| {
                         let (s, margins) = grip.evaluate(setup, t);
-                        last.record(s);
+                        last.record(s.t, s);
                         margins
                     };
                     let curvature = [margin_curvature; 2];
@@ -323,41 +316,6 @@ impl Contact for SingleCart {
             state.v = 0.0;
         }
         transition::next(setup, &touched(setup, state), ball, cart, cause)
-    }
-}
-
-/// The states at the last [`Recent::SLOTS`] evaluations of a phase's event functions.
-struct Recent {
-    slots: [Cell<State>; Recent::SLOTS],
-    next: Cell<usize>,
-}
-
-impl Recent {
-    const SLOTS: usize = 4;
-
-    /// Every slot holds `start` until evaluations replace it.
-    fn new(start: State) -> Self {
-        Recent {
-            slots: std::array::from_fn(|_| Cell::new(start)),
-            next: Cell::new(0),
-        }
-    }
-
-    #[inline]
-    fn record(&self, s: State) {
-        let next = self.next.get();
-        self.slots[next % Self::SLOTS].set(s);
-        self.next.set(next.wrapping_add(1));
-    }
-
-    /// The latest state recorded at `t`, or else the latest recorded.
-    fn at(&self, t: f64) -> State {
-        let next = self.next.get();
-        let latest = |back: usize| self.slots[next.wrapping_sub(back) % Self::SLOTS].get();
-        (1..=Self::SLOTS)
-            .map(latest)
-            .find(|s| s.t == t)
-            .unwrap_or_else(|| latest(1))
     }
 }
 

@@ -156,14 +156,8 @@ pub fn first_event(
             let noise = [ROUNDING * speeds, forces, forces];
             let step = setup.event_step(model.chain.clamped().fastest);
             let curvature = [slip_curvature, push_curvature, push_curvature];
-            first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
-                let cause = match branch {
-                    0 => Cause::SlipZero,
-                    1 => Cause::Unstick(1),
-                    _ => Cause::Unstick(-1),
-                };
-                (t, cause)
-            })
+            first_rise(f, t0, end, step, curvature, noise)
+                .map(|(t, branch)| (t, Cause::of_held(branch)))
         }
     }
 }

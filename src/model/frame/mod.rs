@@ -614,14 +614,8 @@ impl Contact for FramedCart {
                 let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
                 let step = setup.event_step(0.0);
                 let curvature = [slip_curvature, push_curvature, push_curvature];
-                first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
-                    let cause = match branch {
-                        0 => Cause::SlipZero,
-                        1 => Cause::Unstick(1),
-                        _ => Cause::Unstick(-1),
-                    };
-                    (t, cause)
-                })
+                first_rise(f, t0, end, step, curvature, noise)
+                    .map(|(t, branch)| (t, Cause::of_held(branch)))
             }
             // A rolling ball on a held cart: ball, cart and frame coast until the ball leaves.
             (_, Cart::Stuck) => None,
