@@ -7,12 +7,12 @@
 //! chain with the same string friction, the longest chain on a frame (its 16 links and the frame, 17
 //! masses), and property tests.
 
-use crate::support::compliant::incoming;
 use proptest::prelude::*;
 
-use crate::support::chain_compliant_integrator::{Reference, integrate, step_for};
+use super::frame_compliant::disagreements;
+use crate::support::chain_compliant_integrator::{integrate, step_for};
 use crate::support::chain_integrator;
-use crate::support::compliant::{peak_friction, random_compliant, solved_or_refused};
+use crate::support::compliant::{incoming, peak_friction, random_compliant, solved_or_refused};
 use crate::support::prop::config;
 use crate::support::rng::Rng;
 use snapback::model::chain::ChainState;
@@ -36,40 +36,6 @@ fn random_params(rng: &mut Rng, links: usize) -> Params {
     }
     p.cart_friction = rng.log_uniform(1e-3, 3.0) * peak_friction(&p);
     p
-}
-
-/// How far the solver is from the reference, each relative to its scale.
-fn disagreements(p: &Params, b: &Bounce, r: &Reference) -> [(&'static str, f64); 8] {
-    let speed = incoming(p);
-    let e = b.energy();
-    let links = p.chain as usize;
-    // The reference's first mass relative to its frame (the last entry).
-    let x1 = r.x[0] - r.x[links];
-    [
-        ("vx2", (b.outcome.vx2 - r.vx2).abs() / speed),
-        (
-            "omega2",
-            p.radius * (b.outcome.omega2 - r.omega2).abs() / speed,
-        ),
-        (
-            "X1 - Xf",
-            (b.final_state.x - x1).abs() / (speed * p.duration),
-        ),
-        ("V1", (b.final_state.v - r.v[0]).abs() / speed),
-        ("Vf", (b.frame_velocity() - r.frame_v).abs() / speed),
-        (
-            "chain energy",
-            (e.final_cart - r.energy.chain).abs() / e.initial,
-        ),
-        (
-            "dashpot loss",
-            (e.dashpot_loss - r.energy.dashpot_loss).abs() / e.initial,
-        ),
-        (
-            "string loss",
-            (e.cart_friction_loss - r.energy.string_loss).abs() / e.initial,
-        ),
-    ]
 }
 
 /// Solves `p` and checks it against the reference to 1e-9: the same phases, the same holding, and

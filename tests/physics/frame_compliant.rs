@@ -3,11 +3,10 @@
 //! the frame as a free last mass, the heavy frame against the wall, momentum along the surface, the
 //! energy budget, and property tests over random frames.
 
-use crate::support::compliant::incoming;
 use proptest::prelude::*;
 
 use crate::support::chain_compliant_integrator::{Reference, integrate, step_for};
-use crate::support::compliant::{random_compliant, solved_or_refused};
+use crate::support::compliant::{incoming, random_compliant, solved_or_refused};
 use crate::support::prop::config;
 use crate::support::rng::Rng;
 use snapback::model::{Bounce, Params, PhaseKind, solve};
@@ -24,8 +23,9 @@ fn random_framed(rng: &mut Rng, chain: usize) -> Params {
     p
 }
 
-/// How far the solver is from the reference, each relative to its scale.
-fn disagreements(p: &Params, b: &Bounce, r: &Reference) -> [(&'static str, f64); 7] {
+/// How far the solver is from the reference, each relative to its scale (the string friction's loss is
+/// zero on both sides without it). Shared with the framed chain's string-friction test.
+pub(super) fn disagreements(p: &Params, b: &Bounce, r: &Reference) -> [(&'static str, f64); 8] {
     let speed = incoming(p);
     let e = b.energy();
     let links = p.chain as usize;
@@ -50,6 +50,10 @@ fn disagreements(p: &Params, b: &Bounce, r: &Reference) -> [(&'static str, f64);
         (
             "dashpot loss",
             (e.dashpot_loss - r.energy.dashpot_loss).abs() / e.initial,
+        ),
+        (
+            "string loss",
+            (e.cart_friction_loss - r.energy.string_loss).abs() / e.initial,
         ),
     ]
 }
