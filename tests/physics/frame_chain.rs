@@ -14,9 +14,10 @@ use snapback::model::contact::{Cause, Contact};
 use snapback::model::setup::Setup;
 use snapback::model::{Params, PhaseKind, solve};
 
-/// A random rigid-ball bounce on a chain of 2 to 8 masses with springs, tied to a frame of 20 g to 20 kg.
-fn random_framed_chain(rng: &mut Rng) -> Params {
-    let n = 2 + rng.below(7);
+/// A random rigid-ball bounce on a chain of 2 to `sizes + 1` masses with springs, tied to a frame of 20 g
+/// to 20 kg.
+pub(super) fn random_framed_chain(rng: &mut Rng, sizes: usize) -> Params {
+    let n = 2 + rng.below(sizes);
     let mut p = random_chain(rng, n as f64);
     p.stiffness = rng.log_uniform(1e3, 1e5);
     // Keep the fastest mode within reach of a fixed-step integration.
@@ -29,7 +30,7 @@ fn random_framed_chain(rng: &mut Rng) -> Params {
 }
 
 /// |a - b| within `rel` of the larger of |a| and `scale`.
-fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
+pub(super) fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
     (a - b).abs() <= rel * a.abs().max(scale)
 }
 
@@ -38,7 +39,7 @@ fn the_framed_chain_agrees_with_an_independent_integration() {
     let mut rng = Rng(0xf4a3_c4a1_2310_0001);
     let mut regrips = 0;
     for case in 0..100 {
-        let p = random_framed_chain(&mut rng);
+        let p = random_framed_chain(&mut rng, 7);
         let exact = solve(&p).expect("a framed chain solves");
         let reference = chain_integrator::integrate(&p, chain_integrator::step_for(&p) / 4.0);
         let o = &exact.outcome;
@@ -96,7 +97,7 @@ fn the_framed_chain_agrees_with_an_independent_integration() {
 fn a_heavy_frame_approaches_the_wall() {
     let mut rng = Rng(0xf4a3_c4a1_2310_0002);
     for case in 0..40 {
-        let mut p = random_framed_chain(&mut rng);
+        let mut p = random_framed_chain(&mut rng, 7);
         p.frame_normal_mass = 0.0;
         p.frame_mass = 0.0;
         let wall = solve(&p).expect("a clamped chain solves");
@@ -158,7 +159,7 @@ pub(crate) fn assert_momentum_conserved(p: &Params, what: &str) {
 fn momentum_along_the_surface_is_conserved_through_every_phase() {
     let mut rng = Rng(0xf4a3_c4a1_2310_0003);
     for case in 0..60 {
-        assert_momentum_conserved(&random_framed_chain(&mut rng), &format!("case {case}"));
+        assert_momentum_conserved(&random_framed_chain(&mut rng, 7), &format!("case {case}"));
     }
 }
 
@@ -166,7 +167,7 @@ fn momentum_along_the_surface_is_conserved_through_every_phase() {
 fn the_frame_takes_its_kinetic_energy_from_the_ball_and_none_is_created() {
     let mut rng = Rng(0xf4a3_c4a1_2310_0004);
     for case in 0..200 {
-        let p = random_framed_chain(&mut rng);
+        let p = random_framed_chain(&mut rng, 7);
         let b = solve(&p).expect("a framed chain solves");
         let e = b.energy();
         let what = format!("case {case}: {p:?} {e:?}");
@@ -188,7 +189,7 @@ proptest! {
     #[test]
     fn random_framed_chains_solve_finite_within_the_friction_cone(seed in any::<u64>()) {
         let mut rng = Rng(seed | 1);
-        let mut p = random_framed_chain(&mut rng);
+        let mut p = random_framed_chain(&mut rng, 7);
         // Lighter frames and chains than the integration can follow.
         p.frame_mass = rng.log_uniform(1e-3, 1e3);
         p.cart_mass = rng.log_uniform(1e-5, 1.0);

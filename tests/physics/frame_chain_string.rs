@@ -8,7 +8,7 @@
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 
-use crate::frame_chain::assert_momentum_conserved;
+use crate::frame_chain::{assert_momentum_conserved, close, random_framed_chain};
 use crate::support::chain::random_chain;
 use crate::support::chain_integrator;
 use crate::support::prop::config;
@@ -19,22 +19,9 @@ use snapback::model::{Params, PhaseKind, solve};
 /// A random rigid-ball bounce on a chain of 2 to 6 masses on a frame of 20 g to 20 kg, with string
 /// friction from a light touch to one that holds the first mass throughout.
 fn random_framed_string(rng: &mut Rng) -> Params {
-    let n = 2 + rng.below(5);
-    let mut p = random_chain(rng, n as f64);
-    p.stiffness = rng.log_uniform(1e3, 1e5);
-    // Keep the fastest mode within reach of a fixed-step integration.
-    p.cart_mass = p.cart_mass.max(2e-4);
-    p.frame_mass = rng.log_uniform(0.02, 20.0);
-    if rng.unit() < 0.5 {
-        p.frame_normal_mass = rng.log_uniform(0.05, 20.0);
-    }
+    let mut p = random_framed_chain(rng, 5);
     p.cart_friction = rng.log_uniform(0.05, 200.0);
     p
-}
-
-/// |a - b| within `rel` of the larger of |a| and `scale`.
-fn close(a: f64, b: f64, rel: f64, scale: f64) -> bool {
-    (a - b).abs() <= rel * a.abs().max(scale)
 }
 
 #[test]
