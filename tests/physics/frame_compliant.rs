@@ -7,6 +7,7 @@ use proptest::prelude::*;
 
 use crate::support::chain_compliant_integrator::{Reference, integrate, step_for};
 use crate::support::compliant::{incoming, random_compliant, solved_or_refused};
+use crate::support::energy::assert_nothing_created;
 use crate::support::prop::config;
 use crate::support::rng::Rng;
 use snapback::model::{Bounce, Params, PhaseKind, solve};
@@ -133,14 +134,8 @@ fn the_frame_under_a_compliant_ball_creates_no_energy() {
         let p = random_framed(&mut rng, links);
         let b = solve(&p).expect("a framed compliant ball solves");
         let e = b.energy();
-        let what = format!("case {case}: {p:?} {e:?}");
-        assert!(e.residual.abs() < 1e-9, "{what}");
-        assert!(e.friction_loss >= -1e-12 * e.initial, "{what}");
-        assert!(e.dashpot_loss >= 0.0, "{what}");
-        assert!(
-            e.final_ball + e.final_cart + e.ball_spring + e.frame <= e.initial * (1.0 + 1e-12),
-            "{what}"
-        );
+        assert_nothing_created(&e, &format!("case {case}: {p:?}"));
+        assert!(e.dashpot_loss >= 0.0, "case {case}: {e:?}");
     }
 }
 

@@ -10,6 +10,7 @@ mod support {
     pub mod compliant;
     pub mod compliant_integrator;
     pub mod cpu;
+    pub mod energy;
     pub mod flight;
     pub mod frame_integrator;
     pub mod integrator;
