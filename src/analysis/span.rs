@@ -2,7 +2,7 @@
 
 use crate::model::params::{PARAMS, ParamSpec, Params};
 use crate::model::units;
-use crate::model::{Bounce, SolveError, SolveOptions, solve_in, solve_with};
+use crate::model::{Bounce, SolveError, SolveOptions, Varied, solve_with};
 
 use super::AnalysisError;
 
@@ -244,16 +244,20 @@ impl Span {
         solve_with(&self.with(base, value), options).map_err(|source| self.failed(value, source))
     }
 
-    /// [`Span::solve`] into `slot`, over the bounce already there ([`solve_in`]): one slot per core
-    /// solves a sweep's bounces with no allocation each.
-    pub fn solve_in<'a>(
+    /// The bounces of `base` with this span's parameter varied ([`Varied`]), on the caller's terms: one
+    /// per core solves a sweep's bounces with no allocation and one check of the other values.
+    pub fn varied<'a>(&self, base: &Params, options: &SolveOptions<'a>) -> Varied<'a> {
+        Varied::new(base, self.spec.id, options)
+    }
+
+    /// [`Span::solve`] by `varied` (from [`Span::varied`]), into its memory.
+    pub fn solve_varied<'v>(
         &self,
-        base: &Params,
+        varied: &'v mut Varied,
         value: f64,
-        options: &SolveOptions,
-        slot: &'a mut Option<Bounce>,
-    ) -> Result<&'a Bounce, AnalysisError> {
-        solve_in(&self.with(base, value), options, slot)
+    ) -> Result<&'v Bounce, AnalysisError> {
+        varied
+            .solve(value)
             .map_err(|source| self.failed(value, source))
     }
 

@@ -172,7 +172,7 @@ pub fn write(
                 return Ok(format_rows(&rows, &column, layout, first == 0).into_bytes());
             }
             let mut text = Vec::with_capacity((last - first) * LINE);
-            let mut slot = None;
+            let mut varied = span.varied(base, options);
             let mut scratch = [0; LINE_BYTES];
             for i in first..last {
                 let value = span.at(i, steps);
@@ -180,7 +180,7 @@ pub fn write(
                     &mut text,
                     &mut scratch,
                     value,
-                    span.solve_in(base, value, options, &mut slot)?,
+                    span.solve_varied(&mut varied, value)?,
                 );
             }
             Ok(text)

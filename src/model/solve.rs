@@ -11,7 +11,7 @@ use super::error::SolveError;
 use super::events::{self, Stall};
 use super::frame::FramedCart;
 use super::options::SolveOptions;
-use super::params::Params;
+use super::params::{ParamId, Params, spec};
 use super::phase::Phase;
 use super::registry::{BallKind, FrameKind, SupportKind};
 use super::reportable::finite;
@@ -50,7 +50,7 @@ pub fn solve_in<'a>(
     slot: &'a mut Option<Bounce>,
 ) -> Result<&'a Bounce, SolveError> {
     let solved = match slot.as_mut() {
-        Some(bounce) => resolve(params, options, bounce),
+        Some(bounce) => resolve(params, options, whole_check, bounce),
         None => solve_with(params, options).map(|bounce| *slot = Some(bounce)),
     };
     match solved {
@@ -70,31 +70,101 @@ fn bounce_of(
     solve: impl FnOnce(&mut Vec<Phase>) -> Result<(Setup, State), SolveError>,
 ) -> Result<Bounce, SolveError> {
     let mut phases = Vec::with_capacity(8);
-    let (setup, last) = bounded(params, options, || solve(&mut phases))?;
+    let (setup, last) = bounded(params, options, whole_check, || solve(&mut phases))?;
     let bounce = finish(params, setup, phases, last);
     finite(&bounce)?;
     Ok(bounce)
 }
 
-/// [`solve_with`] over `bounce`, in place.
-fn resolve(params: &Params, options: &SolveOptions, bounce: &mut Bounce) -> Result<(), SolveError> {
-    let (setup, last) = bounded(params, options, || {
+/// [`solve_with`] over `bounce`, in place, `params` checked by `check`.
+fn resolve(
+    params: &Params,
+    options: &SolveOptions,
+    check: impl FnOnce(&Params) -> Result<(), SolveError>,
+    bounce: &mut Bounce,
+) -> Result<(), SolveError> {
+    let (setup, last) = bounded(params, options, check, || {
         solve_model(params, options, &mut bounce.phases)
     })?;
     bounce.refinish(params, setup, last);
     finite(bounce)
 }
 
-/// Runs `solve` for `params` bounded: refused up front when a parameter is outside what can be solved
-/// ([`solvable::check`]), within its work budget and the caller's shared work. Counted in the shared
+/// Bounces of one set of parameters with one of them varied, solved one after another into the same
+/// memory ([`solve_in`]): a sweep's. The other values are checked once, when it begins; each bounce
+/// checks its own value and the damped ball's relaxation (which several values decide), and is refused
+/// with the error the whole check gives. Each answer is [`solve_with`]'s of the parameters with the
+/// varied one at its value.
+pub struct Varied<'a> {
+    params: Params,
+    id: ParamId,
+    /// True when every value but the varied one is in range and can be solved.
+    others_checked: bool,
+    options: SolveOptions<'a>,
+    slot: Option<Bounce>,
+}
+
+impl<'a> Varied<'a> {
+    /// The bounces of `base` with the parameter `id` varied, on the caller's terms.
+    pub fn new(base: &Params, id: ParamId, options: &SolveOptions<'a>) -> Self {
+        // The varied value at its default (in range, and solvable), so that only the others can fail.
+        let mut others = *base;
+        others.set(id, spec(id).default);
+        let others_checked = others.validate().is_ok() && solvable::magnitudes(&others).is_ok();
+        Varied {
+            params: *base,
+            id,
+            others_checked,
+            options: *options,
+            slot: None,
+        }
+    }
+
+    /// The bounce with the varied parameter at `value`; an error empties the memory.
+    pub fn solve(&mut self, value: f64) -> Result<&Bounce, SolveError> {
+        self.params.set(self.id, value);
+        let (params, options) = (&self.params, &self.options);
+        let solved = match self.slot.as_mut() {
+            Some(bounce) if self.others_checked => {
+                let row = spec(self.id);
+                let check = |params: &Params| -> Result<(), SolveError> {
+                    row.check_value(value)?;
+                    solvable::magnitude(row, value)?;
+                    Ok(solvable::relaxation(params)?)
+                };
+                resolve(params, options, check, bounce)
+            }
+            Some(bounce) => resolve(params, options, whole_check, bounce),
+            None => solve_with(params, options).map(|bounce| self.slot = Some(bounce)),
+        };
+        match solved {
+            Ok(()) => Ok(self.slot.as_ref().expect("a solved slot holds its bounce")),
+            Err(e) => {
+                self.slot = None;
+                Err(e)
+            }
+        }
+    }
+}
+
+/// Every value in range ([`Params::validate`]) and solvable ([`solvable::check`]).
+#[inline]
+fn whole_check(params: &Params) -> Result<(), SolveError> {
+    params.validate()?;
+    Ok(solvable::check(params)?)
+}
+
+/// Runs `solve` for `params` bounded: refused up front when `check` refuses them (a parameter outside
+/// what can be solved), within its work budget and the caller's shared work. Counted in the shared
 /// work's tally unless nested in another solve.
 fn bounded<T>(
     params: &Params,
     options: &SolveOptions,
+    check: impl FnOnce(&Params) -> Result<(), SolveError>,
     solve: impl FnOnce() -> Result<T, SolveError>,
 ) -> Result<T, SolveError> {
     let outermost = !events::metering();
-    let solved = checked(params, options, solve);
+    let solved = checked(params, options, check, solve);
     if let (true, Some(work)) = (outermost, options.work) {
         work.count();
     }
@@ -104,10 +174,10 @@ fn bounded<T>(
 fn checked<T>(
     params: &Params,
     options: &SolveOptions,
+    check: impl FnOnce(&Params) -> Result<(), SolveError>,
     solve: impl FnOnce() -> Result<T, SolveError>,
 ) -> Result<T, SolveError> {
-    params.validate()?;
-    solvable::check(params)?;
+    check(params)?;
     let weight = weight(params);
     let allowed = options.work.map_or(u64::MAX, |work| work.left()) / weight;
     if allowed == 0 {
@@ -194,7 +264,7 @@ fn solve_model(
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     let options = SolveOptions::default();
     if params.model().compliant() {
-        return bounded(params, &options, || solve(params));
+        return bounded(params, &options, whole_check, || solve(params));
     }
     bounce_of(params, &options, |phases| {
         let setup = Setup::new(params);
@@ -323,6 +393,79 @@ mod tests {
             solve(&unsolvable).map(|_| ())
         );
         assert!(slot.is_none());
+    }
+
+    /// A varied bounce is the bounce solved afresh, and a refusal the whole check's, whether the
+    /// value or another parameter fails, and with either checked once or every time.
+    #[test]
+    fn a_varied_bounce_is_the_bounce_and_its_refusal_the_whole_checks() {
+        let options = SolveOptions::default();
+        let ball = Params {
+            ball_stiffness: 1e5,
+            ..Params::default()
+        };
+        let cases = [
+            (
+                Params::default(),
+                ParamId::Speed,
+                vec![10.0, 1e160, 3.0, -1.0, f64::NAN, 12.0],
+            ),
+            (
+                Params::default(),
+                ParamId::Angle,
+                vec![30.0, 95.0, 60.0, 0.0, 45.0],
+            ),
+            (
+                ball,
+                ParamId::BallDamping,
+                vec![0.3, 1e-20, 0.0, 1e-14, 0.5],
+            ),
+            (ball, ParamId::BallStiffness, vec![1e5, 1e30, 1e3]),
+            // Another value fails: every bounce is refused for it.
+            (
+                Params {
+                    speed: 1e160,
+                    ..Params::default()
+                },
+                ParamId::Angle,
+                vec![30.0, 60.0],
+            ),
+            (
+                Params {
+                    mu: -1.0,
+                    ..Params::default()
+                },
+                ParamId::Speed,
+                vec![10.0, 1e160],
+            ),
+            (
+                Params {
+                    chain: 4.0,
+                    ..Params::default()
+                },
+                ParamId::Chain,
+                vec![1.0, 2.5, 3.0],
+            ),
+        ];
+        for (base, id, values) in cases {
+            let mut varied = Varied::new(&base, id, &options);
+            for value in values {
+                let mut params = base;
+                params.set(id, value);
+                let fresh = solve(&params);
+                let got = varied.solve(value);
+                match (got, fresh) {
+                    (Ok(got), Ok(fresh)) => {
+                        assert_eq!(got.params, fresh.params);
+                        assert_eq!(got.outcome, fresh.outcome, "{id:?} {value}");
+                        assert_eq!(got.phases.len(), fresh.phases.len());
+                    }
+                    (got, fresh) => {
+                        assert_eq!(got.map(|_| ()), fresh.map(|_| ()), "{id:?} {value}")
+                    }
+                }
+            }
+        }
     }
 
     #[test]
