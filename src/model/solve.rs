@@ -15,7 +15,7 @@ use super::params::{ParamId, Params, spec};
 use super::phase::Phase;
 use super::registry::{BallKind, FrameKind, SupportKind};
 use super::reportable::finite;
-use super::setup::{Setup, State};
+use super::setup::{Incidence, Setup, State};
 use super::solvable;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
@@ -37,7 +37,7 @@ pub fn solve_cancellable(
 /// [`solve`] on the caller's terms: its cancellation, phase cap and shared work ([`SolveOptions`]).
 pub fn solve_with(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
     bounce_of(params, options, |phases| {
-        solve_model(params, options, phases)
+        solve_model(params, options, &mut Incidence::default(), phases)
     })
 }
 
@@ -50,7 +50,13 @@ pub fn solve_in<'a>(
     slot: &'a mut Option<Bounce>,
 ) -> Result<&'a Bounce, SolveError> {
     let solved = match slot.as_mut() {
-        Some(bounce) => resolve(params, options, whole_check, bounce),
+        Some(bounce) => resolve(
+            params,
+            options,
+            whole_check,
+            &mut Incidence::default(),
+            bounce,
+        ),
         None => solve_with(params, options).map(|bounce| *slot = Some(bounce)),
     };
     match solved {
@@ -76,15 +82,16 @@ fn bounce_of(
     Ok(bounce)
 }
 
-/// [`solve_with`] over `bounce`, in place, `params` checked by `check`.
+/// [`solve_with`] over `bounce`, in place, `params` checked by `check`, at `incidence`.
 fn resolve(
     params: &Params,
     options: &SolveOptions,
     check: impl FnOnce(&Params) -> Result<(), SolveError>,
+    incidence: &mut Incidence,
     bounce: &mut Bounce,
 ) -> Result<(), SolveError> {
     let (setup, last) = bounded(params, options, check, || {
-        solve_model(params, options, &mut bounce.phases)
+        solve_model(params, options, incidence, &mut bounce.phases)
     })?;
     bounce.refinish(params, setup, last);
     finite(bounce)
@@ -101,6 +108,8 @@ pub struct Varied<'a> {
     /// True when every value but the varied one is in range and can be solved.
     others_checked: bool,
     options: SolveOptions<'a>,
+    /// The direction of incidence, while the angle stays.
+    incidence: Incidence,
     slot: Option<Bounce>,
 }
 
@@ -116,6 +125,7 @@ impl<'a> Varied<'a> {
             id,
             others_checked,
             options: *options,
+            incidence: Incidence::default(),
             slot: None,
         }
     }
@@ -123,7 +133,7 @@ impl<'a> Varied<'a> {
     /// The bounce with the varied parameter at `value`; an error empties the memory.
     pub fn solve(&mut self, value: f64) -> Result<&Bounce, SolveError> {
         self.params.set(self.id, value);
-        let (params, options) = (&self.params, &self.options);
+        let (params, options, incidence) = (&self.params, &self.options, &mut self.incidence);
         let solved = match self.slot.as_mut() {
             Some(bounce) if self.others_checked => {
                 let row = spec(self.id);
@@ -132,9 +142,9 @@ impl<'a> Varied<'a> {
                     solvable::magnitude(row, value)?;
                     Ok(solvable::relaxation(params)?)
                 };
-                resolve(params, options, check, bounce)
+                resolve(params, options, check, incidence, bounce)
             }
-            Some(bounce) => resolve(params, options, whole_check, bounce),
+            Some(bounce) => resolve(params, options, whole_check, incidence, bounce),
             None => solve_with(params, options).map(|bounce| self.slot = Some(bounce)),
         };
         match solved {
@@ -215,6 +225,7 @@ fn advice(params: &Params) -> &'static str {
 fn solve_model(
     params: &Params,
     options: &SolveOptions,
+    incidence: &mut Incidence,
     phases: &mut Vec<Phase>,
 ) -> Result<(Setup, State), SolveError> {
     let kind = params.model();
@@ -236,7 +247,7 @@ fn solve_model(
             Ok((setup, last))
         }
         (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped | FrameKind::Free) => {
-            let setup = Setup::new(params);
+            let setup = Setup::at_incidence(params, incidence);
             let last = run(
                 &ChainOfMasses::new(params, &setup)?,
                 &setup,
@@ -246,12 +257,12 @@ fn solve_model(
             Ok((setup, last))
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Clamped) => {
-            let setup = Setup::new(params);
+            let setup = Setup::at_incidence(params, incidence);
             let last = run(&SingleCart::new(params, &setup)?, &setup, options, phases)?;
             Ok((setup, last))
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Free) => {
-            let setup = Setup::new(params);
+            let setup = Setup::at_incidence(params, incidence);
             let model = FramedCart::new(params, &setup, params.frame_mass)?;
             let last = run(&model, &setup, options, phases)?;
             Ok((setup, last))
