@@ -103,10 +103,9 @@ fn outcome(params: &Params, setup: &Setup, last: &State) -> Outcome {
 }
 
 impl Bounce {
-    /// [`finish`] in place, the phases already solved into [`Bounce::phases`].
-    pub(super) fn refinish(&mut self, params: &Params, setup: Setup, last: State) {
-        self.outcome = outcome(params, &setup, &last);
-        self.params = *params;
+    /// [`finish`] in place, the parameters already set and the phases solved into [`Bounce::phases`].
+    pub(super) fn refinish(&mut self, setup: Setup, last: State) {
+        self.outcome = outcome(&self.params, &setup, &last);
         self.setup = setup;
         self.final_state = last;
     }

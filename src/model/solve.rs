@@ -50,13 +50,10 @@ pub fn solve_in<'a>(
     slot: &'a mut Option<Bounce>,
 ) -> Result<&'a Bounce, SolveError> {
     let solved = match slot.as_mut() {
-        Some(bounce) => resolve(
-            params,
-            options,
-            whole_check,
-            &mut Incidence::default(),
-            bounce,
-        ),
+        Some(bounce) => {
+            bounce.params = *params;
+            resolve(options, whole_check, &mut Incidence::default(), bounce)
+        }
         None => solve_with(params, options).map(|bounce| *slot = Some(bounce)),
     };
     match solved {
@@ -82,18 +79,19 @@ fn bounce_of(
     Ok(bounce)
 }
 
-/// [`solve_with`] over `bounce`, in place, `params` checked by `check`, at `incidence`.
+/// [`solve_with`] of the bounce's own parameters (set before) over `bounce`, in place, checked by
+/// `check`, at `incidence`.
 fn resolve(
-    params: &Params,
     options: &SolveOptions,
     check: impl FnOnce(&Params) -> Result<(), SolveError>,
     incidence: &mut Incidence,
     bounce: &mut Bounce,
 ) -> Result<(), SolveError> {
+    let Bounce { params, phases, .. } = bounce;
     let (setup, last) = bounded(params, options, check, || {
-        solve_model(params, options, incidence, &mut bounce.phases)
+        solve_model(params, options, incidence, phases)
     })?;
-    bounce.refinish(params, setup, last);
+    bounce.refinish(setup, last);
     finite(bounce)
 }
 
@@ -103,13 +101,15 @@ fn resolve(
 /// with the error the whole check gives. Each answer is [`solve_with`]'s of the parameters with the
 /// varied one at its value.
 pub struct Varied<'a> {
-    params: Params,
+    /// The parameters, the varied one at its last value.
+    base: Params,
     id: ParamId,
     /// True when every value but the varied one is in range and can be solved.
     others_checked: bool,
     options: SolveOptions<'a>,
     /// The direction of incidence, while the angle stays.
     incidence: Incidence,
+    /// The last bounce, whose parameters are `base`'s but for the varied value.
     slot: Option<Bounce>,
 }
 
@@ -121,7 +121,7 @@ impl<'a> Varied<'a> {
         others.set(id, spec(id).default);
         let others_checked = others.validate().is_ok() && solvable::magnitudes(&others).is_ok();
         Varied {
-            params: *base,
+            base: *base,
             id,
             others_checked,
             options: *options,
@@ -132,20 +132,27 @@ impl<'a> Varied<'a> {
 
     /// The bounce with the varied parameter at `value`; an error empties the memory.
     pub fn solve(&mut self, value: f64) -> Result<&Bounce, SolveError> {
-        self.params.set(self.id, value);
-        let (params, options, incidence) = (&self.params, &self.options, &mut self.incidence);
+        let (id, options, incidence) = (self.id, &self.options, &mut self.incidence);
         let solved = match self.slot.as_mut() {
+            // The last bounce's parameters differ from these in the varied value alone.
             Some(bounce) if self.others_checked => {
-                let row = spec(self.id);
+                bounce.params.set(id, value);
+                let row = spec(id);
                 let check = |params: &Params| -> Result<(), SolveError> {
                     row.check_value(value)?;
                     solvable::magnitude(row, value)?;
                     Ok(solvable::relaxation(params)?)
                 };
-                resolve(params, options, check, incidence, bounce)
+                resolve(options, check, incidence, bounce)
             }
-            Some(bounce) => resolve(params, options, whole_check, incidence, bounce),
-            None => solve_with(params, options).map(|bounce| self.slot = Some(bounce)),
+            Some(bounce) => {
+                bounce.params.set(id, value);
+                resolve(options, whole_check, incidence, bounce)
+            }
+            None => {
+                self.base.set(id, value);
+                solve_with(&self.base, options).map(|bounce| self.slot = Some(bounce))
+            }
         };
         match solved {
             Ok(()) => Ok(self.slot.as_ref().expect("a solved slot holds its bounce")),
