@@ -103,11 +103,10 @@ fn outcome(params: &Params, setup: &Setup, last: &State) -> Outcome {
 }
 
 impl Bounce {
-    /// [`finish`] in place, the parameters already set and the phases solved into [`Bounce::phases`].
-    pub(super) fn refinish(&mut self, setup: Setup, last: State) {
-        self.outcome = outcome(&self.params, &setup, &last);
-        self.setup = setup;
-        self.final_state = last;
+    /// [`finish`] in place: the outcome of the parameters, constants, phases and final state already
+    /// solved into the bounce.
+    pub(super) fn refinish(&mut self) {
+        self.outcome = outcome(&self.params, &self.setup, &self.final_state);
     }
 
     /// Where the incoming energy went. The friction loss is integrated from the exact solution (Gauss-

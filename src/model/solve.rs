@@ -36,8 +36,13 @@ pub fn solve_cancellable(
 
 /// [`solve`] on the caller's terms: its cancellation, phase cap and shared work ([`SolveOptions`]).
 pub fn solve_with(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
-    bounce_of(params, options, |phases| {
-        solve_model(params, options, &mut Incidence::default(), phases)
+    bounce_of(params, options, |setup, phases| {
+        // The place moved into the call (FnOnce), so the constants' reference outlives it.
+        let put = move |built| {
+            let place = setup;
+            &*place.insert(built)
+        };
+        solve_model(params, options, &mut Incidence::default(), phases, put)
     })
 }
 
@@ -65,33 +70,47 @@ pub fn solve_in<'a>(
     }
 }
 
-/// The bounce of `params` solved by `solve` (into the phases it is given) within [`bounded`], and
-/// refused when its outcome is not finite.
+/// The bounce of `params` solved by `solve` (into the place for its constants and the phases it is
+/// given) within [`bounded`], and refused when its outcome is not finite.
 fn bounce_of(
     params: &Params,
     options: &SolveOptions,
-    solve: impl FnOnce(&mut Vec<Phase>) -> Result<(Setup, State), SolveError>,
+    solve: impl FnOnce(&mut Option<Setup>, &mut Vec<Phase>) -> Result<State, SolveError>,
 ) -> Result<Bounce, SolveError> {
-    let mut phases = Vec::with_capacity(8);
-    let (setup, last) = bounded(params, options, whole_check, || solve(&mut phases))?;
+    let (mut setup, mut phases) = (None, Vec::with_capacity(8));
+    let last = bounded(params, options, whole_check, || {
+        solve(&mut setup, &mut phases)
+    })?;
+    let setup = setup.expect("a solved bounce has its constants");
     let bounce = finish(params, setup, phases, last);
     finite(&bounce)?;
     Ok(bounce)
 }
 
-/// [`solve_with`] of the bounce's own parameters (set before) over `bounce`, in place, checked by
-/// `check`, at `incidence`.
+/// [`solve_with`] of the bounce's own parameters (set before) over `bounce`, in place (its constants
+/// written where the last bounce's were, its phases over theirs), checked by `check`, at `incidence`.
 fn resolve(
     options: &SolveOptions,
     check: impl FnOnce(&Params) -> Result<(), SolveError>,
     incidence: &mut Incidence,
     bounce: &mut Bounce,
 ) -> Result<(), SolveError> {
-    let Bounce { params, phases, .. } = bounce;
-    let (setup, last) = bounded(params, options, check, || {
-        solve_model(params, options, incidence, phases)
+    let Bounce {
+        params,
+        setup,
+        phases,
+        final_state,
+        ..
+    } = bounce;
+    let put = move |built| -> &Setup {
+        let place = setup;
+        *place = built;
+        place
+    };
+    *final_state = bounded(params, options, check, || {
+        solve_model(params, options, incidence, phases, put)
     })?;
-    bounce.refinish(setup, last);
+    bounce.refinish();
     finite(bounce)
 }
 
@@ -229,12 +248,14 @@ fn advice(params: &Params) -> &'static str {
 
 /// The model for `params` ([`Params::model`]), run by the driver into `phases` (`bounded` has
 /// validated them): the constants of the bounce and the state as the ball leaves.
-fn solve_model(
+/// `put` places the bounce's constants where the caller keeps them (so that they are not moved again).
+fn solve_model<'s>(
     params: &Params,
     options: &SolveOptions,
     incidence: &mut Incidence,
     phases: &mut Vec<Phase>,
-) -> Result<(Setup, State), SolveError> {
+    put: impl FnOnce(Setup) -> &'s Setup,
+) -> Result<State, SolveError> {
     let kind = params.model();
     match (kind.ball, kind.support, kind.frame) {
         (
@@ -243,36 +264,27 @@ fn solve_model(
             FrameKind::Clamped | FrameKind::Free,
         ) => {
             let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
-            let last = run(&model, &setup, options, phases).map_err(|e| match e {
+            run(&model, put(setup), options, phases).map_err(|e| match e {
                 SolveError::TooManyPhases { limit, .. } => SolveError::TooManyPhases {
                     limit,
                     hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, \
                            or lower --ball-stiffness)",
                 },
                 e => e,
-            })?;
-            Ok((setup, last))
+            })
         }
         (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped | FrameKind::Free) => {
-            let setup = Setup::at_incidence(params, incidence);
-            let last = run(
-                &ChainOfMasses::new(params, &setup)?,
-                &setup,
-                options,
-                phases,
-            )?;
-            Ok((setup, last))
+            let setup = put(Setup::at_incidence(params, incidence));
+            run(&ChainOfMasses::new(params, setup)?, setup, options, phases)
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Clamped) => {
-            let setup = Setup::at_incidence(params, incidence);
-            let last = run(&SingleCart::new(params, &setup)?, &setup, options, phases)?;
-            Ok((setup, last))
+            let setup = put(Setup::at_incidence(params, incidence));
+            run(&SingleCart::new(params, setup)?, setup, options, phases)
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Free) => {
-            let setup = Setup::at_incidence(params, incidence);
-            let model = FramedCart::new(params, &setup, params.frame_mass)?;
-            let last = run(&model, &setup, options, phases)?;
-            Ok((setup, last))
+            let setup = put(Setup::at_incidence(params, incidence));
+            let model = FramedCart::new(params, setup, params.frame_mass)?;
+            run(&model, setup, options, phases)
         }
     }
 }
@@ -284,15 +296,9 @@ pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     if params.model().compliant() {
         return bounded(params, &options, whole_check, || solve(params));
     }
-    bounce_of(params, &options, |phases| {
-        let setup = Setup::new(params);
-        let last = run(
-            &ChainOfMasses::new(params, &setup)?,
-            &setup,
-            &options,
-            phases,
-        )?;
-        Ok((setup, last))
+    bounce_of(params, &options, |setup, phases| {
+        let setup = &*setup.insert(Setup::new(params));
+        run(&ChainOfMasses::new(params, setup)?, setup, &options, phases)
     })
 }
 
@@ -304,10 +310,9 @@ pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
         ..*params
     };
     let options = SolveOptions::default();
-    bounce_of(&params, &options, |phases| {
-        let (model, setup) = CompliantBall::new(&params, false)?;
-        let last = run(&model, &setup, &options, phases)?;
-        Ok((setup, last))
+    bounce_of(&params, &options, |setup, phases| {
+        let (model, built) = CompliantBall::new(&params, false)?;
+        run(&model, setup.insert(built), &options, phases)
     })
 }
 
