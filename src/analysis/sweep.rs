@@ -342,6 +342,9 @@ const LINE_BYTES: usize = 320;
 /// The most bytes one number takes (zmij writes at most 24; NaN and infinities fewer).
 const NUMBER_BYTES: usize = 24;
 
+/// Room for what may follow a name on its line: the other flag, two numbers, their commas and the end.
+const TAIL_BYTES: usize = 2 * NUMBER_BYTES + 16;
+
 impl Line<'_> {
     #[inline]
     fn byte(&mut self, b: u8) {
@@ -356,11 +359,17 @@ impl Line<'_> {
         self.len += shortest(digits, x, out);
     }
 
-    /// A name (a phase's, a flag's), the gathered bytes appended to the text first when it would not fit.
+    /// A name (a phase's, a flag's, or a row's whole phases), the gathered bytes appended to the text
+    /// first when it would not leave room for the line's end, and a name longer than the scratch
+    /// appended itself.
     #[inline]
     fn name(&mut self, name: &[u8]) {
-        if self.len + name.len() + 2 * NUMBER_BYTES + 16 > LINE_BYTES {
+        if self.len + name.len() + TAIL_BYTES > LINE_BYTES {
             self.flush();
+            if name.len() + TAIL_BYTES > LINE_BYTES {
+                self.text.extend_from_slice(name);
+                return;
+            }
         }
         self.bytes[self.len..self.len + name.len()].copy_from_slice(name);
         self.len += name.len();
@@ -449,7 +458,32 @@ pub fn object(column: &str, r: &Row) -> serde_json::Value {
 
 #[cfg(test)]
 mod tests {
-    use super::push_number;
+    use super::{Row, csv_line, push_number};
+
+    /// A row's line, however long its phases, is its fields joined as text would join them.
+    #[test]
+    fn a_rows_line_is_its_fields() {
+        for repeats in [1, 20, 300] {
+            let phases = vec!["slide-grip"; repeats].join("-");
+            let row = Row {
+                value: 10.5,
+                omega2: -1.25e-7,
+                vx2: 3.0,
+                vy2: 1e20,
+                theta2_deg: 45.0,
+                ex: None,
+                phases: phases.clone(),
+                slides_throughout: false,
+                cart_stuck: true,
+                stretch: Some(2.5e-300),
+                patch_slip: Some(-0.1),
+            };
+            let mut line = Vec::new();
+            csv_line(&mut line, &row);
+            let expected = format!("10.5,-1.25e-7,3,1e20,45,,{phases},false,true,2.5e-300,-0.1\n");
+            assert_eq!(String::from_utf8(line).unwrap(), expected);
+        }
+    }
 
     /// Rust's shortest round-trip forms, plain between 1e-5 and 1e16.
     fn reference(x: f64) -> String {
