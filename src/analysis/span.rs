@@ -2,7 +2,7 @@
 
 use crate::model::params::{PARAMS, ParamSpec, Params};
 use crate::model::units;
-use crate::model::{Bounce, SolveError, SolveOptions, solve_in, solve_with};
+use crate::model::{Bounce, SolveError, SolveOptions, Varied, solve_with};
 
 use super::AnalysisError;
 
@@ -244,16 +244,20 @@ impl Span {
         solve_with(&self.with(base, value), options).map_err(|source| self.failed(value, source))
     }
 
-    /// [`Span::solve`] into `slot`, over the bounce already there ([`solve_in`]): one slot per core
-    /// solves a sweep's bounces with no allocation each.
-    pub fn solve_in<'a>(
+    /// The bounces of `base` with this span's parameter varied ([`Varied`]), on the caller's terms: one
+    /// per core solves a sweep's bounces with no allocation and one check of the other values.
+    pub fn varied<'a>(&self, base: &Params, options: &SolveOptions<'a>) -> Varied<'a> {
+        Varied::new(base, self.spec.id, options)
+    }
+
+    /// [`Span::solve`] by `varied` (from [`Span::varied`]), into its memory.
+    pub fn solve_varied<'v>(
         &self,
-        base: &Params,
+        varied: &'v mut Varied,
         value: f64,
-        options: &SolveOptions,
-        slot: &'a mut Option<Bounce>,
-    ) -> Result<&'a Bounce, AnalysisError> {
-        solve_in(&self.with(base, value), options, slot)
+    ) -> Result<&'v Bounce, AnalysisError> {
+        varied
+            .solve(value)
             .map_err(|source| self.failed(value, source))
     }
 
@@ -317,7 +321,8 @@ fn twelve_digits(value: f64, error: f64) -> Option<f64> {
     }
     // 12 - (decimal digits before the point), from the binary exponent, then corrected.
     let binary = i32::try_from((size.to_bits() >> 52) as i64 - 1023).ok()?;
-    let mut p = 11 - (f64::from(binary) * std::f64::consts::LOG10_2).floor() as i32;
+    // floor(binary log10 2) as (binary 78913) >> 18, exact for |binary| < 1650 (and corrected below).
+    let mut p = 11 - ((binary * 78_913) >> 18);
     for _ in 0..3 {
         let power = POWERS[usize::try_from(p.unsigned_abs())
             .ok()
@@ -336,7 +341,14 @@ fn twelve_digits(value: f64, error: f64) -> Option<f64> {
             if error.partial_cmp(&(0.125 * unit)) != Some(std::cmp::Ordering::Less) {
                 return None;
             }
-            let n = scaled.round();
+            // scaled.round() without a call: scaled is positive and below 2^40, so its fraction is
+            // exact.
+            let whole = scaled as u64 as f64;
+            let n = if scaled - whole >= 0.5 {
+                whole + 1.0
+            } else {
+                whole
+            };
             let decimal = if p >= 0 { n / power } else { n * power };
             return Some(decimal.copysign(value));
         }
@@ -435,6 +447,15 @@ mod tests {
             arithmetic += usize::from(twelve_digits(value, error).is_some());
         }
         assert!(kept > 10_000 && arithmetic > 150_000, "{kept} {arithmetic}");
+    }
+
+    /// The integer floor of binary log10 2 is the float's over every binary exponent of an f64.
+    #[test]
+    fn the_decimal_exponent_is_the_floats() {
+        for binary in -1100..=1100 {
+            let float = (f64::from(binary) * std::f64::consts::LOG10_2).floor() as i32;
+            assert_eq!((binary * 78_913) >> 18, float, "{binary}");
+        }
     }
 
     #[test]

@@ -1,9 +1,8 @@
 //! `sweep`: one bounce per value of a parameter, solved on all cores, the rows kept in order.
 
-use std::fmt::Write as _;
 use std::io::{self, Write};
 
-use crate::model::{Bounce, Params, SolveOptions};
+use crate::model::{Bounce, Params, PhaseKind, SolveOptions};
 use rayon::prelude::*;
 
 use super::{AnalysisError, Span};
@@ -166,20 +165,22 @@ pub fn write(
     for start in (0..steps).step_by(BLOCK) {
         let end = (start + BLOCK).min(steps);
         // Each chunk solved and formatted on one core, CSV lines straight from the bounce.
-        let chunk_text = |first: usize| -> Result<String, AnalysisError> {
+        let chunk_text = |first: usize| -> Result<Vec<u8>, AnalysisError> {
             let last = (first + CHUNK).min(end);
             if layout != Layout::Csv {
                 let rows = rows(base, span, steps, first..last, options)?;
-                return Ok(format_rows(&rows, &column, layout, first == 0));
+                return Ok(format_rows(&rows, &column, layout, first == 0).into_bytes());
             }
-            let mut text = String::with_capacity((last - first) * LINE);
-            let mut slot = None;
+            let mut text = Vec::with_capacity((last - first) * LINE);
+            let mut varied = span.varied(base, options);
+            let mut scratch = [0; LINE_BYTES];
             for i in first..last {
                 let value = span.at(i, steps);
                 bounce_csv_line(
                     &mut text,
+                    &mut scratch,
                     value,
-                    span.solve_in(base, value, options, &mut slot)?,
+                    span.solve_varied(&mut varied, value)?,
                 );
             }
             Ok(text)
@@ -188,7 +189,7 @@ pub fn write(
         let texts = chunks
             .into_par_iter()
             .map(chunk_text)
-            .collect::<Result<Vec<String>, _>>()?;
+            .collect::<Result<Vec<Vec<u8>>, _>>()?;
         // The opening follows the first block, so a sweep of up to BLOCK bounces that fails writes nothing.
         if start == 0 {
             match layout {
@@ -198,7 +199,7 @@ pub fn write(
             }
         }
         for text in &texts {
-            out.write_all(text.as_bytes())?;
+            out.write_all(text)?;
         }
     }
     if layout == Layout::Json {
@@ -213,7 +214,11 @@ pub(crate) fn format_rows(rows: &[Row], column: &str, layout: Layout, first: boo
     let mut text = String::with_capacity(rows.len() * 300);
     for (k, r) in rows.iter().enumerate() {
         match layout {
-            Layout::Csv => csv_line(&mut text, r),
+            Layout::Csv => {
+                let mut line = Vec::with_capacity(LINE);
+                csv_line(&mut line, r);
+                text.push_str(std::str::from_utf8(&line).expect("a CSV line is ASCII"));
+            }
             Layout::Json => push_element(&mut text, &object(column, r), first && k == 0),
             Layout::JsonLines => {
                 let object = serde_json::to_string(&object(column, r))
@@ -241,62 +246,140 @@ pub(crate) fn push_element(text: &mut String, object: &serde_json::Value, first:
 }
 
 /// One CSV line of `r`.
-fn csv_line(text: &mut String, r: &Row) {
+fn csv_line(text: &mut Vec<u8>, r: &Row) {
+    let mut scratch = [0; LINE_BYTES];
     let numbers = [r.value, r.omega2, r.vx2, r.vy2, r.theta2_deg];
     let flags = [r.slides_throughout, r.cart_stuck];
-    let phases = |text: &mut String| text.push_str(&r.phases);
-    csv_fields(
-        text,
-        numbers,
-        r.ex,
-        phases,
-        flags,
-        [r.stretch, r.patch_slip],
-    );
+    let phases = |line: &mut Line| line.name(r.phases.as_bytes());
+    let patch = [r.stretch, r.patch_slip];
+    csv_fields(text, &mut scratch, numbers, r.ex, phases, flags, patch);
 }
 
 /// The CSV line of the bounce with the varied parameter at `value`, the same as its [`row`]'s, written
 /// without the row (no allocation for its phases).
-fn bounce_csv_line(text: &mut String, value: f64, bounce: &Bounce) {
+fn bounce_csv_line(
+    text: &mut Vec<u8>,
+    scratch: &mut [u8; LINE_BYTES],
+    value: f64,
+    bounce: &Bounce,
+) {
     let o = &bounce.outcome;
     let patch = bounce.final_patch();
     let numbers = [value, o.omega2, o.vx2, o.vy2, o.theta2_deg];
     let flags = [bounce.slides_throughout(), bounce.cart_ever_stuck()];
-    let phases = |text: &mut String| bounce.push_phase_summary(text);
+    let phases = |line: &mut Line| {
+        for (i, kind) in bounce.ball_phase_kinds().enumerate() {
+            // Each name's length known here, so that it is written without a copy's call.
+            match (i, kind) {
+                (0, PhaseKind::Slide) => line.name(b"slide"),
+                (0, PhaseKind::Grip) => line.name(b"grip"),
+                (_, PhaseKind::Slide) => line.name(b"-slide"),
+                (_, PhaseKind::Grip) => line.name(b"-grip"),
+            }
+        }
+    };
     let patch = [patch.map(|(e, _)| e), patch.map(|(_, slip)| slip)];
-    csv_fields(text, numbers, o.ex, phases, flags, patch);
+    csv_fields(text, scratch, numbers, o.ex, phases, flags, patch);
 }
 
-/// One CSV line in [`COLUMNS`]' order after the value, its numbers written by zmij straight into `text`
-/// (no formatting machinery: the line is a large part of a fast bounce's cost).
+/// One CSV line in [`COLUMNS`]' order after the value, gathered in a [`Line`] on the stack and its
+/// numbers written by zmij (no formatting machinery: the line is a large part of a fast bounce's cost).
 fn csv_fields(
-    text: &mut String,
+    text: &mut Vec<u8>,
+    scratch: &mut [u8; LINE_BYTES],
     numbers: [f64; 5],
     ex: Option<f64>,
-    phases: impl FnOnce(&mut String),
+    phases: impl FnOnce(&mut Line),
     flags: [bool; 2],
     patch: [Option<f64>; 2],
 ) {
     let mut digits = zmij::Buffer::new();
+    let mut line = Line {
+        text,
+        bytes: scratch,
+        len: 0,
+    };
     for x in numbers {
-        push_number(text, &mut digits, x);
-        text.push(',');
+        line.number(&mut digits, x);
+        line.byte(b',');
     }
     if let Some(ex) = ex {
-        push_number(text, &mut digits, ex);
+        line.number(&mut digits, ex);
     }
-    text.push(',');
-    phases(text);
+    line.byte(b',');
+    phases(&mut line);
     for flag in flags {
-        text.push_str(if flag { ",true" } else { ",false" });
-    }
-    for x in patch {
-        text.push(',');
-        if let Some(x) = x {
-            push_number(text, &mut digits, x);
+        if flag {
+            line.name(b",true");
+        } else {
+            line.name(b",false");
         }
     }
-    text.push('\n');
+    for x in patch {
+        line.byte(b',');
+        if let Some(x) = x {
+            line.number(&mut digits, x);
+        }
+    }
+    line.byte(b'\n');
+    line.flush();
+}
+
+/// The bytes of a CSV line, gathered on the stack and appended to the text in one copy (each byte or
+/// number written straight, without the text's capacity checks). The numbers and flags of a line take
+/// at most 8 x 25 + 12 bytes; only the phases' names, which can run long, ask for room first.
+struct Line<'a> {
+    text: &'a mut Vec<u8>,
+    /// The chunk's scratch, reused from line to line.
+    bytes: &'a mut [u8; LINE_BYTES],
+    len: usize,
+}
+
+/// The stack's share of a line: every line's numbers and flags (at most 212 bytes) and the phases'
+/// names of any usual bounce.
+const LINE_BYTES: usize = 320;
+
+/// The most bytes one number takes (zmij writes at most 24; NaN and infinities fewer).
+const NUMBER_BYTES: usize = 24;
+
+/// Room for what may follow a name on its line: the other flag, two numbers, their commas and the end.
+const TAIL_BYTES: usize = 2 * NUMBER_BYTES + 16;
+
+impl Line<'_> {
+    #[inline]
+    fn byte(&mut self, b: u8) {
+        self.bytes[self.len] = b;
+        self.len += 1;
+    }
+
+    /// A number as [`push_number`] writes it.
+    #[inline(always)]
+    fn number(&mut self, digits: &mut zmij::Buffer, x: f64) {
+        let out = &mut self.bytes[self.len..self.len + NUMBER_BYTES];
+        self.len += shortest(digits, x, out);
+    }
+
+    /// A name (a phase's, a flag's, or a row's whole phases), the gathered bytes appended to the text
+    /// first when it would not leave room for the line's end, and a name longer than the scratch
+    /// appended itself.
+    #[inline]
+    fn name(&mut self, name: &[u8]) {
+        if self.len + name.len() + TAIL_BYTES > LINE_BYTES {
+            self.flush();
+            if name.len() + TAIL_BYTES > LINE_BYTES {
+                self.text.extend_from_slice(name);
+                return;
+            }
+        }
+        self.bytes[self.len..self.len + name.len()].copy_from_slice(name);
+        self.len += name.len();
+    }
+
+    /// Appends the gathered bytes to the text.
+    fn flush(&mut self) {
+        self.text.extend_from_slice(&self.bytes[..self.len]);
+        self.len = 0;
+    }
 }
 
 /// A number in its shortest round-trip form: plain (`10`, `0.3`) from 1e-5 to 1e16, else with an
@@ -304,32 +387,56 @@ fn csv_fields(
 /// three times ryu's speed) without its `.0`, its exponent's `+` and its leading zeros (where two
 /// shortest forms lie equally close, zmij may end on the other digit).
 pub(crate) fn push_number(text: &mut String, digits: &mut zmij::Buffer, x: f64) {
-    if !x.is_finite() {
-        let _ = write!(text, "{x}");
-        return;
-    }
-    let shown = digits.format_finite(x);
-    // zmij writes an exponent exactly outside these bounds, as Rust does.
-    let exponent = if x == 0.0 || (1e-5..1e16).contains(&x.abs()) {
-        None
-    } else {
-        shown.bytes().rposition(|b| b == b'e')
+    let mut out = [0; NUMBER_BYTES];
+    let len = shortest(digits, x, &mut out);
+    text.push_str(std::str::from_utf8(&out[..len]).expect("a number is ASCII"));
+}
+
+/// [`push_number`]'s text of `x` written at the start of `out`; its length.
+#[inline(always)]
+fn shortest(digits: &mut zmij::Buffer, x: f64, out: &mut [u8]) -> usize {
+    let mut put = |at: usize, part: &[u8]| {
+        out[at..at + part.len()].copy_from_slice(part);
+        at + part.len()
     };
-    let Some(e) = exponent else {
-        text.push_str(shown.strip_suffix(".0").unwrap_or(shown));
-        return;
+    if !x.is_finite() {
+        let text: &[u8] = if x.is_nan() {
+            b"NaN"
+        } else if x > 0.0 {
+            b"inf"
+        } else {
+            b"-inf"
+        };
+        return put(0, text);
+    }
+    let shown = digits.format_finite(x).as_bytes();
+    let unpointed =
+        |part: &'_ [u8]| -> usize { part.len() - 2 * usize::from(part.ends_with(b".0")) };
+    // zmij writes an exponent exactly outside these bounds, as Rust does.
+    if x == 0.0 || (1e-5..1e16).contains(&x.abs()) {
+        return put(0, &shown[..unpointed(shown)]);
+    }
+    let Some(e) = shown.iter().rposition(|&b| b == b'e') else {
+        return put(0, &shown[..unpointed(shown)]);
     };
     let (mantissa, exponent) = (&shown[..e], &shown[e + 1..]);
-    text.push_str(mantissa.strip_suffix(".0").unwrap_or(mantissa));
-    text.push('e');
-    let (minus, digits) = match exponent.as_bytes().first() {
-        Some(b'-') => ("-", &exponent[1..]),
-        Some(b'+') => ("", &exponent[1..]),
-        _ => ("", exponent),
+    let mut at = put(0, &mantissa[..unpointed(mantissa)]);
+    at = put(at, b"e");
+    let digits = match exponent.first() {
+        Some(b'-') => {
+            at = put(at, b"-");
+            &exponent[1..]
+        }
+        Some(b'+') => &exponent[1..],
+        _ => exponent,
     };
-    text.push_str(minus);
-    let digits = digits.trim_start_matches('0');
-    text.push_str(if digits.is_empty() { "0" } else { digits });
+    let zeros = digits.iter().take_while(|&&b| b == b'0').count();
+    let digits = if zeros == digits.len() {
+        &b"0"[..]
+    } else {
+        &digits[zeros..]
+    };
+    put(at, digits)
 }
 
 /// The row as a JSON object with the CSV's keys (`column` names the varied value).
@@ -351,7 +458,32 @@ pub fn object(column: &str, r: &Row) -> serde_json::Value {
 
 #[cfg(test)]
 mod tests {
-    use super::push_number;
+    use super::{Row, csv_line, push_number};
+
+    /// A row's line, however long its phases, is its fields joined as text would join them.
+    #[test]
+    fn a_rows_line_is_its_fields() {
+        for repeats in [1, 20, 300] {
+            let phases = vec!["slide-grip"; repeats].join("-");
+            let row = Row {
+                value: 10.5,
+                omega2: -1.25e-7,
+                vx2: 3.0,
+                vy2: 1e20,
+                theta2_deg: 45.0,
+                ex: None,
+                phases: phases.clone(),
+                slides_throughout: false,
+                cart_stuck: true,
+                stretch: Some(2.5e-300),
+                patch_slip: Some(-0.1),
+            };
+            let mut line = Vec::new();
+            csv_line(&mut line, &row);
+            let expected = format!("10.5,-1.25e-7,3,1e20,45,,{phases},false,true,2.5e-300,-0.1\n");
+            assert_eq!(String::from_utf8(line).unwrap(), expected);
+        }
+    }
 
     /// Rust's shortest round-trip forms, plain between 1e-5 and 1e16.
     fn reference(x: f64) -> String {
@@ -399,6 +531,11 @@ mod tests {
                 x.to_bits(),
                 "{text}"
             );
+        }
+        for x in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+            let mut text = String::new();
+            push_number(&mut text, &mut digits, x);
+            assert_eq!(text, format!("{x}"));
         }
     }
 }

@@ -1,6 +1,6 @@
 //! `snapback sweep`: one bounce per value of a parameter, as CSV, JSON or JSON Lines, streamed.
 
-use std::io::{BufWriter, Write};
+use std::io::Write;
 
 use clap::{Args, ValueEnum};
 
@@ -71,7 +71,8 @@ pub fn run(args: &SweepArgs, options: &SolveOptions) -> Result<(), Failure> {
         Format::Jsonl => Layout::JsonLines,
     };
     let written = if spreads.is_empty() {
-        let mut out = BufWriter::with_capacity(1 << 20, std::io::stdout().lock());
+        // No buffer of ours: the sweep writes whole chunks of lines, each passed straight through.
+        let mut out = std::io::stdout().lock();
         sweep::write(&mut out, &base, &span, steps, layout, options)
             .and_then(|()| out.flush().map_err(WriteError::Io))
     } else {

@@ -103,12 +103,10 @@ fn outcome(params: &Params, setup: &Setup, last: &State) -> Outcome {
 }
 
 impl Bounce {
-    /// [`finish`] in place, the phases already solved into [`Bounce::phases`].
-    pub(super) fn refinish(&mut self, params: &Params, setup: Setup, last: State) {
-        self.outcome = outcome(params, &setup, &last);
-        self.params = *params;
-        self.setup = setup;
-        self.final_state = last;
+    /// [`finish`] in place: the outcome of the parameters, constants, phases and final state already
+    /// solved into the bounce.
+    pub(super) fn refinish(&mut self) {
+        self.outcome = outcome(&self.params, &self.setup, &self.final_state);
     }
 
     /// Where the incoming energy went. The friction loss is integrated from the exact solution (Gauss-
@@ -208,23 +206,26 @@ impl Bounce {
     /// The ball's phase kinds joined, e.g. `slide-grip-slide`.
     pub fn phase_summary(&self) -> String {
         let mut summary = String::with_capacity(6 * self.phases.len());
-        self.push_phase_summary(&mut summary);
+        for (i, kind) in self.ball_phase_kinds().enumerate() {
+            if i > 0 {
+                summary.push('-');
+            }
+            summary.push_str(kind.name());
+        }
         summary
     }
 
-    /// [`Bounce::phase_summary`] written onto `text` (a sweep's CSV line), with no allocation of its own.
-    pub fn push_phase_summary(&self, text: &mut String) {
+    /// The kinds of the ball's phases in order (those [`Bounce::phase_summary`] names), with no
+    /// allocation: consecutive phases that differ only in what the cart does are one.
+    pub fn ball_phase_kinds(&self) -> impl Iterator<Item = PhaseKind> + '_ {
         let mut previous = None;
-        for p in &self.phases {
+        self.phases.iter().filter_map(move |p| {
             let ball = Some((p.kind, p.slip_sign));
-            if ball != previous {
-                if previous.is_some() {
-                    text.push('-');
-                }
-                text.push_str(p.kind.name());
+            (ball != previous).then(|| {
                 previous = ball;
-            }
-        }
+                p.kind
+            })
+        })
     }
 
     /// The velocity along the surface of the frame the strings are tied to, as the ball leaves (0 on a

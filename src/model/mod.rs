@@ -42,4 +42,4 @@ pub use params::{PARAMS, ParamError, ParamId, ParamSpec, Params};
 pub use phase::{BallPhase, Phase, PhaseKind};
 pub use registry::{BallKind, FrameKind, ModelKind, SupportKind, Words};
 pub use setup::{Setup, State};
-pub use solve::{solve, solve_cancellable, solve_in, solve_with};
+pub use solve::{Varied, solve, solve_cancellable, solve_in, solve_with};

@@ -1,7 +1,7 @@
 //! The checks on a solved bounce before it is reported: its outcome must be finite, and the figures a
 //! report prints (the spin in rpm, the energy budget) must not overflow f64.
 
-use super::bounce::Bounce;
+use super::bounce::{Bounce, Outcome};
 use super::error::{SolveError, Unsolvable};
 use super::params::{PARAMS, ParamId, Solvable, spec};
 use super::solvable::refusal;
@@ -54,8 +54,29 @@ pub fn reportable(bounce: &Bounce) -> Result<(), Unsolvable> {
 }
 
 /// Refuses an outcome that is not a finite number.
+#[inline]
 pub(super) fn finite(bounce: &Bounce) -> Result<(), SolveError> {
     let o = &bounce.outcome;
+    let values = [
+        o.omega2,
+        o.vx2,
+        o.vy2,
+        o.speed2,
+        o.theta2_deg,
+        o.ex.unwrap_or(0.0),
+        o.roll_ratio.unwrap_or(0.0),
+    ];
+    if values.iter().fold(true, |all, v| all & v.is_finite()) {
+        Ok(())
+    } else {
+        not_finite(o)
+    }
+}
+
+/// The refusal of an outcome that is not finite, naming its first quantity that is not.
+#[cold]
+#[inline(never)]
+fn not_finite(o: &Outcome) -> Result<(), SolveError> {
     let values = [
         ("the rebound spin", o.omega2),
         ("the rebound velocity along the surface", o.vx2),

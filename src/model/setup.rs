@@ -62,14 +62,45 @@ pub struct Setup {
     pub ey_apparent: f64,
 }
 
+/// The direction of incidence, sin and cos of the complement of theta1, kept for the bounces that
+/// follow at the same angle (a sweep of any other parameter computes it once).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Incidence {
+    /// theta1's bits, and the sin and cos of its complement.
+    known: Option<(u64, f64, f64)>,
+}
+
+impl Incidence {
+    /// sin and cos of 90 degrees - `angle_deg`, computed when the angle differs from the last one's.
+    #[inline]
+    pub fn at(&mut self, angle_deg: f64) -> (f64, f64) {
+        match self.known {
+            Some((bits, sin, cos)) if bits == angle_deg.to_bits() => (sin, cos),
+            _ => {
+                // cos and sin through the complement, so 90 degrees gives exactly vx1 = 0.
+                let complement = (90.0 - angle_deg).to_radians();
+                let (sin, cos) = (complement.sin(), complement.cos());
+                self.known = Some((angle_deg.to_bits(), sin, cos));
+                (sin, cos)
+            }
+        }
+    }
+}
+
 impl Setup {
     pub fn new(p: &Params) -> Self {
+        Setup::at_incidence(p, &mut Incidence::default())
+    }
+
+    /// [`Setup::new`], the direction of incidence taken from `incidence` when it knows the angle.
+    #[inline]
+    pub fn at_incidence(p: &Params, incidence: &mut Incidence) -> Self {
         let inertia = p.alpha * p.mass * p.radius * p.radius;
         let m_eff = p.mass * p.alpha / (1.0 + p.alpha);
         let w = PI / p.duration;
-        // cos and sin through the complement, so 90 degrees gives exactly vx1 = 0.
-        let vx1 = p.speed * ((90.0 - p.angle_deg).to_radians()).sin();
-        let vy1 = p.speed * ((90.0 - p.angle_deg).to_radians()).cos();
+        let (sin, cos) = incidence.at(p.angle_deg);
+        let vx1 = p.speed * sin;
+        let vy1 = p.speed * cos;
         let frame_mass = (p.frame_mass > 0.0).then_some(p.frame_mass);
         let frame_normal_mass = if p.frame_normal_mass > 0.0 {
             Some(p.frame_normal_mass)

@@ -43,6 +43,13 @@ const LIMITS: [[f64; PARAM_COUNT]; 3] = {
 /// the table cannot pass) goes row by row.
 #[inline]
 pub fn check(params: &Params) -> Result<(), Unsolvable> {
+    magnitudes(params)?;
+    relaxation(params)
+}
+
+/// [`check`] without the relaxation: every parameter's magnitude alone.
+#[inline]
+pub(super) fn magnitudes(params: &Params) -> Result<(), Unsolvable> {
     let values = params.values();
     let [smallest, largest, zero] = &LIMITS;
     let mut ok = true;
@@ -50,30 +57,33 @@ pub fn check(params: &Params) -> Result<(), Unsolvable> {
         let size = values[i].abs();
         ok &= (size == zero[i]) | ((size >= smallest[i]) & (size <= largest[i]));
     }
-    if !ok {
-        return by_rows(params);
-    }
-    relaxation(params)
+    if ok { Ok(()) } else { by_rows(params) }
 }
 
-/// [`check`] row by row: the first parameter outside the magnitudes that can be solved is refused with
-/// its range.
+/// [`magnitudes`] row by row: the first parameter outside the magnitudes that can be solved is refused
+/// with its range.
 #[cold]
 #[inline(never)]
 fn by_rows(params: &Params) -> Result<(), Unsolvable> {
-    for row in PARAMS {
-        let Some(limit) = row.solvable else {
-            continue;
-        };
-        let value = params.get(row.id);
-        let size = value.abs();
-        let zero_ok = row.range.contains(0.0);
-        let ok = (size == 0.0 && zero_ok) || (size >= limit.smallest && size <= limit.largest);
-        if !ok {
-            return Err(refusal(row, &limit, value));
-        }
+    PARAMS
+        .iter()
+        .try_for_each(|row| magnitude(row, params.get(row.id)))
+}
+
+/// Checks `value` of the parameter `row` against the magnitudes that can be solved: [`check`]'s
+/// refusal of it, when every other parameter passes.
+#[inline]
+pub(super) fn magnitude(row: &ParamSpec, value: f64) -> Result<(), Unsolvable> {
+    let Some(limit) = row.solvable else {
+        return Ok(());
+    };
+    let size = value.abs();
+    let zero_ok = row.range.contains(0.0);
+    if (size == 0.0 && zero_ok) || (size >= limit.smallest && size <= limit.largest) {
+        Ok(())
+    } else {
+        Err(refusal(row, &limit, value))
     }
-    relaxation(params)
 }
 
 /// The message for `value` of the parameter `row` outside `limit`.
@@ -97,7 +107,8 @@ pub(super) fn refusal(row: &ParamSpec, limit: &Solvable, value: f64) -> Unsolvab
 
 /// A damped ball's stretch relaxes at lambda = k_b/c_b = sqrt(k_b/m_eff)/(2 zeta); lambda T must stay
 /// within [`MAX_RELAXATIONS`], which bounds zeta from below (zero, an undamped ball, is solved apart).
-fn relaxation(params: &Params) -> Result<(), Unsolvable> {
+#[inline]
+pub(super) fn relaxation(params: &Params) -> Result<(), Unsolvable> {
     let zeta = params.ball_damping;
     if params.ball_stiffness == 0.0 || zeta == 0.0 {
         return Ok(());
@@ -148,7 +159,8 @@ mod tests {
             for value in values {
                 let mut p = Params::default();
                 p.set(row.id, value);
-                assert_eq!(check(&p), by_rows(&p), "{} {value}", row.flag);
+                let rows = by_rows(&p).and_then(|()| relaxation(&p));
+                assert_eq!(check(&p), rows, "{} {value}", row.flag);
             }
         }
     }

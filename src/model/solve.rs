@@ -11,11 +11,11 @@ use super::error::SolveError;
 use super::events::{self, Stall};
 use super::frame::FramedCart;
 use super::options::SolveOptions;
-use super::params::Params;
+use super::params::{ParamId, Params, spec};
 use super::phase::Phase;
 use super::registry::{BallKind, FrameKind, SupportKind};
 use super::reportable::finite;
-use super::setup::{Setup, State};
+use super::setup::{Incidence, Setup, State};
 use super::solvable;
 
 /// Solves one bounce exactly (Cross 2010, Sec. II): phase by phase in closed form, each transition
@@ -36,8 +36,13 @@ pub fn solve_cancellable(
 
 /// [`solve`] on the caller's terms: its cancellation, phase cap and shared work ([`SolveOptions`]).
 pub fn solve_with(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
-    bounce_of(params, options, |phases| {
-        solve_model(params, options, phases)
+    bounce_of(params, options, |setup, phases| {
+        // The place moved into the call (FnOnce), so the constants' reference outlives it.
+        let put = move |built| {
+            let place = setup;
+            &*place.insert(built)
+        };
+        solve_model(params, options, &mut Incidence::default(), phases, put)
     })
 }
 
@@ -50,7 +55,10 @@ pub fn solve_in<'a>(
     slot: &'a mut Option<Bounce>,
 ) -> Result<&'a Bounce, SolveError> {
     let solved = match slot.as_mut() {
-        Some(bounce) => resolve(params, options, bounce),
+        Some(bounce) => {
+            bounce.params = *params;
+            resolve(options, whole_check, &mut Incidence::default(), bounce)
+        }
         None => solve_with(params, options).map(|bounce| *slot = Some(bounce)),
     };
     match solved {
@@ -62,39 +70,137 @@ pub fn solve_in<'a>(
     }
 }
 
-/// The bounce of `params` solved by `solve` (into the phases it is given) within [`bounded`], and
-/// refused when its outcome is not finite.
+/// The bounce of `params` solved by `solve` (into the place for its constants and the phases it is
+/// given) within [`bounded`], and refused when its outcome is not finite.
 fn bounce_of(
     params: &Params,
     options: &SolveOptions,
-    solve: impl FnOnce(&mut Vec<Phase>) -> Result<(Setup, State), SolveError>,
+    solve: impl FnOnce(&mut Option<Setup>, &mut Vec<Phase>) -> Result<State, SolveError>,
 ) -> Result<Bounce, SolveError> {
-    let mut phases = Vec::with_capacity(8);
-    let (setup, last) = bounded(params, options, || solve(&mut phases))?;
+    let (mut setup, mut phases) = (None, Vec::with_capacity(8));
+    let last = bounded(params, options, whole_check, || {
+        solve(&mut setup, &mut phases)
+    })?;
+    let setup = setup.expect("a solved bounce has its constants");
     let bounce = finish(params, setup, phases, last);
     finite(&bounce)?;
     Ok(bounce)
 }
 
-/// [`solve_with`] over `bounce`, in place.
-fn resolve(params: &Params, options: &SolveOptions, bounce: &mut Bounce) -> Result<(), SolveError> {
-    let (setup, last) = bounded(params, options, || {
-        solve_model(params, options, &mut bounce.phases)
+/// [`solve_with`] of the bounce's own parameters (set before) over `bounce`, in place (its constants
+/// written where the last bounce's were, its phases over theirs), checked by `check`, at `incidence`.
+fn resolve(
+    options: &SolveOptions,
+    check: impl FnOnce(&Params) -> Result<(), SolveError>,
+    incidence: &mut Incidence,
+    bounce: &mut Bounce,
+) -> Result<(), SolveError> {
+    let Bounce {
+        params,
+        setup,
+        phases,
+        final_state,
+        ..
+    } = bounce;
+    let put = move |built| -> &Setup {
+        let place = setup;
+        *place = built;
+        place
+    };
+    *final_state = bounded(params, options, check, || {
+        solve_model(params, options, incidence, phases, put)
     })?;
-    bounce.refinish(params, setup, last);
+    bounce.refinish();
     finite(bounce)
 }
 
-/// Runs `solve` for `params` bounded: refused up front when a parameter is outside what can be solved
-/// ([`solvable::check`]), within its work budget and the caller's shared work. Counted in the shared
+/// Bounces of one set of parameters with one of them varied, solved one after another into the same
+/// memory ([`solve_in`]): a sweep's. The other values are checked once, when it begins; each bounce
+/// checks its own value and the damped ball's relaxation (which several values decide), and is refused
+/// with the error the whole check gives. Each answer is [`solve_with`]'s of the parameters with the
+/// varied one at its value.
+pub struct Varied<'a> {
+    /// The parameters, the varied one at its last value.
+    base: Params,
+    id: ParamId,
+    /// True when every value but the varied one is in range and can be solved.
+    others_checked: bool,
+    options: SolveOptions<'a>,
+    /// The direction of incidence, while the angle stays.
+    incidence: Incidence,
+    /// The last bounce, whose parameters are `base`'s but for the varied value.
+    slot: Option<Bounce>,
+}
+
+impl<'a> Varied<'a> {
+    /// The bounces of `base` with the parameter `id` varied, on the caller's terms.
+    pub fn new(base: &Params, id: ParamId, options: &SolveOptions<'a>) -> Self {
+        // The varied value at its default (in range, and solvable), so that only the others can fail.
+        let mut others = *base;
+        others.set(id, spec(id).default);
+        let others_checked = others.validate().is_ok() && solvable::magnitudes(&others).is_ok();
+        Varied {
+            base: *base,
+            id,
+            others_checked,
+            options: *options,
+            incidence: Incidence::default(),
+            slot: None,
+        }
+    }
+
+    /// The bounce with the varied parameter at `value`; an error empties the memory.
+    pub fn solve(&mut self, value: f64) -> Result<&Bounce, SolveError> {
+        let (id, options, incidence) = (self.id, &self.options, &mut self.incidence);
+        let solved = match self.slot.as_mut() {
+            // The last bounce's parameters differ from these in the varied value alone.
+            Some(bounce) if self.others_checked => {
+                bounce.params.set(id, value);
+                let row = spec(id);
+                let check = |params: &Params| -> Result<(), SolveError> {
+                    row.check_value(value)?;
+                    solvable::magnitude(row, value)?;
+                    Ok(solvable::relaxation(params)?)
+                };
+                resolve(options, check, incidence, bounce)
+            }
+            Some(bounce) => {
+                bounce.params.set(id, value);
+                resolve(options, whole_check, incidence, bounce)
+            }
+            None => {
+                self.base.set(id, value);
+                solve_with(&self.base, options).map(|bounce| self.slot = Some(bounce))
+            }
+        };
+        match solved {
+            Ok(()) => Ok(self.slot.as_ref().expect("a solved slot holds its bounce")),
+            Err(e) => {
+                self.slot = None;
+                Err(e)
+            }
+        }
+    }
+}
+
+/// Every value in range ([`Params::validate`]) and solvable ([`solvable::check`]).
+#[inline]
+fn whole_check(params: &Params) -> Result<(), SolveError> {
+    params.validate()?;
+    Ok(solvable::check(params)?)
+}
+
+/// Runs `solve` for `params` bounded: refused up front when `check` refuses them (a parameter outside
+/// what can be solved), within its work budget and the caller's shared work. Counted in the shared
 /// work's tally unless nested in another solve.
 fn bounded<T>(
     params: &Params,
     options: &SolveOptions,
+    check: impl FnOnce(&Params) -> Result<(), SolveError>,
     solve: impl FnOnce() -> Result<T, SolveError>,
 ) -> Result<T, SolveError> {
     let outermost = !events::metering();
-    let solved = checked(params, options, solve);
+    let solved = checked(params, options, check, solve);
     if let (true, Some(work)) = (outermost, options.work) {
         work.count();
     }
@@ -104,10 +210,10 @@ fn bounded<T>(
 fn checked<T>(
     params: &Params,
     options: &SolveOptions,
+    check: impl FnOnce(&Params) -> Result<(), SolveError>,
     solve: impl FnOnce() -> Result<T, SolveError>,
 ) -> Result<T, SolveError> {
-    params.validate()?;
-    solvable::check(params)?;
+    check(params)?;
     let weight = weight(params);
     let allowed = options.work.map_or(u64::MAX, |work| work.left()) / weight;
     if allowed == 0 {
@@ -142,11 +248,14 @@ fn advice(params: &Params) -> &'static str {
 
 /// The model for `params` ([`Params::model`]), run by the driver into `phases` (`bounded` has
 /// validated them): the constants of the bounce and the state as the ball leaves.
-fn solve_model(
+/// `put` places the bounce's constants where the caller keeps them (so that they are not moved again).
+fn solve_model<'s>(
     params: &Params,
     options: &SolveOptions,
+    incidence: &mut Incidence,
     phases: &mut Vec<Phase>,
-) -> Result<(Setup, State), SolveError> {
+    put: impl FnOnce(Setup) -> &'s Setup,
+) -> Result<State, SolveError> {
     let kind = params.model();
     match (kind.ball, kind.support, kind.frame) {
         (
@@ -155,36 +264,27 @@ fn solve_model(
             FrameKind::Clamped | FrameKind::Free,
         ) => {
             let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
-            let last = run(&model, &setup, options, phases).map_err(|e| match e {
+            run(&model, put(setup), options, phases).map_err(|e| match e {
                 SolveError::TooManyPhases { limit, .. } => SolveError::TooManyPhases {
                     limit,
                     hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, \
                            or lower --ball-stiffness)",
                 },
                 e => e,
-            })?;
-            Ok((setup, last))
+            })
         }
         (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped | FrameKind::Free) => {
-            let setup = Setup::new(params);
-            let last = run(
-                &ChainOfMasses::new(params, &setup)?,
-                &setup,
-                options,
-                phases,
-            )?;
-            Ok((setup, last))
+            let setup = put(Setup::at_incidence(params, incidence));
+            run(&ChainOfMasses::new(params, setup)?, setup, options, phases)
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Clamped) => {
-            let setup = Setup::new(params);
-            let last = run(&SingleCart::new(params, &setup)?, &setup, options, phases)?;
-            Ok((setup, last))
+            let setup = put(Setup::at_incidence(params, incidence));
+            run(&SingleCart::new(params, setup)?, setup, options, phases)
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Free) => {
-            let setup = Setup::new(params);
-            let model = FramedCart::new(params, &setup, params.frame_mass)?;
-            let last = run(&model, &setup, options, phases)?;
-            Ok((setup, last))
+            let setup = put(Setup::at_incidence(params, incidence));
+            let model = FramedCart::new(params, setup, params.frame_mass)?;
+            run(&model, setup, options, phases)
         }
     }
 }
@@ -194,17 +294,11 @@ fn solve_model(
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     let options = SolveOptions::default();
     if params.model().compliant() {
-        return bounded(params, &options, || solve(params));
+        return bounded(params, &options, whole_check, || solve(params));
     }
-    bounce_of(params, &options, |phases| {
-        let setup = Setup::new(params);
-        let last = run(
-            &ChainOfMasses::new(params, &setup)?,
-            &setup,
-            &options,
-            phases,
-        )?;
-        Ok((setup, last))
+    bounce_of(params, &options, |setup, phases| {
+        let setup = &*setup.insert(Setup::new(params));
+        run(&ChainOfMasses::new(params, setup)?, setup, &options, phases)
     })
 }
 
@@ -216,10 +310,9 @@ pub fn solve_compliant_on_cart(params: &Params) -> Result<Bounce, SolveError> {
         ..*params
     };
     let options = SolveOptions::default();
-    bounce_of(&params, &options, |phases| {
-        let (model, setup) = CompliantBall::new(&params, false)?;
-        let last = run(&model, &setup, &options, phases)?;
-        Ok((setup, last))
+    bounce_of(&params, &options, |setup, phases| {
+        let (model, built) = CompliantBall::new(&params, false)?;
+        run(&model, setup.insert(built), &options, phases)
     })
 }
 
@@ -323,6 +416,79 @@ mod tests {
             solve(&unsolvable).map(|_| ())
         );
         assert!(slot.is_none());
+    }
+
+    /// A varied bounce is the bounce solved afresh, and a refusal the whole check's, whether the
+    /// value or another parameter fails, and with either checked once or every time.
+    #[test]
+    fn a_varied_bounce_is_the_bounce_and_its_refusal_the_whole_checks() {
+        let options = SolveOptions::default();
+        let ball = Params {
+            ball_stiffness: 1e5,
+            ..Params::default()
+        };
+        let cases = [
+            (
+                Params::default(),
+                ParamId::Speed,
+                vec![10.0, 1e160, 3.0, -1.0, f64::NAN, 12.0],
+            ),
+            (
+                Params::default(),
+                ParamId::Angle,
+                vec![30.0, 95.0, 60.0, 0.0, 45.0],
+            ),
+            (
+                ball,
+                ParamId::BallDamping,
+                vec![0.3, 1e-20, 0.0, 1e-14, 0.5],
+            ),
+            (ball, ParamId::BallStiffness, vec![1e5, 1e30, 1e3]),
+            // Another value fails: every bounce is refused for it.
+            (
+                Params {
+                    speed: 1e160,
+                    ..Params::default()
+                },
+                ParamId::Angle,
+                vec![30.0, 60.0],
+            ),
+            (
+                Params {
+                    mu: -1.0,
+                    ..Params::default()
+                },
+                ParamId::Speed,
+                vec![10.0, 1e160],
+            ),
+            (
+                Params {
+                    chain: 4.0,
+                    ..Params::default()
+                },
+                ParamId::Chain,
+                vec![1.0, 2.5, 3.0],
+            ),
+        ];
+        for (base, id, values) in cases {
+            let mut varied = Varied::new(&base, id, &options);
+            for value in values {
+                let mut params = base;
+                params.set(id, value);
+                let fresh = solve(&params);
+                let got = varied.solve(value);
+                match (got, fresh) {
+                    (Ok(got), Ok(fresh)) => {
+                        assert_eq!(got.params, fresh.params);
+                        assert_eq!(got.outcome, fresh.outcome, "{id:?} {value}");
+                        assert_eq!(got.phases.len(), fresh.phases.len());
+                    }
+                    (got, fresh) => {
+                        assert_eq!(got.map(|_| ()), fresh.map(|_| ()), "{id:?} {value}")
+                    }
+                }
+            }
+        }
     }
 
     #[test]

@@ -71,6 +71,11 @@ pub fn next_on(
     } else {
         std::slice::from_ref(&cart)
     };
+    // A sole candidate follows whatever its violation, so nothing need be measured (a slide goes on
+    // after first contact, or a moving cart's ball keeps its mode).
+    if let ([b], [c]) = (balls, carts) {
+        return (*b, *c);
+    }
     let at = At {
         limit: setup.mu * normal(setup, touched.t),
         mass: touched.mass,
