@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::mpsc;
+use std::sync::mpsc::{self, RecvTimeoutError};
 use std::time::Duration;
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -34,13 +34,14 @@ fn interrupt() {
 }
 
 /// Runs `command` with Ctrl-C handled and, after a second, a progress line counting the bounces solved
-/// under `work`.
+/// under `work`. The line stops when `command` returns or panics (its end drops the sender), so a panic
+/// ends the process instead of leaving it waiting on the line's thread.
 pub fn watch<T>(work: &Work, command: impl FnOnce() -> T) -> T {
     handle_ctrl_c();
     let (done, finished) = mpsc::channel::<()>();
     std::thread::scope(|scope| {
         let shown = scope.spawn(move || {
-            if finished.recv_timeout(QUIET).is_ok() {
+            if !waiting(finished.recv_timeout(QUIET)) {
                 return;
             }
             let start = work.solved();
@@ -56,17 +57,22 @@ pub fn watch<T>(work: &Work, command: impl FnOnce() -> T) -> T {
                 };
                 bar.set_message(message);
                 bar.tick();
-                if finished.recv_timeout(TICK).is_ok() {
+                if !waiting(finished.recv_timeout(TICK)) {
                     break;
                 }
             }
             bar.finish_and_clear();
         });
         let result = command();
-        let _ = done.send(());
+        drop(done);
         let _ = shown.join();
         result
     })
+}
+
+/// True while the command runs: the wait timed out, the sender neither sent nor was dropped.
+fn waiting(wait: Result<(), RecvTimeoutError>) -> bool {
+    wait == Err(RecvTimeoutError::Timeout)
 }
 
 /// The first Ctrl-C interrupts the solves; the second ends the process with [`INTERRUPTED`].
@@ -79,4 +85,28 @@ fn handle_ctrl_c() {
     let _ = signal_hook::flag::register(int, once);
     // SAFETY: the handler only stores to an atomic, which is async-signal-safe.
     let _ = unsafe { signal_hook::low_level::register(int, interrupt) };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A command that panics after the progress line has appeared ends: the panic reaches the caller
+    /// (the process would exit with it) instead of the line's thread ticking for ever.
+    #[test]
+    fn a_panicking_command_ends_the_watch() {
+        let (ended, end) = mpsc::channel();
+        std::thread::spawn(move || {
+            let work = Work::unlimited();
+            let caught = std::panic::catch_unwind(|| {
+                watch(&work, || {
+                    std::thread::sleep(QUIET + 2 * TICK);
+                    panic!("a bug in the command");
+                })
+            });
+            let _ = ended.send(caught.is_err());
+        });
+        let ended = end.recv_timeout(Duration::from_secs(30));
+        assert_eq!(ended, Ok(true), "the watch did not end with the panic");
+    }
 }
