@@ -351,20 +351,28 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize> Search<'_, F, K> {
         }
         let width = b.t - a.t;
         if width <= FINEST * b.t.abs().max(f64::MIN_POSITIVE) {
-            return risen.map(|branch| (self.crossing(branch, a, b).t, branch));
+            return risen.map(|branch| (self.crossing(branch, a, b).0.t, branch));
         }
         if let Some(i) = risen {
             // One branch rising throughout (f' >= f'(a) - curvature (b - a) > 0, so its crossing is
             // unique) while the others are proved below: that crossing is the first rise.
             let rising = a.branches[i].rate() - 2.0 * self.half_curvature[i] * width > 0.0;
             if rising && (0..K).all(|j| j == i || below(j)) {
-                return Some((self.crossing(i, a, b).t, i));
+                return Some((self.crossing(i, a, b).0.t, i));
             }
             if predict {
                 // The risen branch's crossing, by Newton: the first rise unless another lies before it,
-                // which the search of [a, crossing] (without predicting) proves absent or finds.
-                let at = self.crossing(i, a, b);
-                return self.first_in(a, &at, false).or(Some((at.t, i)));
+                // which the search of [a, crossing] (without predicting) proves absent or finds, split
+                // at the refinement's last point below zero (evaluated already, and nearer the crossing
+                // than a halving would be).
+                let (at, below) = self.crossing(i, a, b);
+                let before = match below {
+                    Some(below) if below.t > a.t && below.t < at.t => self
+                        .first_in(a, &below, false)
+                        .or_else(|| self.first_in(&below, &at, false)),
+                    _ => self.first_in(a, &at, false),
+                };
+                return before.or(Some((at.t, i)));
             }
         }
         let mid = Point::at(self.f, a.t + 0.5 * width);
@@ -374,8 +382,14 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize> Search<'_, F, K> {
 
     /// Where branch `i`, above its noise at `b`, crosses zero, with every branch there. Within the
     /// noise it may already be a little above zero at `a`; the crossing then lies before `a`, and is
-    /// bracketed by stepping back.
-    fn crossing(&self, i: usize, a: &Point<B, K>, b: &Point<B, K>) -> Point<B, K> {
+    /// bracketed by stepping back. With it, the refinement's last point where branch `i` was at most
+    /// zero, if any.
+    fn crossing(
+        &self,
+        i: usize,
+        a: &Point<B, K>,
+        b: &Point<B, K>,
+    ) -> (Point<B, K>, Option<Point<B, K>>) {
         let (mut low, mut high) = (*a, *b);
         let mut step = b.t - a.t;
         while low.branches[i].value() > 0.0 && low.t > self.start && step > 0.0 {
@@ -413,15 +427,16 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize> Search<'_, F, K> {
 }
 
 /// The crossing of zero of branch `i` of `f` in `[a, b]`, given `f_i(a) <= 0 < f_i(b)` (up to noise),
-/// by the branch's step (Newton's, or Halley's where it knows its second derivative) from the secant
-/// point, kept inside a shrinking bracket, to a few units in the last place of `t`; with every branch
-/// at that time (the last evaluation, which the solver keeps).
+/// by the branch's step (Newton's, or the cubic Taylor model's where it knows its higher derivatives)
+/// from the secant point, kept inside a shrinking bracket, to a few units in the last place of `t`;
+/// with every branch at that time (the last evaluation, which the solver keeps), and the last point
+/// before it where branch `i` was at most zero, if any.
 fn refine<B: Branch, const K: usize>(
     f: &impl Event<B, K>,
     i: usize,
     a: Point<B, K>,
     b: Point<B, K>,
-) -> Point<B, K> {
+) -> (Point<B, K>, Option<Point<B, K>>) {
     let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
     let (fa, fb) = (a.branches[i].value(), b.branches[i].value());
     let (mut a, mut b) = (a.t, b.t);
@@ -432,9 +447,11 @@ fn refine<B: Branch, const K: usize>(
         0.5 * (a + b)
     };
     let mut last = Point { t, branches: f(t) };
+    let mut below = None;
     for _ in 0..100 {
         let branch = last.branches[i];
-        if branch.value() > 0.0 {
+        let risen = branch.value() > 0.0;
+        if risen {
             b = t;
         } else {
             a = t;
@@ -454,9 +471,12 @@ fn refine<B: Branch, const K: usize>(
         } else {
             0.5 * (a + b)
         };
+        if !risen {
+            below = Some(last);
+        }
         last = Point { t, branches: f(t) };
     }
-    last
+    (last, below)
 }
 
 #[cfg(test)]
