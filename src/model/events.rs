@@ -1,13 +1,15 @@
 //! Locating the transitions between phases: the first time an exact event function rises above zero.
 //!
-//! Each phase supplies its event function `f` with its derivative, and a bound `curvature` on |f''|
-//! taken from the amplitudes of its closed-form solution. Between two points `a < b` the function then
-//! lies below both parabolas `f(a) + f'(a) s + curvature s²/2` and `f(b) - f'(b) (b - t) + curvature
-//! (b - t)²/2`; when the lower of the two stays below the noise floor, the interval provably holds no
-//! rise. When a branch has risen by the interval's end, its crossing is predicted by Newton's method
-//! from the secant point, and the rest, `[a, crossing]`, is proved empty in the same way; an interval
-//! that cannot be proved is halved, earliest half first, so the crossing found is the first one,
-//! however close two crossings lie (a short phase is never skipped).
+//! Each phase supplies its event function `f` with its derivative (and, where its closed form gives
+//! them cheaply, the next two: see [`Branch`]), and a bound `curvature` on |f''| taken from the
+//! amplitudes of its closed-form solution. Between two points `a < b` the function then lies below
+//! both parabolas `f(a) + f'(a) s + curvature s²/2` and `f(b) - f'(b) (b - t) + curvature (b - t)²/2`;
+//! when the lower of the two stays below the noise floor, the interval provably holds no rise. When a
+//! branch has risen by the interval's end, its crossing is predicted from the secant point by Newton's
+//! method (or by the cubic Taylor model where the branch has its higher derivatives), and the rest,
+//! `[a, crossing]`, is proved empty in the same way, split at the refinement's last point below zero;
+//! an interval that cannot be proved is halved, earliest half first, so the crossing found is the
+//! first one, however close two crossings lie (a short phase is never skipped).
 //!
 //! Every search is metered ([`metered`]): a solve has a budget of evaluations, and a search whose step
 //! no longer advances time stops. Either way the search gives up, and the solve is refused with the
