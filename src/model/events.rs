@@ -527,6 +527,31 @@ mod tests {
     }
 
     #[test]
+    fn the_cubic_model_refines_in_fewer_evaluations_than_newton() {
+        // sin t - 1/2 rises through zero at pi/6; the coarse step [0, 1] puts the secant point 0.07
+        // beyond it (Newton needs 7 evaluations in all, the cubic model 5).
+        let count = Cell::new(0);
+        let newton = |t: f64| {
+            count.set(count.get() + 1);
+            [(t.sin() - 0.5, t.cos())]
+        };
+        let t = first_rise(newton, 0.0, 1.0, 1.0, [1.0], [0.0]).unwrap().0;
+        assert!((t - std::f64::consts::FRAC_PI_6).abs() < 1e-15, "{t}");
+        let by_newton = count.replace(0);
+        let taylor = |t: f64| {
+            count.set(count.get() + 1);
+            [(t.sin() - 0.5, t.cos(), -t.sin(), -t.cos())]
+        };
+        let t = first_rise(taylor, 0.0, 1.0, 1.0, [1.0], [0.0]).unwrap().0;
+        assert!((t - std::f64::consts::FRAC_PI_6).abs() < 1e-15, "{t}");
+        assert!(
+            count.get() < by_newton,
+            "{} against {by_newton}",
+            count.get()
+        );
+    }
+
+    #[test]
     fn the_earlier_of_two_branches_wins() {
         let two = |t: f64| [(t - 0.7, 1.0), (t - 0.4, 1.0)];
         let (t, branch) = first_rise(two, 0.0, 1.0, 0.25, [0.0; 2], [0.0; 2]).unwrap();
