@@ -52,7 +52,12 @@ impl Grip {
         } else {
             sin_cos2(omega * tau, setup.w * t)
         };
-        let s = self.at_given(setup, t, cart);
+        // At the phase's start the closed form gives the start state itself.
+        let s = if tau == 0.0 {
+            State { t, ..self.start }
+        } else {
+            self.at_given(setup, t, cart)
+        };
         let [(forward, forward_rate), (backward, backward_rate)] = setup.grip_margins_given(
             normal,
             self.friction(setup, s.x),

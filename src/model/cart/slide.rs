@@ -100,37 +100,48 @@ impl Slide {
         };
         let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
         let cos_wt = self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau;
-        // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
-        let impulse =
-            force_amplitude * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / w;
-        let (x, v) = match self.response {
-            CartResponse::Detuned { amplitude } => {
-                // Free response from the start state, plus A (sin w t - its free continuation from t0).
-                let (x_free, v_free) = free_given(s0.x, s0.v, omega, tau, s, c);
-                let phase0 = (self.sin_wt0, self.cos_wt0);
-                let (x_forced, v_forced) =
-                    detuned(omega, w, tau, phase0, (sin_w_tau, cos_w_tau), (s, c));
-                let (x_push, v_push) = self.push_response(s, c, omega, tau);
-                (
-                    x_free + amplitude * x_forced + x_push,
-                    v_free + amplitude * v_forced + v_push,
-                )
+        // At the phase's start, where the event search begins, the closed forms give the start state
+        // itself.
+        let state = if tau == 0.0 {
+            let v = match self.response {
+                CartResponse::Stuck => 0.0,
+                _ => s0.v,
+            };
+            State { t, v, ..*s0 }
+        } else {
+            // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
+            let impulse =
+                force_amplitude * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / w;
+            let (x, v) = match self.response {
+                CartResponse::Detuned { amplitude } => {
+                    // Free response from the start state, plus A (sin w t - its free continuation
+                    // from t0).
+                    let (x_free, v_free) = free_given(s0.x, s0.v, omega, tau, s, c);
+                    let phase0 = (self.sin_wt0, self.cos_wt0);
+                    let (x_forced, v_forced) =
+                        detuned(omega, w, tau, phase0, (sin_w_tau, cos_w_tau), (s, c));
+                    let (x_push, v_push) = self.push_response(s, c, omega, tau);
+                    (
+                        x_free + amplitude * x_forced + x_push,
+                        v_free + amplitude * v_forced + v_push,
+                    )
+                }
+                CartResponse::Forced => {
+                    let (x_free, v_free) = free(s0.x, s0.v, omega, tau);
+                    let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
+                    let drive = force_amplitude / setup.cart_mass;
+                    let (x_push, v_push) = self.push_response(s, c, omega, tau);
+                    (x_free + drive * g + x_push, v_free + drive * dg + v_push)
+                }
+                CartResponse::Stuck => (s0.x, 0.0),
+            };
+            State {
+                t,
+                vx: s0.vx - impulse / setup.m,
+                omega: s0.omega + impulse * setup.r / setup.inertia,
+                x,
+                v,
             }
-            CartResponse::Forced => {
-                let (x_free, v_free) = free(s0.x, s0.v, omega, tau);
-                let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
-                let drive = force_amplitude / setup.cart_mass;
-                let (x_push, v_push) = self.push_response(s, c, omega, tau);
-                (x_free + drive * g + x_push, v_free + drive * dg + v_push)
-            }
-            CartResponse::Stuck => (s0.x, 0.0),
-        };
-        let state = State {
-            t,
-            vx: s0.vx - impulse / setup.m,
-            omega: s0.omega + impulse * setup.r / setup.inertia,
-            x,
-            v,
         };
         let friction = force_amplitude * sin_wt.max(0.0);
         let friction_rate = if sin_wt > 0.0 {
