@@ -1,13 +1,15 @@
 //! Locating the transitions between phases: the first time an exact event function rises above zero.
 //!
-//! Each phase supplies its event function `f` with its derivative, and a bound `curvature` on |f''|
-//! taken from the amplitudes of its closed-form solution. Between two points `a < b` the function then
-//! lies below both parabolas `f(a) + f'(a) s + curvature s²/2` and `f(b) - f'(b) (b - t) + curvature
-//! (b - t)²/2`; when the lower of the two stays below the noise floor, the interval provably holds no
-//! rise. When a branch has risen by the interval's end, its crossing is predicted by Newton's method
-//! from the secant point, and the rest, `[a, crossing]`, is proved empty in the same way; an interval
-//! that cannot be proved is halved, earliest half first, so the crossing found is the first one,
-//! however close two crossings lie (a short phase is never skipped).
+//! Each phase supplies its event function `f` with its derivative (and, where its closed form gives
+//! them cheaply, the next two: see [`Branch`]), and a bound `curvature` on |f''| taken from the
+//! amplitudes of its closed-form solution. Between two points `a < b` the function then lies below
+//! both parabolas `f(a) + f'(a) s + curvature s²/2` and `f(b) - f'(b) (b - t) + curvature (b - t)²/2`;
+//! when the lower of the two stays below the noise floor, the interval provably holds no rise. When a
+//! branch has risen by the interval's end, its crossing is predicted from the secant point by Newton's
+//! method (or by the cubic Taylor model where the branch has its higher derivatives), and the rest,
+//! `[a, crossing]`, is proved empty in the same way, split at the refinement's last point below zero;
+//! an interval that cannot be proved is halved, earliest half first, so the crossing found is the
+//! first one, however close two crossings lie (a short phase is never skipped).
 //!
 //! Every search is metered ([`metered`]): a solve has a budget of evaluations, and a search whose step
 //! no longer advances time stops. Either way the search gives up, and the solve is refused with the
@@ -134,10 +136,58 @@ fn stalled() -> bool {
     STALLED.get()
 }
 
-/// The event: `K` branches, each a value and its time derivative at `t`. The phase ends when any
+/// The event: `K` branches, each a value and its time derivatives at `t`. The phase ends when any
 /// branch rises (a grip, for example, breaks when F_s reaches +mu N or -mu N).
-pub trait Event<const K: usize>: Fn(f64) -> [(f64, f64); K] {}
-impl<const K: usize, F: Fn(f64) -> [(f64, f64); K]> Event<K> for F {}
+pub trait Event<B: Branch, const K: usize>: Fn(f64) -> [B; K] {}
+impl<B: Branch, const K: usize, F: Fn(f64) -> [B; K]> Event<B, K> for F {}
+
+/// One branch of an event at one time: its value f, its rate f', and the step toward its zero that
+/// the crossing's refinement takes from there.
+pub trait Branch: Copy {
+    fn value(&self) -> f64;
+    fn rate(&self) -> f64;
+    /// The step toward the zero; infinite or NaN where it is undefined (the refinement then halves).
+    fn step(&self) -> f64;
+}
+
+/// (f, f'): Newton's step -f/f', which converges quadratically.
+impl Branch for (f64, f64) {
+    #[inline]
+    fn value(&self) -> f64 {
+        self.0
+    }
+    #[inline]
+    fn rate(&self) -> f64 {
+        self.1
+    }
+    #[inline]
+    fn step(&self) -> f64 {
+        -(self.0 / self.1)
+    }
+}
+
+/// (f, f', f'', f'''), for a phase whose closed form gives the higher derivatives at little cost: the
+/// step to the zero of the cubic Taylor model f + f' d + f'' d²/2 + f''' d³/6 (Halley's step, then
+/// Newton's on the model), which converges with order four: from the secant point, one evaluation
+/// fewer than Newton's to a few units in the last place.
+impl Branch for (f64, f64, f64, f64) {
+    #[inline]
+    fn value(&self) -> f64 {
+        self.0
+    }
+    #[inline]
+    fn rate(&self) -> f64 {
+        self.1
+    }
+    #[inline]
+    fn step(&self) -> f64 {
+        let (f, rate, second, third) = *self;
+        let d = -2.0 * f * rate / (2.0 * rate * rate - f * second);
+        let model = f + d * (rate + d * (0.5 * second + d * third / 6.0));
+        let model_rate = rate + d * (second + 0.5 * d * third);
+        d - model / model_rate
+    }
+}
 
 /// The first time in `(t0, t1]` at which a branch of `f` rises above `noise`, and which branch, or
 /// `None`.
@@ -151,8 +201,8 @@ impl<const K: usize, F: Fn(f64) -> [(f64, f64); K]> Event<K> for F {}
 /// friction reversed, the margins of a grip at first contact) leaves it downward, the phase having been
 /// chosen so, but the bound cannot see the direction it leaves in: over the first eighth of a step such
 /// a branch is checked at the end only, while the others are proved as everywhere else.
-pub fn first_rise<const K: usize>(
-    f: impl Event<K>,
+pub fn first_rise<B: Branch, const K: usize>(
+    f: impl Event<B, K>,
     t0: f64,
     t1: f64,
     step: f64,
@@ -167,8 +217,8 @@ pub fn first_rise<const K: usize>(
 /// tangentially). The stretch checked at its end only is then no longer than sqrt(2 noise /
 /// curvature), over which a branch leaving zero tangentially cannot rise above its noise (and a
 /// millionth of a step at least).
-pub fn first_rise_from_tangent<const K: usize>(
-    f: impl Event<K>,
+pub fn first_rise_from_tangent<B: Branch, const K: usize>(
+    f: impl Event<B, K>,
     t0: f64,
     t1: f64,
     step: f64,
@@ -185,8 +235,8 @@ enum Start {
     Tangent,
 }
 
-fn search<const K: usize>(
-    f: impl Event<K>,
+fn search<B: Branch, const K: usize>(
+    f: impl Event<B, K>,
     t0: f64,
     t1: f64,
     step: f64,
@@ -198,7 +248,7 @@ fn search<const K: usize>(
         return None;
     }
     let mut a = Point::at(&f, t0);
-    let at_zero: [bool; K] = std::array::from_fn(|i| a.branches[i].0 >= -noise[i]);
+    let at_zero: [bool; K] = std::array::from_fn(|i| a.branches[i].value() >= -noise[i]);
     let mut search = Search {
         f: &f,
         start: t0,
@@ -254,13 +304,13 @@ fn search<const K: usize>(
 }
 
 #[derive(Clone, Copy)]
-struct Point<const K: usize> {
+struct Point<B, const K: usize> {
     t: f64,
-    branches: [(f64, f64); K],
+    branches: [B; K],
 }
 
-impl<const K: usize> Point<K> {
-    fn at(f: &impl Event<K>, t: f64) -> Self {
+impl<B: Branch, const K: usize> Point<B, K> {
+    fn at(f: &impl Event<B, K>, t: f64) -> Self {
         spend(t);
         Point { t, branches: f(t) }
     }
@@ -276,46 +326,55 @@ struct Search<'a, F, const K: usize> {
     ends_only: [bool; K],
 }
 
-impl<F: Event<K>, const K: usize> Search<'_, F, K> {
+impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize> Search<'_, F, K> {
     /// The first branch above its noise at `p`.
-    fn risen(&self, p: &Point<K>) -> Option<usize> {
-        (0..K).find(|&i| p.branches[i].0 > self.noise[i])
+    fn risen(&self, p: &Point<B, K>) -> Option<usize> {
+        (0..K).find(|&i| p.branches[i].value() > self.noise[i])
     }
 
     /// True when no branch rises on `[a, b]`: each is at most its noise at `b` and proved so between.
-    fn proved_empty(&self, a: &Point<K>, b: &Point<K>) -> bool {
-        (0..K).all(|i| b.branches[i].0 <= self.noise[i] && self.proved_below(a, b, i))
+    fn proved_empty(&self, a: &Point<B, K>, b: &Point<B, K>) -> bool {
+        (0..K).all(|i| b.branches[i].value() <= self.noise[i] && self.proved_below(a, b, i))
     }
 
     /// The first rise in `[a, b]`, given that every branch is at most `noise` at `a` and nothing rose
     /// before `a`.
-    fn first_in(&self, a: &Point<K>, b: &Point<K>, predict: bool) -> Option<(f64, usize)> {
+    fn first_in(&self, a: &Point<B, K>, b: &Point<B, K>, predict: bool) -> Option<(f64, usize)> {
         if stalled() {
             return None;
         }
         let risen = self.risen(b);
         let below = |i: usize| {
-            b.branches[i].0 <= self.noise[i] && (self.ends_only[i] || self.proved_below(a, b, i))
+            b.branches[i].value() <= self.noise[i]
+                && (self.ends_only[i] || self.proved_below(a, b, i))
         };
         if risen.is_none() && (0..K).all(below) {
             return None;
         }
         let width = b.t - a.t;
         if width <= FINEST * b.t.abs().max(f64::MIN_POSITIVE) {
-            return risen.map(|branch| (self.crossing(branch, a, b).t, branch));
+            return risen.map(|branch| (self.crossing(branch, a, b).0.t, branch));
         }
         if let Some(i) = risen {
             // One branch rising throughout (f' >= f'(a) - curvature (b - a) > 0, so its crossing is
             // unique) while the others are proved below: that crossing is the first rise.
-            let rising = a.branches[i].1 - 2.0 * self.half_curvature[i] * width > 0.0;
+            let rising = a.branches[i].rate() - 2.0 * self.half_curvature[i] * width > 0.0;
             if rising && (0..K).all(|j| j == i || below(j)) {
-                return Some((self.crossing(i, a, b).t, i));
+                return Some((self.crossing(i, a, b).0.t, i));
             }
             if predict {
                 // The risen branch's crossing, by Newton: the first rise unless another lies before it,
-                // which the search of [a, crossing] (without predicting) proves absent or finds.
-                let at = self.crossing(i, a, b);
-                return self.first_in(a, &at, false).or(Some((at.t, i)));
+                // which the search of [a, crossing] (without predicting) proves absent or finds, split
+                // at the refinement's last point below zero (evaluated already, and nearer the crossing
+                // than a halving would be).
+                let (at, below) = self.crossing(i, a, b);
+                let before = match below {
+                    Some(below) if below.t > a.t && below.t < at.t => self
+                        .first_in(a, &below, false)
+                        .or_else(|| self.first_in(&below, &at, false)),
+                    _ => self.first_in(a, &at, false),
+                };
+                return before.or(Some((at.t, i)));
             }
         }
         let mid = Point::at(self.f, a.t + 0.5 * width);
@@ -325,11 +384,17 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
 
     /// Where branch `i`, above its noise at `b`, crosses zero, with every branch there. Within the
     /// noise it may already be a little above zero at `a`; the crossing then lies before `a`, and is
-    /// bracketed by stepping back.
-    fn crossing(&self, i: usize, a: &Point<K>, b: &Point<K>) -> Point<K> {
+    /// bracketed by stepping back. With it, the refinement's last point where branch `i` was at most
+    /// zero, if any.
+    fn crossing(
+        &self,
+        i: usize,
+        a: &Point<B, K>,
+        b: &Point<B, K>,
+    ) -> (Point<B, K>, Option<Point<B, K>>) {
         let (mut low, mut high) = (*a, *b);
         let mut step = b.t - a.t;
-        while low.branches[i].0 > 0.0 && low.t > self.start && step > 0.0 {
+        while low.branches[i].value() > 0.0 && low.t > self.start && step > 0.0 {
             high = low;
             let t = (low.t - step).max(self.start);
             low = Point {
@@ -345,8 +410,9 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
     ///
     /// Both bounds are convex, so the lower of them peaks at an end or where they cross; their
     /// difference is linear in `t`, so they cross at most once.
-    fn proved_below(&self, a: &Point<K>, b: &Point<K>, i: usize) -> bool {
-        let ((fa, ra), (fb, rb)) = (a.branches[i], b.branches[i]);
+    fn proved_below(&self, a: &Point<B, K>, b: &Point<B, K>, i: usize) -> bool {
+        let (fa, ra) = (a.branches[i].value(), a.branches[i].rate());
+        let (fb, rb) = (b.branches[i].value(), b.branches[i].rate());
         let k = self.half_curvature[i];
         let width = b.t - a.t;
         let offset = fa - fb + rb * width - k * width * width;
@@ -363,11 +429,19 @@ impl<F: Event<K>, const K: usize> Search<'_, F, K> {
 }
 
 /// The crossing of zero of branch `i` of `f` in `[a, b]`, given `f_i(a) <= 0 < f_i(b)` (up to noise),
-/// by Newton iteration from the secant point, kept inside a shrinking bracket, to a few units in the
-/// last place of `t`; with every branch at that time (the last evaluation, which the solver keeps).
-fn refine<const K: usize>(f: &impl Event<K>, i: usize, a: Point<K>, b: Point<K>) -> Point<K> {
+/// by the branch's step (Newton's, or the cubic Taylor model's where it knows its higher derivatives)
+/// from the secant point, kept inside a shrinking bracket, to a few units in the last place of `t`;
+/// with every branch at that time (the last evaluation, which the solver keeps), and the last point
+/// before it where branch `i` was at most zero, if any.
+fn refine<B: Branch, const K: usize>(
+    f: &impl Event<B, K>,
+    i: usize,
+    a: Point<B, K>,
+    b: Point<B, K>,
+) -> (Point<B, K>, Option<Point<B, K>>) {
     let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
-    let ((mut a, fa), (mut b, fb)) = ((a.t, a.branches[i].0), (b.t, b.branches[i].0));
+    let (fa, fb) = (a.branches[i].value(), b.branches[i].value());
+    let (mut a, mut b) = (a.t, b.t);
     let secant = a + (b - a) * (-fa / (fb - fa));
     let mut t = if secant > a && secant < b {
         secant
@@ -375,9 +449,11 @@ fn refine<const K: usize>(f: &impl Event<K>, i: usize, a: Point<K>, b: Point<K>)
         0.5 * (a + b)
     };
     let mut last = Point { t, branches: f(t) };
+    let mut below = None;
     for _ in 0..100 {
-        let (value, rate) = last.branches[i];
-        if value > 0.0 {
+        let branch = last.branches[i];
+        let risen = branch.value() > 0.0;
+        if risen {
             b = t;
         } else {
             a = t;
@@ -385,20 +461,24 @@ fn refine<const K: usize>(f: &impl Event<K>, i: usize, a: Point<K>, b: Point<K>)
         if b - a <= resolution(b) {
             break;
         }
-        let newton = t - value / rate;
-        // Newton converges quadratically: once a step is this small, t is within it of the crossing,
-        // far below the resolution asked of transition times (1e-12 s).
-        if rate != 0.0 && (newton - t).abs() <= CONVERGED * t.abs() {
+        let next = t + branch.step();
+        // Both steps converge at least quadratically: once one is this small, t is within it of the
+        // crossing, far below the resolution asked of transition times (1e-12 s). (A step that is not
+        // finite fails both this test and the bracket's.)
+        if (next - t).abs() <= CONVERGED * t.abs() {
             break;
         }
-        t = if rate != 0.0 && newton > a && newton < b {
-            newton
+        t = if next > a && next < b {
+            next
         } else {
             0.5 * (a + b)
         };
+        if !risen {
+            below = Some(last);
+        }
         last = Point { t, branches: f(t) };
     }
-    last
+    (last, below)
 }
 
 #[cfg(test)]
@@ -444,6 +524,31 @@ mod tests {
             .unwrap()
             .0;
         assert!((t - 1.0).abs() < 1e-12, "{t}");
+    }
+
+    #[test]
+    fn the_cubic_model_refines_in_fewer_evaluations_than_newton() {
+        // sin t - 1/2 rises through zero at pi/6; the coarse step [0, 1] puts the secant point 0.07
+        // beyond it (Newton needs 7 evaluations in all, the cubic model 5).
+        let count = Cell::new(0);
+        let newton = |t: f64| {
+            count.set(count.get() + 1);
+            [(t.sin() - 0.5, t.cos())]
+        };
+        let t = first_rise(newton, 0.0, 1.0, 1.0, [1.0], [0.0]).unwrap().0;
+        assert!((t - std::f64::consts::FRAC_PI_6).abs() < 1e-15, "{t}");
+        let by_newton = count.replace(0);
+        let taylor = |t: f64| {
+            count.set(count.get() + 1);
+            [(t.sin() - 0.5, t.cos(), -t.sin(), -t.cos())]
+        };
+        let t = first_rise(taylor, 0.0, 1.0, 1.0, [1.0], [0.0]).unwrap().0;
+        assert!((t - std::f64::consts::FRAC_PI_6).abs() < 1e-15, "{t}");
+        assert!(
+            count.get() < by_newton,
+            "{} against {by_newton}",
+            count.get()
+        );
     }
 
     #[test]

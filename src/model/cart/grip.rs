@@ -40,10 +40,10 @@ impl Grip {
     }
 
     /// The state at `t` and how far the grip is from breaking forward and backward there: sign F_s - mu N
-    /// for sign = +1 and -1, each with its rate (the grip breaks when either rises above zero). The
-    /// cart's angle and the normal force's are computed together.
-    #[inline]
-    pub fn evaluate(&self, setup: &Setup, t: f64) -> (State, [(f64, f64); 2]) {
+    /// for sign = +1 and -1, each with its first three derivatives (the grip breaks when either
+    /// rises above zero). The cart's angle and the normal force's are computed together.
+    #[inline(always)]
+    pub fn evaluate(&self, setup: &Setup, t: f64) -> (State, [(f64, f64, f64, f64); 2]) {
         let (omega, tau) = (setup.omega_grip, t - self.start.t);
         // At the phase's start, where the event search begins, the cart's angle is 0 (sin_cos2 gives
         // exactly (0, 1) there, and its other lane is sin_cos's).
@@ -52,12 +52,38 @@ impl Grip {
         } else {
             sin_cos2(omega * tau, setup.w * t)
         };
-        let s = self.at_given(setup, t, cart);
-        let margins = setup.grip_margins_given(
+        // At the phase's start the closed form gives the start state itself.
+        let s = if tau == 0.0 {
+            State { t, ..self.start }
+        } else {
+            self.at_given(setup, t, cart)
+        };
+        let [(forward, forward_rate), (backward, backward_rate)] = setup.grip_margins_given(
             normal,
             self.friction(setup, s.x),
             self.force_rate(setup, &s),
         );
+        // F_s = k m_eff X / (M + m_eff) + const (0 on a stuck cart), so F_s'' and F_s''' follow X'' and
+        // X'''; mu N's second and third derivatives are -w² times its value and rate.
+        let [accel, jerk, _] = self.cart_derivatives(setup, &s);
+        let force = [setup.grip_gain * accel, setup.grip_gain * jerk];
+        let w2 = setup.w * setup.w;
+        let limit = setup.peak_friction() * normal.0.max(0.0);
+        let limit_rate = setup.peak_friction() * setup.w * normal.1;
+        let margins = [
+            (
+                forward,
+                forward_rate,
+                force[0] + w2 * limit,
+                force[1] + w2 * limit_rate,
+            ),
+            (
+                backward,
+                backward_rate,
+                w2 * limit - force[0],
+                w2 * limit_rate - force[1],
+            ),
+        ];
         (s, margins)
     }
 
@@ -92,6 +118,19 @@ impl Grip {
         match self.cart {
             Cart::Stuck => 0.0,
             Cart::Moving(_) => -setup.k * s.x / (setup.cart_mass + setup.m_eff) + self.push(setup),
+        }
+    }
+
+    /// The cart's V', V'' = -k V / (M + m_eff) and V''' = -k V' / (M + m_eff), or 0 when stuck.
+    #[inline]
+    pub fn cart_derivatives(&self, setup: &Setup, s: &State) -> [f64; 3] {
+        match self.cart {
+            Cart::Stuck => [0.0; 3],
+            Cart::Moving(_) => {
+                let accel = self.cart_acceleration(setup, s);
+                let gain = -setup.k / (setup.cart_mass + setup.m_eff);
+                [accel, gain * s.v, gain * accel]
+            }
         }
     }
 

@@ -204,12 +204,15 @@ impl Contact for SingleCart {
                 if setup.cart_friction > 0.0 {
                     let cart_dir = f64::from(cart_dir);
                     let f = |t: f64| {
-                        let (s, friction) = slide.evaluate(setup, t);
+                        let (s, friction) = slide.sample(setup, t);
                         last.record(s.t, s);
                         let slip = slide.slip_event(setup, &s, friction, slip_offset);
+                        let [accel, jerk, snap] = slide.cart_derivatives(setup, &s, friction);
                         let stop = (
                             -cart_dir * (s.v - v_offset),
-                            -cart_dir * slide.cart_acceleration(setup, &s, friction),
+                            -cart_dir * accel,
+                            -cart_dir * jerk,
+                            -cart_dir * snap,
                         );
                         [slip, stop]
                     };
@@ -227,7 +230,7 @@ impl Contact for SingleCart {
                     // Without string friction the cart's stopping changes nothing: the slip alone is
                     // watched.
                     let f = |t: f64| {
-                        let (s, friction) = slide.evaluate(setup, t);
+                        let (s, friction) = slide.sample(setup, t);
                         last.record(s.t, s);
                         [slide.slip_event(setup, &s, friction, slip_offset)]
                     };
@@ -237,13 +240,20 @@ impl Contact for SingleCart {
             }
             (CartMotion::Slide(slide), Cart::Stuck) => {
                 let f = |t: f64| {
-                    let (s, friction) = slide.evaluate(setup, t);
+                    let (s, friction) = slide.sample(setup, t);
                     last.record(s.t, s);
                     let slip = slide.slip_event(setup, &s, friction, slip_offset);
-                    let push = friction - setup.k * s.x;
+                    let push = friction.0 - setup.k * s.x;
                     let push_rate = slide.dir * setup.friction_limit_rate(t);
                     let [up, down] = setup.unstick_margins(push, push_rate);
-                    [slip, up, down]
+                    // The still cart's X is fixed: push'' = F'' = -w² F, push''' = -w² F'.
+                    let w2 = setup.w * setup.w;
+                    let (second, third) = (-w2 * friction.0, -w2 * friction.1);
+                    [
+                        slip,
+                        (up.0, up.1, second, third),
+                        (down.0, down.1, -second, -third),
+                    ]
                 };
                 let (slip_curvature, push_curvature) = slide.curvature(setup);
                 let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
@@ -262,9 +272,12 @@ impl Contact for SingleCart {
                     let f = |t: f64| {
                         let (s, [forward, backward]) = grip.evaluate(setup, t);
                         last.record(s.t, s);
+                        let [accel, jerk, snap] = grip.cart_derivatives(setup, &s);
                         let stop = (
                             -cart_dir * (s.v - v_offset),
-                            -cart_dir * grip.cart_acceleration(setup, &s),
+                            -cart_dir * accel,
+                            -cart_dir * jerk,
+                            -cart_dir * snap,
                         );
                         [forward, backward, stop]
                     };

@@ -79,6 +79,13 @@ impl Slide {
     /// The state at `t` and the friction F there.
     #[inline]
     pub fn evaluate(&self, setup: &Setup, t: f64) -> (State, f64) {
+        let (state, (friction, _)) = self.sample(setup, t);
+        (state, friction)
+    }
+
+    /// The state at `t`, and the friction F there with its rate F'.
+    #[inline(always)]
+    pub fn sample(&self, setup: &Setup, t: f64) -> (State, (f64, f64)) {
         let s0 = &self.start;
         let tau = t - s0.t;
         let (w, omega) = (setup.w, setup.omega_slide);
@@ -92,39 +99,57 @@ impl Slide {
             sin_cos2(w * tau, omega * tau)
         };
         let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
-        // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
-        let impulse =
-            force_amplitude * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / w;
-        let (x, v) = match self.response {
-            CartResponse::Detuned { amplitude } => {
-                // Free response from the start state, plus A (sin w t - its free continuation from t0).
-                let (x_free, v_free) = free_given(s0.x, s0.v, omega, tau, s, c);
-                let phase0 = (self.sin_wt0, self.cos_wt0);
-                let (x_forced, v_forced) =
-                    detuned(omega, w, tau, phase0, (sin_w_tau, cos_w_tau), (s, c));
-                let (x_push, v_push) = self.push_response(s, c, omega, tau);
-                (
-                    x_free + amplitude * x_forced + x_push,
-                    v_free + amplitude * v_forced + v_push,
-                )
+        let cos_wt = self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau;
+        // At the phase's start, where the event search begins, the closed forms give the start state
+        // itself.
+        let state = if tau == 0.0 {
+            let v = match self.response {
+                CartResponse::Stuck => 0.0,
+                _ => s0.v,
+            };
+            State { t, v, ..*s0 }
+        } else {
+            // Eqs. (1), (2): the impulse ∫ F dt = F0 (cos w t0 - cos w t)/w.
+            let impulse =
+                force_amplitude * (self.cos_wt0 * (1.0 - cos_w_tau) + self.sin_wt0 * sin_w_tau) / w;
+            let (x, v) = match self.response {
+                CartResponse::Detuned { amplitude } => {
+                    // Free response from the start state, plus A (sin w t - its free continuation
+                    // from t0).
+                    let (x_free, v_free) = free_given(s0.x, s0.v, omega, tau, s, c);
+                    let phase0 = (self.sin_wt0, self.cos_wt0);
+                    let (x_forced, v_forced) =
+                        detuned(omega, w, tau, phase0, (sin_w_tau, cos_w_tau), (s, c));
+                    let (x_push, v_push) = self.push_response(s, c, omega, tau);
+                    (
+                        x_free + amplitude * x_forced + x_push,
+                        v_free + amplitude * v_forced + v_push,
+                    )
+                }
+                CartResponse::Forced => {
+                    let (x_free, v_free) = free(s0.x, s0.v, omega, tau);
+                    let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
+                    let drive = force_amplitude / setup.cart_mass;
+                    let (x_push, v_push) = self.push_response(s, c, omega, tau);
+                    (x_free + drive * g + x_push, v_free + drive * dg + v_push)
+                }
+                CartResponse::Stuck => (s0.x, 0.0),
+            };
+            State {
+                t,
+                vx: s0.vx - impulse / setup.m,
+                omega: s0.omega + impulse * setup.r / setup.inertia,
+                x,
+                v,
             }
-            CartResponse::Forced => {
-                let (x_free, v_free) = free(s0.x, s0.v, omega, tau);
-                let (g, dg) = forced(omega, w, self.sin_wt0, self.cos_wt0, tau);
-                let drive = force_amplitude / setup.cart_mass;
-                let (x_push, v_push) = self.push_response(s, c, omega, tau);
-                (x_free + drive * g + x_push, v_free + drive * dg + v_push)
-            }
-            CartResponse::Stuck => (s0.x, 0.0),
         };
-        let state = State {
-            t,
-            vx: s0.vx - impulse / setup.m,
-            omega: s0.omega + impulse * setup.r / setup.inertia,
-            x,
-            v,
+        let friction = force_amplitude * sin_wt.max(0.0);
+        let friction_rate = if sin_wt > 0.0 {
+            force_amplitude * w * cos_wt
+        } else {
+            0.0
         };
-        (state, force_amplitude * sin_wt.max(0.0))
+        (state, (friction, friction_rate))
     }
 
     /// The cart's response to the constant string friction.
@@ -146,14 +171,44 @@ impl Slide {
         }
     }
 
-    /// The event that ends the slide, the slip reaching zero, as a function that rises through zero:
-    /// -dir (slip - `offset`) and its rate, given the friction `f` at `s`. The offset is the slip at the
-    /// start when the slide begins on zero slip, so rounding cannot fake a crossing there.
+    /// The cart's V', V'' and V''' given the friction `f` at `s` and its rate: V' = (F - k X)/M less
+    /// the string friction, V'' = (F' - k V)/M, V''' = (F'' - k V')/M with F'' = -w² F (all 0 when
+    /// stuck).
     #[inline]
-    pub fn slip_event(&self, setup: &Setup, s: &State, f: f64, offset: f64) -> (f64, f64) {
+    pub fn cart_derivatives(&self, setup: &Setup, s: &State, (f, rate): (f64, f64)) -> [f64; 3] {
+        match self.cart {
+            Cart::Stuck => [0.0; 3],
+            Cart::Moving(_) => {
+                let accel = self.cart_acceleration(setup, s, f);
+                let big_m = setup.cart_mass;
+                [
+                    accel,
+                    (rate - setup.k * s.v) / big_m,
+                    (-setup.w * setup.w * f - setup.k * accel) / big_m,
+                ]
+            }
+        }
+    }
+
+    /// The event that ends the slide, the slip reaching zero, as a function that rises through zero:
+    /// -dir (slip - `offset`) with its first three derivatives, given the friction `f` at `s` and its
+    /// rate (slip' = -F/m_eff - V', and F'' = -w² F). The offset is the slip at the start when the
+    /// slide begins on zero slip, so rounding cannot fake a crossing there.
+    #[inline]
+    pub fn slip_event(
+        &self,
+        setup: &Setup,
+        s: &State,
+        (f, rate): (f64, f64),
+        offset: f64,
+    ) -> (f64, f64, f64, f64) {
+        let [_, jerk, snap] = self.cart_derivatives(setup, s, (f, rate));
+        let second = -setup.w * setup.w * f;
         (
             -self.dir * (setup.slip(s) - offset),
             -self.dir * self.slip_rate(setup, s, f),
+            self.dir * (rate / setup.m_eff + jerk),
+            self.dir * (second / setup.m_eff + snap),
         )
     }
 
