@@ -226,6 +226,20 @@ impl Contact for SingleCart {
                         };
                         (t, cause)
                     })
+                } else if let Some(sums) = slide.slip_sums(setup) {
+                    // Without string friction the cart's stopping changes nothing: the slip alone is
+                    // watched, here by its sums; the state is computed only where the search ends.
+                    let constants = sums.constants(slip_offset);
+                    let probes = Recent::new(t0, (t0, ((0.0, 1.0), (0.0, 1.0))));
+                    let f = |t: f64| {
+                        let angles = slide.angles(setup, t);
+                        probes.record(t, (t, angles));
+                        [sums.event(angles, constants)]
+                    };
+                    let event = first_rise(f, t0, end, step, [slip_curvature], [slip_noise]);
+                    let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
+                    last.record(t, slide.sample_given(setup, t, angles).0);
+                    event.map(|(t, _)| (t, Cause::SlipZero))
                 } else {
                     // Without string friction the cart's stopping changes nothing: the slip alone is
                     // watched.

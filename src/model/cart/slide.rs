@@ -19,6 +19,9 @@ pub struct Slide {
     push: f64,
 }
 
+/// sin and cos of w τ and of Ωτ, τ the time since the phase began.
+pub type Angles = ((f64, f64), (f64, f64));
+
 /// How the cart's motion is written. Detuned: the response to the friction through the particular
 /// solution A sin(w t), A = F0 / (M (Ω² - w²)), two `sin_cos` per evaluation. Forced: through
 /// [`forced`], which has no 1/(Ω² - w²) and stays exact at resonance and for very light carts, where
@@ -86,18 +89,34 @@ impl Slide {
     /// The state at `t`, and the friction F there with its rate F'.
     #[inline(always)]
     pub fn sample(&self, setup: &Setup, t: f64) -> (State, (f64, f64)) {
+        self.sample_given(setup, t, self.angles(setup, t))
+    }
+
+    /// sin and cos of w τ and of Ωτ at `t`, τ = t - t0, computed together (the cart's are wasted when it
+    /// is stuck); both angles are 0 at the start of the phase, where the event search begins (sin_cos2
+    /// gives exactly (0, 1) there).
+    #[inline(always)]
+    pub fn angles(&self, setup: &Setup, t: f64) -> Angles {
+        let tau = t - self.start.t;
+        if tau == 0.0 {
+            ((0.0, 1.0), (0.0, 1.0))
+        } else {
+            sin_cos2(setup.w * tau, setup.omega_slide * tau)
+        }
+    }
+
+    /// [`Slide::sample`] with the phase's [`Angles`] at `t` at hand.
+    #[inline(always)]
+    pub fn sample_given(
+        &self,
+        setup: &Setup,
+        t: f64,
+        ((sin_w_tau, cos_w_tau), (s, c)): Angles,
+    ) -> (State, (f64, f64)) {
         let s0 = &self.start;
         let tau = t - s0.t;
         let (w, omega) = (setup.w, setup.omega_slide);
         let force_amplitude = self.dir * setup.peak_friction();
-        // The normal force's angle and the cart's together (the cart's is wasted when it is stuck);
-        // both are 0 at the start of the phase, where the event search begins (sin_cos2 gives
-        // exactly (0, 1) there).
-        let ((sin_w_tau, cos_w_tau), (s, c)) = if tau == 0.0 {
-            ((0.0, 1.0), (0.0, 1.0))
-        } else {
-            sin_cos2(w * tau, omega * tau)
-        };
         let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
         let cos_wt = self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau;
         // At the phase's start, where the event search begins, the closed forms give the start state
@@ -150,6 +169,39 @@ impl Slide {
             0.0
         };
         (state, (friction, friction_rate))
+    }
+
+    /// The slip event written once for the phase, where the cart's response is detuned, it has a spring
+    /// and no string friction (else `None`).
+    pub fn slip_sums(&self, setup: &Setup) -> Option<SlipSums> {
+        let CartResponse::Detuned { amplitude } = self.response else {
+            return None;
+        };
+        let (w, omega) = (setup.w, setup.omega_slide);
+        if self.push != 0.0 || omega == 0.0 {
+            return None;
+        }
+        let s0 = &self.start;
+        let dir = self.dir;
+        let force_amplitude = dir * setup.peak_friction();
+        // slip = slip0 - J/m_eff - V with the impulse J = F0 (cos w t0 - cos w t)/w and the cart's
+        // V = A w cos w t + b cos Ωτ - a Ω sin Ωτ, a = X0 - A sin w t0, b = V0 - A w cos w t0 (Eq. (3)'s
+        // particular and free responses); the event is -dir (slip - offset).
+        let ball = dir * (force_amplitude / setup.m_eff - amplitude * w * w);
+        let free_cos = dir * (s0.v - amplitude * w * self.cos_wt0);
+        let free_sin = dir * (s0.x - amplitude * self.sin_wt0) * omega;
+        let rates = |c: f64, r: f64| [c, c * r, c * r * r, c * r * r * r];
+        Some(SlipSums {
+            slip0: setup.slip(s0),
+            v0: s0.v,
+            impulse0: dir * force_amplitude * self.cos_wt0 / (w * setup.m_eff),
+            sin_wt0: self.sin_wt0,
+            cos_wt0: self.cos_wt0,
+            ball: rates(ball / w, w),
+            free_cos: rates(free_cos, omega),
+            free_sin: rates(free_sin, omega),
+            dir,
+        })
     }
 
     /// The cart's response to the constant string friction.
@@ -270,5 +322,65 @@ impl Slide {
         };
         let cart = crude.min(amplitudes);
         (ball + cart, cart)
+    }
+}
+
+/// The slip event of a slide whose cart's response is detuned, on a spring and without string friction,
+/// as fixed combinations of sin and cos of w t and Ωτ: with P = dir (F0/m_eff - A w²), B = dir b and
+/// Q = dir a Ω (see [`Slide::slip_sums`]), the event -dir (slip - offset) is
+/// dir (offset - slip0 - V0 + F0 cos(w t0)/(w m_eff)) - (P/w) cos w t + B cos Ωτ - Q sin Ωτ,
+/// and each derivative turns each oscillation a quarter and scales it by its frequency.
+#[derive(Clone, Copy, Debug)]
+pub struct SlipSums {
+    slip0: f64,
+    /// The cart's velocity at the start, part of slip0.
+    v0: f64,
+    /// dir F0 cos(w t0)/(w m_eff).
+    impulse0: f64,
+    sin_wt0: f64,
+    cos_wt0: f64,
+    /// P/w, P, P w, P w².
+    ball: [f64; 4],
+    /// B, B Ω, B Ω², B Ω³.
+    free_cos: [f64; 4],
+    /// Q, Q Ω, Q Ω², Q Ω³.
+    free_sin: [f64; 4],
+    dir: f64,
+}
+
+impl SlipSums {
+    /// The event's value at the phase's start, exactly dir (offset - slip0), so rounding cannot fake
+    /// a crossing there when the offset is the start's slip; and its constant term.
+    pub fn constants(&self, offset: f64) -> (f64, f64) {
+        let start = self.dir * (offset - self.slip0);
+        (
+            start,
+            self.dir * (offset - self.slip0 - self.v0) + self.impulse0,
+        )
+    }
+
+    /// The event -dir (slip - offset) and its first three derivatives, given the phase's [`Angles`]
+    /// and [`SlipSums::constants`].
+    #[inline(always)]
+    pub fn event(
+        &self,
+        ((sin_w_tau, cos_w_tau), (s, c)): Angles,
+        (start, constant): (f64, f64),
+    ) -> (f64, f64, f64, f64) {
+        let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
+        let cos_wt = self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau;
+        let (p, b, q) = (&self.ball, &self.free_cos, &self.free_sin);
+        // sin w τ is 0 only at τ = 0 (w τ <= pi in contact).
+        let value = if sin_w_tau == 0.0 {
+            start
+        } else {
+            constant - p[0] * cos_wt + b[0] * c - q[0] * s
+        };
+        (
+            value,
+            p[1] * sin_wt - b[1] * s - q[1] * c,
+            p[2] * cos_wt - b[2] * c + q[2] * s,
+            -p[3] * sin_wt + b[3] * s + q[3] * c,
+        )
     }
 }
