@@ -5,6 +5,9 @@ use super::super::oscillator::{free_given, step};
 use super::super::setup::{Setup, State};
 use super::super::trig::{sin_cos, sin_cos2};
 
+/// sin and cos of Ωτ, τ the time since the phase began, and of w t.
+pub type Angles = ((f64, f64), (f64, f64));
+
 /// A grip phase from `start`.
 #[derive(Clone, Copy, Debug)]
 pub struct Grip {
@@ -44,47 +47,62 @@ impl Grip {
     /// rises above zero). The cart's angle and the normal force's are computed together.
     #[inline(always)]
     pub fn evaluate(&self, setup: &Setup, t: f64) -> (State, [(f64, f64, f64, f64); 2]) {
-        let (omega, tau) = (setup.omega_grip, t - self.start.t);
-        // At the phase's start, where the event search begins, the cart's angle is 0 (sin_cos2 gives
-        // exactly (0, 1) there, and its other lane is sin_cos's).
-        let (cart, normal) = if tau == 0.0 {
+        let angles = self.angles(setup, t);
+        let s = self.state_given(setup, t, angles);
+        // F_s = k m_eff X / (M + m_eff) + const (0 on a stuck cart), so F_s'' and F_s''' follow X'' and
+        // X'''.
+        let [accel, jerk, _] = self.cart_derivatives(setup, &s);
+        let force = [
+            self.friction(setup, s.x),
+            self.force_rate(setup, &s),
+            setup.grip_gain * accel,
+            setup.grip_gain * jerk,
+        ];
+        (s, margins(setup, angles.1, force))
+    }
+
+    /// sin and cos of Ωτ and of w t at `t`, τ = t - t0, computed together. At the phase's start, where
+    /// the event search begins, the cart's angle is 0 (sin_cos2 gives exactly (0, 1) there, and its
+    /// other lane is sin_cos's).
+    #[inline(always)]
+    pub fn angles(&self, setup: &Setup, t: f64) -> Angles {
+        let tau = t - self.start.t;
+        if tau == 0.0 {
             ((0.0, 1.0), sin_cos(setup.w * t))
         } else {
-            sin_cos2(omega * tau, setup.w * t)
-        };
-        // At the phase's start the closed form gives the start state itself.
-        let s = if tau == 0.0 {
+            sin_cos2(setup.omega_grip * tau, setup.w * t)
+        }
+    }
+
+    /// The state at `t` from the [`Angles`] there; at the phase's start the closed form gives the start
+    /// state itself.
+    #[inline(always)]
+    pub fn state_given(&self, setup: &Setup, t: f64, (cart, _): Angles) -> State {
+        if t == self.start.t {
             State { t, ..self.start }
         } else {
             self.at_given(setup, t, cart)
-        };
-        let [(forward, forward_rate), (backward, backward_rate)] = setup.grip_margins_given(
-            normal,
-            self.friction(setup, s.x),
-            self.force_rate(setup, &s),
-        );
-        // F_s = k m_eff X / (M + m_eff) + const (0 on a stuck cart), so F_s'' and F_s''' follow X'' and
-        // X'''; mu N's second and third derivatives are -w² times its value and rate.
-        let [accel, jerk, _] = self.cart_derivatives(setup, &s);
-        let force = [setup.grip_gain * accel, setup.grip_gain * jerk];
-        let w2 = setup.w * setup.w;
-        let limit = setup.peak_friction() * normal.0.max(0.0);
-        let limit_rate = setup.peak_friction() * setup.w * normal.1;
-        let margins = [
-            (
-                forward,
-                forward_rate,
-                force[0] + w2 * limit,
-                force[1] + w2 * limit_rate,
-            ),
-            (
-                backward,
-                backward_rate,
-                w2 * limit - force[0],
-                w2 * limit_rate - force[1],
-            ),
-        ];
-        (s, margins)
+        }
+    }
+
+    /// The static friction written once for the phase, where the cart moves on a spring without string
+    /// friction (else `None`).
+    pub fn force_sums(&self, setup: &Setup) -> Option<ForceSums> {
+        let omega = setup.omega_grip;
+        if self.cart == Cart::Stuck || self.push(setup) != 0.0 || omega == 0.0 {
+            return None;
+        }
+        let gain = setup.grip_gain;
+        Some(ForceSums {
+            x0: self.start.x,
+            swing: self.start.v / omega,
+            gains: [
+                gain,
+                gain * omega,
+                gain * omega * omega,
+                gain * omega * omega * omega,
+            ],
+        })
     }
 
     /// [`Grip::at`] with sin(Ωτ) and cos(Ωτ) at hand.
@@ -164,5 +182,62 @@ impl Grip {
         let offset = self.start.x - self.push(setup) * (setup.cart_mass + setup.m_eff) / setup.k;
         let x_accel = omega * ((omega * offset).powi(2) + self.start.v.powi(2)).sqrt();
         (setup.grip_gain * x_accel + normal, omega * x_accel)
+    }
+}
+
+/// How far the grip is from breaking forward and backward, sign F_s - mu N for sign = +1 and -1, each
+/// with its first three derivatives, given sin and cos of w t and F_s with its first three derivatives;
+/// mu N's second and third derivatives are -w² times its value and rate.
+#[inline(always)]
+fn margins(
+    setup: &Setup,
+    normal: (f64, f64),
+    [force, rate, second, third]: [f64; 4],
+) -> [(f64, f64, f64, f64); 2] {
+    let [(forward, forward_rate), (backward, backward_rate)] =
+        setup.grip_margins_given(normal, force, rate);
+    let w2 = setup.w * setup.w;
+    let limit = setup.peak_friction() * normal.0.max(0.0);
+    let limit_rate = setup.peak_friction() * setup.w * normal.1;
+    [
+        (
+            forward,
+            forward_rate,
+            second + w2 * limit,
+            third + w2 * limit_rate,
+        ),
+        (
+            backward,
+            backward_rate,
+            w2 * limit - second,
+            w2 * limit_rate - third,
+        ),
+    ]
+}
+
+/// The static friction of a grip whose cart moves on a spring without string friction, F_s = g X with
+/// g = k m_eff / (M + m_eff) (Eq. (5)) and X = X0 cos Ωτ + (V0/Ω) sin Ωτ (Eq. (6)), as fixed
+/// combinations of sin and cos of Ωτ: each derivative turns the swing a quarter and scales it by Ω.
+#[derive(Clone, Copy, Debug)]
+pub struct ForceSums {
+    x0: f64,
+    /// V0/Ω.
+    swing: f64,
+    /// g, g Ω, g Ω², g Ω³.
+    gains: [f64; 4],
+}
+
+impl ForceSums {
+    /// The margins of [`Grip::evaluate`] from the phase's [`Angles`].
+    #[inline(always)]
+    pub fn margins(&self, setup: &Setup, ((s, c), normal): Angles) -> [(f64, f64, f64, f64); 2] {
+        let x = self.x0 * c + self.swing * s;
+        let rate = self.swing * c - self.x0 * s;
+        let g = &self.gains;
+        margins(
+            setup,
+            normal,
+            [g[0] * x, g[1] * rate, -g[2] * x, -g[3] * rate],
+        )
     }
 }

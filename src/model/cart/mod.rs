@@ -306,6 +306,21 @@ impl Contact for SingleCart {
                         };
                         (t, cause)
                     })
+                } else if let Some(sums) = grip.force_sums(setup) {
+                    // Without string friction only the margins are watched, here by their sums; the
+                    // state is computed only where the search ends.
+                    // (Only the cart's angle matters to the state: at the start it is 0.)
+                    let probes = Recent::new(t0, (t0, ((0.0, 1.0), (0.0, 1.0))));
+                    let f = |t: f64| {
+                        let angles = grip.angles(setup, t);
+                        probes.record(t, (t, angles));
+                        sums.margins(setup, angles)
+                    };
+                    let curvature = [margin_curvature; 2];
+                    let event = first_rise(f, t0, end, step, curvature, [margin_noise; 2]);
+                    let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
+                    last.record(t, grip.state_given(setup, t, angles));
+                    event.map(|(t, branch)| (t, broke(branch)))
                 } else {
                     // Without string friction only the margins are watched.
                     let f = |t: f64| {
