@@ -74,7 +74,7 @@ impl Grip {
         }
     }
 
-    /// The state at `t` from the [`Angles`] there; at the phase's start the closed form gives the start
+    /// The state at `t` from the `Angles` there; at the phase's start the closed form gives the start
     /// state itself.
     #[inline(always)]
     pub fn state_given(&self, setup: &Setup, t: f64, (cart, _): Angles) -> State {
@@ -228,7 +228,7 @@ pub struct ForceSums {
 }
 
 impl ForceSums {
-    /// The margins of [`Grip::evaluate`] from the phase's [`Angles`].
+    /// The margins of [`Grip::evaluate`] from the phase's `Angles`.
     #[inline(always)]
     pub fn margins(&self, setup: &Setup, ((s, c), normal): Angles) -> [(f64, f64, f64, f64); 2] {
         let x = self.x0 * c + self.swing * s;

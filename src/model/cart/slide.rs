@@ -105,7 +105,7 @@ impl Slide {
         }
     }
 
-    /// [`Slide::sample`] with the phase's [`Angles`] at `t` at hand.
+    /// [`Slide::sample`] with the phase's `Angles` at `t` at hand.
     #[inline(always)]
     pub fn sample_given(
         &self,
@@ -359,7 +359,7 @@ impl SlipSums {
         )
     }
 
-    /// The event -dir (slip - offset) and its first three derivatives, given the phase's [`Angles`]
+    /// The event -dir (slip - offset) and its first three derivatives, given the phase's `Angles`
     /// and [`SlipSums::constants`].
     #[inline(always)]
     pub fn event(
