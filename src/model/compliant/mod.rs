@@ -464,7 +464,7 @@ impl CompliantState {
 
 /// The tangentially compliant ball on the single cart or on a chain, with or without string friction.
 /// With a spring (k > 0) every grip on a moving contact mass is solved by [`ChainGrip`], the single cart
-/// without string friction being a chain of one mass, and a grip on a held first mass of a chain by
+/// without string friction being a chain of one mass (which slides by the rigid ball's [`Slide`]), and a grip on a held first mass of a chain by
 /// [`HeldChainGrip`] ([`HeldRingGrip`] on a free frame); a free cart (k = 0) has a double zero root
 /// there, and its grips are solved by [`CompliantGrip`], as are all grips on the single cart with
 /// string friction (on a free frame, held, on the body of cart and frame, [`HeldOnFrame`]).
@@ -880,6 +880,11 @@ impl Contact for CompliantBall {
             Ball::Slide(dir) => {
                 let rigid = match &self.support {
                     Support::Cart(_) => Rigid::Cart(Slide::new(setup, state.contact, dir, cart)),
+                    // The single cart on the wall, a chain of one mass for its grips: it slides as
+                    // the rigid ball's cart, the same closed form in fewer operations.
+                    Support::Chain { chain, .. } if chain.n == 1 && chain.frame_index() == 0 => {
+                        Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
+                    }
                     Support::Chain { chain, .. } => Rigid::Chain(Arc::new(ChainMotion::new(
                         chain.clone(),
                         setup,
