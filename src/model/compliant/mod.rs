@@ -978,10 +978,15 @@ impl Contact for CompliantBall {
                 } else {
                     0.0
                 };
-                let f = |t: f64| {
+                // The patch's slip against `dir`, with the point it was measured at.
+                let slip = |t: f64| {
                     let p = slide.at(setup, t);
                     last.set(Some(p));
                     let (slip, rate) = slide.patch_slip(setup, &p);
+                    (p, (-dir * (slip - offset), -dir * rate))
+                };
+                let f = |t: f64| {
+                    let (p, slip) = slip(t);
                     let [first, second] = match &slide.rigid {
                         Rigid::Cart(_) => events.at(setup, &p),
                         // Held to a free frame: the ring's push on the first mass.
@@ -997,7 +1002,7 @@ impl Contact for CompliantBall {
                         }
                         Rigid::Chain(_) => events.at_chain(setup, &p, (0.0, 0.0)),
                     };
-                    [(-dir * (slip - offset), -dir * rate), first, second]
+                    [slip, first, second]
                 };
                 let (slip_curvature, terms, fastest) = slide.slip_bounds(setup);
                 let noise = ROUNDING * (speeds + terms + slide.stretch.speed(w));
@@ -1030,23 +1035,30 @@ impl Contact for CompliantBall {
                         (curvature, ROUNDING * (v_offset.abs() + terms))
                     }
                 };
-                let noise = [noise, cart_noise, cart_noise];
+                // Without string friction the cart has no event: the slip alone is searched.
+                let search = |from: f64, to: f64, step: f64, curvature: f64| {
+                    if setup.cart_friction == 0.0 {
+                        let slip_only = |t: f64| [slip(t).1];
+                        first_rise_from_tangent(slip_only, from, to, step, [curvature], [noise])
+                    } else {
+                        let curvature = [curvature, cart_curvature, cart_curvature];
+                        let noise = [noise, cart_noise, cart_noise];
+                        first_rise_from_tangent(&f, from, to, step, curvature, noise)
+                    }
+                };
                 // While the stretch's transient lasts, on its scale; after, on the cart's.
                 let split = slide.stretch.settled().clamp(t0, end);
                 let early = if slide.stretch.damped {
                     let curvature = slip_curvature + slide.stretch.third(w, t0);
                     let step = setup.event_step(fastest.max(slide.stretch.lambda));
-                    let curvature = [curvature, cart_curvature, cart_curvature];
-                    first_rise_from_tangent(f, t0, split, step, curvature, noise)
+                    search(t0, split, step, curvature)
                 } else {
                     None
                 };
                 early
                     .or_else(|| {
                         let curvature = slip_curvature + slide.stretch.third(w, split);
-                        let step = setup.event_step(fastest);
-                        let curvature = [curvature, cart_curvature, cart_curvature];
-                        first_rise_from_tangent(f, split, end, step, curvature, noise)
+                        search(split, end, setup.event_step(fastest), curvature)
                     })
                     .map(|(t, branch)| {
                         let cause = match branch {
