@@ -972,15 +972,17 @@ impl Contact for CompliantBall {
                 // After a grip broke, the patch starts from rest on the cart (with a dashpot) or with
                 // the jump of e' (without): a start slip against `dir` is rounding, and counts as zero,
                 // so rounding can never fake a crossing at the start.
-                let start_slip = slide.patch_slip(setup, &slide.at(setup, t0)).0;
+                let start = slide.at(setup, t0);
+                let start_slip = slide.patch_slip(setup, &start).0;
                 let offset = if cause != Cause::Start && dir * start_slip < 0.0 {
                     start_slip
                 } else {
                     0.0
                 };
-                // The patch's slip against `dir`, with the point it was measured at.
+                // The patch's slip against `dir`, with the point it was measured at (the search's
+                // first, at t0, is the one above).
                 let slip = |t: f64| {
-                    let p = slide.at(setup, t);
+                    let p = if t == t0 { start } else { slide.at(setup, t) };
                     last.set(Some(p));
                     let (slip, rate) = slide.patch_slip(setup, &p);
                     (p, (-dir * (slip - offset), -dir * rate))
