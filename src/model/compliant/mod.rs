@@ -1009,13 +1009,14 @@ impl Contact for CompliantBall {
                 let (slip_curvature, terms, fastest) = slide.slip_bounds(setup);
                 let noise = ROUNDING * (speeds + terms + slide.stretch.speed(w));
                 let (cart_curvature, cart_noise) = match &slide.rigid {
+                    // Without string friction the cart has no event.
+                    _ if setup.cart_friction == 0.0 => (0.0, 0.0),
                     // The rigid slide's bound is on V'' moving, on F'' = (F - k X)'' held.
                     Rigid::Cart(rigid) => {
                         let curvature = rigid.curvature(setup).1;
                         let speeds = rigid.cart_speed_scale(setup);
                         events.bounds(setup, (curvature, speeds), curvature, 0.0)
                     }
-                    Rigid::Chain(_) if setup.cart_friction == 0.0 => (0.0, 0.0),
                     // Held to a free frame, the ring's push (its bound has the friction's share).
                     Rigid::Chain(motion) if motion.is_held() && state.full.frame > 0 => {
                         let (curvature, terms) = ring::push_bounds(motion, setup);
