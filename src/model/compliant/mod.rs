@@ -1046,7 +1046,7 @@ impl Contact for CompliantBall {
                     } else {
                         let curvature = [curvature, cart_curvature, cart_curvature];
                         let noise = [noise, cart_noise, cart_noise];
-                        first_rise_from_tangent(&f, from, to, step, curvature, noise)
+                        first_rise_from_tangent(f, from, to, step, curvature, noise)
                     }
                 };
                 // While the stretch's transient lasts, on its scale; after, on the cart's.
