@@ -464,7 +464,7 @@ impl CompliantState {
 
 /// The tangentially compliant ball on the single cart or on a chain, with or without string friction.
 /// With a spring (k > 0) every grip on a moving contact mass is solved by [`ChainGrip`], the single cart
-/// without string friction being a chain of one mass, and a grip on a held first mass of a chain by
+/// without string friction being a chain of one mass (which slides by the rigid ball's [`Slide`]), and a grip on a held first mass of a chain by
 /// [`HeldChainGrip`] ([`HeldRingGrip`] on a free frame); a free cart (k = 0) has a double zero root
 /// there, and its grips are solved by [`CompliantGrip`], as are all grips on the single cart with
 /// string friction (on a free frame, held, on the body of cart and frame, [`HeldOnFrame`]).
@@ -880,6 +880,11 @@ impl Contact for CompliantBall {
             Ball::Slide(dir) => {
                 let rigid = match &self.support {
                     Support::Cart(_) => Rigid::Cart(Slide::new(setup, state.contact, dir, cart)),
+                    // The single cart on the wall, a chain of one mass for its grips: it slides as
+                    // the rigid ball's cart, the same closed form in fewer operations.
+                    Support::Chain { chain, .. } if chain.n == 1 && chain.frame_index() == 0 => {
+                        Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
+                    }
                     Support::Chain { chain, .. } => Rigid::Chain(Arc::new(ChainMotion::new(
                         chain.clone(),
                         setup,
@@ -967,16 +972,23 @@ impl Contact for CompliantBall {
                 // After a grip broke, the patch starts from rest on the cart (with a dashpot) or with
                 // the jump of e' (without): a start slip against `dir` is rounding, and counts as zero,
                 // so rounding can never fake a crossing at the start.
-                let start_slip = slide.patch_slip(setup, &slide.at(setup, t0)).0;
+                let start = slide.at(setup, t0);
+                let start_slip = slide.patch_slip(setup, &start).0;
                 let offset = if cause != Cause::Start && dir * start_slip < 0.0 {
                     start_slip
                 } else {
                     0.0
                 };
-                let f = |t: f64| {
-                    let p = slide.at(setup, t);
+                // The patch's slip against `dir`, with the point it was measured at (the search's
+                // first, at t0, is the one above).
+                let slip = |t: f64| {
+                    let p = if t == t0 { start } else { slide.at(setup, t) };
                     last.set(Some(p));
                     let (slip, rate) = slide.patch_slip(setup, &p);
+                    (p, (-dir * (slip - offset), -dir * rate))
+                };
+                let f = |t: f64| {
+                    let (p, slip) = slip(t);
                     let [first, second] = match &slide.rigid {
                         Rigid::Cart(_) => events.at(setup, &p),
                         // Held to a free frame: the ring's push on the first mass.
@@ -992,18 +1004,19 @@ impl Contact for CompliantBall {
                         }
                         Rigid::Chain(_) => events.at_chain(setup, &p, (0.0, 0.0)),
                     };
-                    [(-dir * (slip - offset), -dir * rate), first, second]
+                    [slip, first, second]
                 };
                 let (slip_curvature, terms, fastest) = slide.slip_bounds(setup);
                 let noise = ROUNDING * (speeds + terms + slide.stretch.speed(w));
                 let (cart_curvature, cart_noise) = match &slide.rigid {
+                    // Without string friction the cart has no event.
+                    _ if setup.cart_friction == 0.0 => (0.0, 0.0),
                     // The rigid slide's bound is on V'' moving, on F'' = (F - k X)'' held.
                     Rigid::Cart(rigid) => {
                         let curvature = rigid.curvature(setup).1;
                         let speeds = rigid.cart_speed_scale(setup);
                         events.bounds(setup, (curvature, speeds), curvature, 0.0)
                     }
-                    Rigid::Chain(_) if setup.cart_friction == 0.0 => (0.0, 0.0),
                     // Held to a free frame, the ring's push (its bound has the friction's share).
                     Rigid::Chain(motion) if motion.is_held() && state.full.frame > 0 => {
                         let (curvature, terms) = ring::push_bounds(motion, setup);
@@ -1025,23 +1038,30 @@ impl Contact for CompliantBall {
                         (curvature, ROUNDING * (v_offset.abs() + terms))
                     }
                 };
-                let noise = [noise, cart_noise, cart_noise];
+                // Without string friction the cart has no event: the slip alone is searched.
+                let search = |from: f64, to: f64, step: f64, curvature: f64| {
+                    if setup.cart_friction == 0.0 {
+                        let slip_only = |t: f64| [slip(t).1];
+                        first_rise_from_tangent(slip_only, from, to, step, [curvature], [noise])
+                    } else {
+                        let curvature = [curvature, cart_curvature, cart_curvature];
+                        let noise = [noise, cart_noise, cart_noise];
+                        first_rise_from_tangent(f, from, to, step, curvature, noise)
+                    }
+                };
                 // While the stretch's transient lasts, on its scale; after, on the cart's.
                 let split = slide.stretch.settled().clamp(t0, end);
                 let early = if slide.stretch.damped {
                     let curvature = slip_curvature + slide.stretch.third(w, t0);
                     let step = setup.event_step(fastest.max(slide.stretch.lambda));
-                    let curvature = [curvature, cart_curvature, cart_curvature];
-                    first_rise_from_tangent(f, t0, split, step, curvature, noise)
+                    search(t0, split, step, curvature)
                 } else {
                     None
                 };
                 early
                     .or_else(|| {
                         let curvature = slip_curvature + slide.stretch.third(w, split);
-                        let step = setup.event_step(fastest);
-                        let curvature = [curvature, cart_curvature, cart_curvature];
-                        first_rise_from_tangent(f, split, end, step, curvature, noise)
+                        search(split, end, setup.event_step(fastest), curvature)
                     })
                     .map(|(t, branch)| {
                         let cause = match branch {

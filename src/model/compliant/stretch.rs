@@ -21,6 +21,8 @@ pub struct Stretch {
     /// a, m (dir mu N0 / k_b without damping).
     amplitude: f64,
     pub(super) lambda: f64,
+    /// sqrt(lambda² + w²), for the bounds (w without damping).
+    rate: f64,
     pub(super) damped: bool,
 }
 
@@ -38,6 +40,7 @@ impl Stretch {
                 transient: e0 - p0,
                 amplitude,
                 lambda,
+                rate: lambda.hypot(w),
                 damped: true,
             }
         } else {
@@ -46,6 +49,7 @@ impl Stretch {
                 transient: 0.0,
                 amplitude: force / c.kb,
                 lambda: f64::INFINITY,
+                rate: setup.w,
                 damped: false,
             }
         }
@@ -82,7 +86,7 @@ impl Stretch {
         if self.damped {
             let l = self.lambda;
             let decay = (-l * (from - self.t0)).exp();
-            l * l * l * self.transient.abs() * decay + self.amplitude.abs() * w.powi(3) * l.hypot(w)
+            l * l * l * self.transient.abs() * decay + self.amplitude.abs() * w.powi(3) * self.rate
         } else {
             self.amplitude.abs() * w.powi(3)
         }
@@ -91,7 +95,7 @@ impl Stretch {
     /// A bound on |e'| from t0 on.
     pub(super) fn speed(&self, w: f64) -> f64 {
         if self.damped {
-            self.lambda * self.transient.abs() + self.amplitude.abs() * w * self.lambda.hypot(w)
+            self.lambda * self.transient.abs() + self.amplitude.abs() * w * self.rate
         } else {
             self.amplitude.abs() * w
         }
