@@ -517,8 +517,7 @@ fn next(chain: &Arc<Chain>, setup: &Setup, state: &ChainState, ball: Ball, cause
         Cause::GripBreak(sign) => Ball::Slide(sign),
         Cause::Start if ball != Ball::Grip => ball,
         _ => {
-            let grip = Motion::new(chain.clone(), setup, *state, 0.0, Cart::Moving(1));
-            let static_friction = grip.contact(setup, state.t).friction;
+            let static_friction = Motion::grip_friction(chain, setup, state);
             if static_friction.abs() <= setup.mu * setup.normal(state.t) {
                 Ball::Grip
             } else {

@@ -27,6 +27,10 @@ pub struct Modes {
     pub fastest: f64,
     /// The rigid translation's mode (Ω = 0), on a free frame.
     pub rigid: Option<usize>,
+    /// `inverse[j][i]` = Φ_ij m_i, the row of Φᵀ D that [`Modes::project`] takes mode j by, kept so
+    /// that a projection reads one row in order and multiplies once an entry (the same products as
+    /// Φ_ij m_i x_i, bit for bit).
+    inverse: [[f64; MAX]; MAX],
 }
 
 impl Modes {
@@ -180,6 +184,7 @@ impl Modes {
             largest: [0.0; MAX],
             fastest: 0.0,
             rigid,
+            inverse: [[0.0; MAX]; MAX],
         };
         let root_mass = link_mass.sqrt();
         for j in 0..n {
@@ -208,6 +213,7 @@ impl Modes {
             modes.first_stiff[j] = modes.shape[0][j] * omega * omega;
             modes.fastest = modes.fastest.max(omega);
         }
+        modes.invert();
         modes
     }
 
@@ -226,6 +232,7 @@ impl Modes {
             largest: [0.0; MAX],
             fastest: 0.0,
             rigid: None,
+            inverse: [[0.0; MAX]; MAX],
         };
         let ends = (n + 1) as f64;
         let norm = (2.0 / (ends * link_mass)).sqrt();
@@ -242,16 +249,24 @@ impl Modes {
             modes.first_stiff[j] = modes.shape[0][j] * omega * omega;
             modes.fastest = modes.fastest.max(omega);
         }
+        modes.invert();
         modes
+    }
+
+    /// Fills [`Modes::inverse`] from the finished shapes and masses.
+    fn invert(&mut self) {
+        for (j, row) in self.inverse.iter_mut().enumerate().take(self.n) {
+            for (i, entry) in row.iter_mut().enumerate().take(self.n) {
+                *entry = self.shape[i][j] * self.mass[i];
+            }
+        }
     }
 
     /// The modal coordinates q = Φᵀ D x of displacements (or velocities) `x`.
     pub fn project(&self, x: &[f64; MAX]) -> [f64; MAX] {
         let mut q = [0.0; MAX];
-        for (j, qj) in q.iter_mut().enumerate().take(self.n) {
-            *qj = (0..self.n)
-                .map(|i| self.shape[i][j] * self.mass[i] * x[i])
-                .sum();
+        for (qj, row) in q.iter_mut().zip(&self.inverse).take(self.n) {
+            *qj = row[..self.n].iter().zip(x).map(|(a, x)| a * x).sum();
         }
         q
     }

@@ -369,6 +369,17 @@ impl Motion {
         }
     }
 
+    /// The static friction F_s = m_eff Σ Φ_1j Ω_j² q_j (Eq. (5) on the chain) that a grip starting
+    /// from `start` with the first mass moving and no string friction needs at its start: what
+    /// [`Motion::contact`] of that grip gives at t0 (each mode's sum at τ = 0 is its X), without
+    /// building the phase.
+    pub fn grip_friction(chain: &Chain, setup: &Setup, start: &ChainState) -> f64 {
+        let modes = chain.modes(0.0);
+        let q0 = modes.project(&start.x);
+        let stiff = (0..modes.n).fold(0.0, |sum, j| sum + modes.first_stiff[j] * q0[j]);
+        setup.m_eff * stiff
+    }
+
     /// The phase with the first mass held still: the masses behind it swing freely about their rest
     /// line X_i = X_1 (N + 1 - i)/N.
     fn held(
