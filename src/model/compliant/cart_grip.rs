@@ -9,8 +9,11 @@
 //! free cart, by the particular solution in which ball and cart accelerate together), or is held still:
 //! the stretch alone is then a damped oscillator against a still surface, an infinitely heavy cart.
 
+use std::cell::RefCell;
+
 use nalgebra::{Complex, Matrix4, Matrix5, RowVector4, Vector4, Vector5};
 
+use super::super::memo::{Slot, reuse};
 use super::super::trig::sin_cos;
 use super::Point;
 use crate::model::contact::Cart;
@@ -184,7 +187,25 @@ impl Compliance {
         Vector4::new(end[0], end[1], end[2], end[3]).component_div(&self.scale)
     }
 
+    /// The constants for `params` on `setup`: those of the last bounce on this thread when they were
+    /// built from the same inputs (a sweep over the angle, the speed or the spin keeps them), else built
+    /// (their eigenvalues by a Schur decomposition, polished, and the eigenvectors' inverse).
     pub fn new(params: &Params, setup: &Setup) -> Self {
+        thread_local! {
+            static LAST: Slot<[u64; 5], Compliance> = const { RefCell::new(None) };
+        }
+        let key = [
+            params.ball_stiffness,
+            params.ball_damping,
+            setup.m_eff,
+            setup.cart_mass,
+            setup.k,
+        ]
+        .map(f64::to_bits);
+        reuse(&LAST, key, || Self::build(params, setup))
+    }
+
+    fn build(params: &Params, setup: &Setup) -> Self {
         let kb = params.ball_stiffness;
         let cb = 2.0 * params.ball_damping * (kb * setup.m_eff).sqrt();
         let (big_m, k, me) = (setup.cart_mass, setup.k, setup.m_eff);
