@@ -63,6 +63,12 @@ struct Modes {
     s: Vector4<Complex<f64>>,
     v: Matrix4<Complex<f64>>,
     v_inv: Matrix4<Complex<f64>>,
+    /// The modes a real state is summed over, each with its partner: the system is real, so a complex
+    /// eigenvalue's conjugate (exactly, eigenvector and all) carries the conjugate term, and the pair's
+    /// sum is the real part of one term with the two coefficients folded into it ([`Modes::fold`]).
+    terms: [(usize, Option<usize>); 4],
+    /// How many of `terms` are used.
+    count: usize,
 }
 
 impl Modes {
@@ -106,18 +112,47 @@ impl Modes {
             v.set_column(i, &column);
         }
         let v_inv = v.try_inverse()?;
+        let (mut terms, mut count, mut carried) = ([(0, None); 4], 0, [false; 4]);
+        for i in 0..4 {
+            if carried[i] {
+                continue;
+            }
+            let conjugate =
+                (i + 1..4).find(|&j| !carried[j] && s[i].im != 0.0 && s[j] == s[i].conj());
+            if let Some(j) = conjugate {
+                carried[j] = true;
+            }
+            terms[count] = (i, conjugate);
+            count += 1;
+        }
         v_inv
             .iter()
             .all(|c| c.re.is_finite() && c.im.is_finite())
-            .then_some(Modes { s, v, v_inv })
+            .then_some(Modes {
+                s,
+                v,
+                v_inv,
+                terms,
+                count,
+            })
     }
 
-    /// z and z' after `tau` from the modal coefficients `c`.
+    /// The coefficients `c` of a real state (or forcing) folded onto the modes summed over: a pair's
+    /// terms Re(v c_i e^{s τ}) + Re(v̄ c_j e^{s̄ τ}) = Re(v (c_i + c̄_j) e^{s τ}).
+    fn fold(&self, c: &Vector4<Complex<f64>>) -> Vector4<Complex<f64>> {
+        let mut folded = Vector4::zeros();
+        for &(i, partner) in &self.terms[..self.count] {
+            folded[i] = partner.map_or(c[i], |j| c[i] + c[j].conj());
+        }
+        folded
+    }
+
+    /// z and z' after `tau` from the folded modal coefficients `c`.
     #[inline]
     fn at(&self, c: &Vector4<Complex<f64>>, tau: f64) -> (Vector4<f64>, Vector4<f64>) {
         let mut z = Vector4::zeros();
         let mut dz = Vector4::zeros();
-        for i in 0..4 {
+        for &(i, _) in &self.terms[..self.count] {
             let w = c[i] * (self.s[i] * tau).exp();
             let dw = w * self.s[i];
             for j in 0..4 {
@@ -129,8 +164,8 @@ impl Modes {
         (z, dz)
     }
 
-    /// z and z' after `tau` from the modal coefficients `c`, with the constant forcing whose modal
-    /// coefficients are `beta`: each mode gains β_i (e^{s_i τ} - 1)/s_i.
+    /// z and z' after `tau` from the folded modal coefficients `c`, with the constant forcing whose
+    /// folded modal coefficients are `beta`: each mode gains β_i (e^{s_i τ} - 1)/s_i.
     #[inline]
     fn at_forced(
         &self,
@@ -140,7 +175,7 @@ impl Modes {
     ) -> (Vector4<f64>, Vector4<f64>) {
         let mut z = Vector4::zeros();
         let mut dz = Vector4::zeros();
-        for i in 0..4 {
+        for &(i, _) in &self.terms[..self.count] {
             let s = self.s[i];
             let (grow, grow_m1) = exp_and_m1(s * tau);
             let integral = if s == Complex::new(0.0, 0.0) {
@@ -468,6 +503,8 @@ pub struct CompliantGrip {
     /// The modal coefficients of z0 and of the push's forcing, when the modes reproduce the matrix
     /// exponential.
     coefficients: Option<(Coefficients, Coefficients)>,
+    /// The same folded onto the modes summed over ([`Modes::fold`]), zero when unused.
+    folded: (Coefficients, Coefficients),
 }
 
 impl CompliantGrip {
@@ -500,6 +537,7 @@ impl CompliantGrip {
             compliance,
             drive,
             coefficients: None,
+            folded: (Coefficients::zeros(), Coefficients::zeros()),
         };
         // The modes are used only where they reproduce the matrix exponential, in the energy norm, to
         // MODAL_CHECK at the middle and the end of the rest of the contact (near-double roots, as for a
@@ -514,6 +552,7 @@ impl CompliantGrip {
             let c = modes.v_inv * z0;
             let push = grip.push();
             let beta = modes.v_inv * compliance.forcing(push).map(|x| Complex::new(x, 0.0));
+            let (folded_c, folded_beta) = (modes.fold(&c), modes.fold(&beta));
             let remaining = setup.duration - start.t;
             let size = grip.reach(setup, remaining);
             // One matrix exponential, over half the rest, carries the start to the middle and the
@@ -525,15 +564,16 @@ impl CompliantGrip {
                     exact = half * exact;
                 }
                 let (modal, _) = if push == 0.0 {
-                    modes.at(&c, tau)
+                    modes.at(&folded_c, tau)
                 } else {
-                    modes.at_forced(&c, &beta, tau)
+                    modes.at_forced(&folded_c, &folded_beta, tau)
                 };
                 let error = modal - compliance.reduce(&exact);
                 grip.energy_norm(setup, &error) <= MODAL_CHECK * size
             });
             if agrees && size > 0.0 {
                 grip.coefficients = Some((c, beta));
+                grip.folded = (folded_c, folded_beta);
             }
         }
         grip
@@ -568,7 +608,8 @@ impl CompliantGrip {
                 (z, dz)
             }
             (Drive::Pushed { push }, _) => match (&c.modes, &self.coefficients) {
-                (Some(modes), Some((coefficients, beta))) => {
+                (Some(modes), Some(_)) => {
+                    let (coefficients, beta) = &self.folded;
                     modes.at_forced(coefficients, beta, tau)
                 }
                 _ => {
@@ -577,7 +618,7 @@ impl CompliantGrip {
                 }
             },
             (Drive::Unforced | Drive::Drift(_), None) => match (&c.modes, &self.coefficients) {
-                (Some(modes), Some((coefficients, _))) => modes.at(coefficients, tau),
+                (Some(modes), Some(_)) => modes.at(&self.folded.0, tau),
                 _ => {
                     let z = c.exp(tau, &self.z0);
                     (z, c.a * z)
