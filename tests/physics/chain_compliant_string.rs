@@ -7,6 +7,7 @@
 use crate::support::chain_compliant_integrator;
 use crate::support::compliant::incoming;
 use crate::support::compliant_integrator;
+use crate::support::phases::regimes;
 
 use chain_compliant_integrator::{Reference, integrate, step_for};
 use proptest::prelude::*;
@@ -90,16 +91,9 @@ fn an_independent_integration_agrees() {
         assert_eq!(b.cart_ever_stuck(), r.held, "case {case}: {p:?}");
         let phases = &b.phases;
         held += usize::from(phases.iter().all(|ph| ph.cart == Cart::Stuck));
-        freed += usize::from(
-            phases
-                .windows(2)
-                .any(|w| w[0].cart == Cart::Stuck && w[1].cart != Cart::Stuck),
-        );
-        stopped += usize::from(
-            phases
-                .windows(2)
-                .any(|w| w[0].cart != Cart::Stuck && w[1].cart == Cart::Stuck),
-        );
+        let (was_freed, was_stopped) = regimes(phases);
+        freed += usize::from(was_freed);
+        stopped += usize::from(was_stopped);
         held_grip += usize::from(
             phases
                 .iter()

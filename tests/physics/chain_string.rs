@@ -4,6 +4,7 @@
 //! surface, and properties over random chains.
 
 use crate::support::chain_integrator;
+use crate::support::phases::regimes;
 
 use proptest::prelude::*;
 use snapback::model::solve::solve_chain;
@@ -91,16 +92,9 @@ fn string_friction_on_a_chain_agrees_with_numerical_integration() {
         );
         let phases = &exact.phases;
         held += usize::from(phases.iter().any(|ph| ph.cart == Cart::Stuck));
-        freed += usize::from(
-            phases
-                .windows(2)
-                .any(|w| w[0].cart == Cart::Stuck && w[1].cart != Cart::Stuck),
-        );
-        stopped += usize::from(
-            phases
-                .windows(2)
-                .any(|w| w[0].cart != Cart::Stuck && w[1].cart == Cart::Stuck),
-        );
+        let (was_freed, was_stopped) = regimes(phases);
+        freed += usize::from(was_freed);
+        stopped += usize::from(was_stopped);
         // Pushed free under a rolling ball by the masses behind it (only a chain does that).
         rolled_free += usize::from(phases.windows(2).any(|w| {
             (w[0].kind, w[0].cart) == (PhaseKind::Grip, Cart::Stuck) && w[1].cart != Cart::Stuck

@@ -5,6 +5,7 @@
 //! properties over random inputs.
 
 use crate::support::compliant_integrator;
+use crate::support::phases::regimes;
 
 use proptest::prelude::*;
 use snapback::model::{Bounce, Cart, Params, PhaseKind, solve};
@@ -82,16 +83,9 @@ fn an_independent_integration_agrees() {
         same_phases += usize::from(b.phases.len() == reference.phases);
         let phases = &b.phases;
         held += usize::from(phases.iter().all(|ph| ph.cart == Cart::Stuck));
-        freed += usize::from(
-            phases
-                .windows(2)
-                .any(|w| w[0].cart == Cart::Stuck && w[1].cart != Cart::Stuck),
-        );
-        stopped += usize::from(
-            phases
-                .windows(2)
-                .any(|w| w[0].cart != Cart::Stuck && w[1].cart == Cart::Stuck),
-        );
+        let (was_freed, was_stopped) = regimes(phases);
+        freed += usize::from(was_freed);
+        stopped += usize::from(was_stopped);
         held_grip += usize::from(
             phases
                 .iter()

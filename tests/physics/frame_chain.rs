@@ -8,10 +8,11 @@ use proptest::prelude::*;
 use crate::support::chain::random_chain;
 use crate::support::chain_integrator;
 use crate::support::energy::assert_nothing_created;
+use crate::support::phases::each_phase;
 use crate::support::prop::config;
 use crate::support::rng::Rng;
 use snapback::model::chain::{ChainOfMasses, ChainState};
-use snapback::model::contact::{Cause, Contact};
+use snapback::model::contact::Contact;
 use snapback::model::setup::Setup;
 use snapback::model::{Params, PhaseKind, solve};
 
@@ -130,30 +131,19 @@ fn momentum(p: &Params, setup: &Setup, s: &ChainState) -> f64 {
 pub(crate) fn assert_momentum_conserved(p: &Params, what: &str) {
     let setup = Setup::new(p);
     let model = ChainOfMasses::new(p, &setup).expect("a framed chain");
-    let (mut state, mut mode) = model.start(&setup);
-    let p0 = momentum(p, &setup, &state);
+    let p0 = momentum(p, &setup, &model.start(&setup).0);
     let scale = setup.m * (p.speed + p.radius * p.spin.abs());
-    let mut cause = Cause::Start;
-    for _ in 0..1000 {
-        let motion = model.motion(&setup, &state, mode);
-        let found = model.first_event(&setup, &motion, &state, mode, cause);
-        let end = found.event.map_or(setup.duration, |(t, _)| t);
+    each_phase(&model, &setup, |mode, motion, start, end| {
         // Inside the phase and at its end.
-        for t in [0.5 * (state.t + end), end] {
-            let s = model.state_at(&setup, &motion, t, None);
+        for t in [0.5 * (start.t + end), end] {
+            let s = model.state_at(&setup, motion, t, None);
             let drift = (momentum(p, &setup, &s) - p0).abs();
             assert!(
                 drift <= 1e-12 * scale,
                 "{what} at {t} ({mode:?}): {drift} ({p:?})"
             );
         }
-        let Some((t, next_cause)) = found.event else {
-            break;
-        };
-        state = model.state_at(&setup, &motion, t, found.last);
-        mode = model.next(&setup, &mut state, mode, next_cause);
-        cause = next_cause;
-    }
+    });
 }
 
 #[test]

@@ -14,11 +14,13 @@ use crate::support::chain_compliant_integrator::{integrate, step_for};
 use crate::support::chain_integrator;
 use crate::support::compliant::{incoming, peak_friction, random_compliant, solved_or_refused};
 use crate::support::energy::assert_nothing_created;
+use crate::support::phases::each_phase;
+use crate::support::phases::regimes;
 use crate::support::prop::config;
 use crate::support::rng::Rng;
 use snapback::model::chain::ChainState;
 use snapback::model::compliant::CompliantBall;
-use snapback::model::contact::{Ball, Cause, Contact};
+use snapback::model::contact::{Ball, Contact};
 use snapback::model::setup::Setup;
 use snapback::model::{Bounce, Cart, Params, PhaseKind, solve};
 
@@ -73,16 +75,9 @@ fn string_friction_under_a_compliant_ball_on_a_framed_chain_agrees_with_an_integ
         };
         held_grip += usize::from(held(PhaseKind::Grip));
         held_slide += usize::from(held(PhaseKind::Slide));
-        freed += usize::from(
-            phases
-                .windows(2)
-                .any(|w| w[0].cart == Cart::Stuck && w[1].cart != Cart::Stuck),
-        );
-        stopped += usize::from(
-            phases
-                .windows(2)
-                .any(|w| w[0].cart != Cart::Stuck && w[1].cart == Cart::Stuck),
-        );
+        let (was_freed, was_stopped) = regimes(phases);
+        freed += usize::from(was_freed);
+        stopped += usize::from(was_stopped);
     }
     eprintln!(
         "worst disagreement {worst:.2e}; gripping a held first mass {held_grip}, sliding on one \
@@ -109,31 +104,20 @@ fn momentum_along_the_surface_is_conserved_through_every_phase() {
         let links = 2 + rng.below(7);
         let p = random_params(&mut rng, links);
         let (model, setup) = CompliantBall::new(&p, true).expect("a framed chain");
-        let (mut state, mut mode) = model.start(&setup);
-        let p0 = momentum(&p, &setup, state.full());
+        let p0 = momentum(&p, &setup, model.start(&setup).0.full());
         let scale = setup.m * (p.speed + p.radius * p.spin.abs());
-        let mut cause = Cause::Start;
-        for _ in 0..1000 {
-            let motion = model.motion(&setup, &state, mode);
-            let found = model.first_event(&setup, &motion, &state, mode, cause);
-            let end = found.event.map_or(setup.duration, |(t, _)| t);
+        each_phase(&model, &setup, |mode, motion, start, end| {
             held_grips += usize::from(mode.1 == Cart::Stuck && mode.0 == Ball::Grip);
             // Inside the phase and at its end.
-            for t in [0.5 * (CompliantBall::time(&state) + end), end] {
-                let s = model.state_at(&setup, &motion, t, None);
+            for t in [0.5 * (CompliantBall::time(start) + end), end] {
+                let s = model.state_at(&setup, motion, t, None);
                 let drift = (momentum(&p, &setup, s.full()) - p0).abs();
                 assert!(
                     drift <= 1e-11 * scale,
                     "case {case} at {t} ({mode:?}): {drift} ({p:?})"
                 );
             }
-            let Some((t, next_cause)) = found.event else {
-                break;
-            };
-            state = model.state_at(&setup, &motion, t, found.last);
-            mode = model.next(&setup, &mut state, mode, next_cause);
-            cause = next_cause;
-        }
+        });
     }
     assert!(held_grips >= 5, "only {held_grips} held grips");
 }

@@ -10,6 +10,7 @@ use crate::frame::{assert_momentum_conserved, close, random_frame, step_for};
 use crate::support::compliant::solved_or_refused;
 use crate::support::energy::assert_nothing_created;
 use crate::support::frame_integrator::{FrameNumerical, integrate_frame};
+use crate::support::phases::regimes;
 use crate::support::rng::Rng;
 use snapback::analysis::timeline::travel;
 use snapback::model::{Bounce, Cart, Params, PhaseKind, solve};
@@ -72,18 +73,6 @@ fn check_against(p: &Params, exact: &Bounce, reference: &FrameNumerical, tol: f6
     assert_eq!(held, reference.held, "{what}: {summary}");
 }
 
-/// Whether a bounce's cart came unstuck from the frame and whether it stopped on it again.
-fn regimes(b: &Bounce) -> (bool, bool) {
-    let carts: Vec<Cart> = b.phases.iter().map(|ph| ph.cart).collect();
-    let unstuck = carts
-        .windows(2)
-        .any(|w| w[0] == Cart::Stuck && w[1] != Cart::Stuck);
-    let restuck = carts
-        .windows(2)
-        .any(|w| w[0] != Cart::Stuck && w[1] == Cart::Stuck);
-    (unstuck, restuck)
-}
-
 #[test]
 fn string_friction_on_a_free_frame_agrees_with_an_independent_integration() {
     let mut rng = Rng(0x5791_f4a3_c0de_0023);
@@ -93,7 +82,7 @@ fn string_friction_on_a_free_frame_agrees_with_an_independent_integration() {
         let exact = solve(&p).expect("string friction on a free frame solves");
         let reference = integrate_frame(&p, step_for(&p));
         check_against(&p, &exact, &reference, 1e-9, &format!("case {case}"));
-        let (u, r) = regimes(&exact);
+        let (u, r) = regimes(&exact.phases);
         unstuck += usize::from(u);
         restuck += usize::from(r);
         held_throughout += usize::from(exact.phases.iter().all(|ph| ph.cart == Cart::Stuck));

@@ -14,6 +14,7 @@ mod support {
     pub mod flight;
     pub mod frame_integrator;
     pub mod integrator;
+    pub mod phases;
     pub mod prop;
     pub mod rng;
 }
