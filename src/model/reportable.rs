@@ -53,31 +53,35 @@ pub fn reportable(bounce: &Bounce) -> Result<(), Unsolvable> {
     })
 }
 
-/// Refuses an outcome that is not a finite number.
+/// Refuses an outcome that is not a finite number, naming its first quantity that is not.
 #[inline]
 pub(super) fn finite(bounce: &Bounce) -> Result<(), SolveError> {
     let o = &bounce.outcome;
-    let values = [
-        o.omega2,
-        o.vx2,
-        o.vy2,
-        o.speed2,
-        o.theta2_deg,
-        o.ex.unwrap_or(0.0),
-        o.roll_ratio.unwrap_or(0.0),
-    ];
-    if values.iter().fold(true, |all, v| all & v.is_finite()) {
+    // Every value tested without a branch each; the name looked for only when one fails.
+    if quantities(o)
+        .iter()
+        .fold(true, |all, (_, v)| all & v.is_finite())
+    {
         Ok(())
     } else {
         not_finite(o)
     }
 }
 
-/// The refusal of an outcome that is not finite, naming its first quantity that is not.
+/// The refusal of an outcome that is not finite.
 #[cold]
 #[inline(never)]
 fn not_finite(o: &Outcome) -> Result<(), SolveError> {
-    let values = [
+    match quantities(o).iter().find(|(_, v)| !v.is_finite()) {
+        Some(&(quantity, _)) => Err(SolveError::NotFinite { quantity }),
+        None => Ok(()),
+    }
+}
+
+/// The outcome's quantities by the names a refusal gives them.
+#[inline(always)]
+fn quantities(o: &Outcome) -> [(&'static str, f64); 7] {
+    [
         ("the rebound spin", o.omega2),
         ("the rebound velocity along the surface", o.vx2),
         ("the rebound velocity away from the surface", o.vy2),
@@ -85,11 +89,7 @@ fn not_finite(o: &Outcome) -> Result<(), SolveError> {
         ("the rebound angle", o.theta2_deg),
         ("e_x", o.ex.unwrap_or(0.0)),
         ("the roll ratio", o.roll_ratio.unwrap_or(0.0)),
-    ];
-    match values.iter().find(|(_, v)| !v.is_finite()) {
-        Some(&(quantity, _)) => Err(SolveError::NotFinite { quantity }),
-        None => Ok(()),
-    }
+    ]
 }
 
 #[cfg(test)]
