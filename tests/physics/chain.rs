@@ -3,6 +3,7 @@
 //! equations of motion, and properties over random chains.
 
 use crate::support::chain_integrator;
+use crate::support::prop::within_the_cone;
 
 use proptest::prelude::*;
 use snapback::model::solve::solve_chain;
@@ -382,10 +383,7 @@ proptest! {
         }
         let speed_scale = p.speed + p.radius * p.spin.abs();
         for s in &b.series(300) {
-            prop_assert!(
-                s.friction.abs() <= p.mu * s.normal + 1e-9 * p.mu * b.setup.n0 + 1e-12,
-                "|F| = {} > mu N = {} at t = {}", s.friction.abs(), p.mu * s.normal, s.t
-            );
+            within_the_cone(&p, s, b.setup.n0)?;
             if s.kind == PhaseKind::Grip {
                 prop_assert!(s.slip.abs() <= 1e-9 * speed_scale, "slip {} in grip at {}", s.slip, s.t);
             }

@@ -6,6 +6,7 @@ use proptest::prelude::*;
 
 use crate::support::energy::assert_nothing_created;
 use crate::support::frame_integrator::integrate_frame;
+use crate::support::prop::within_the_cone;
 use crate::support::rng::Rng;
 use snapback::model::params::spec;
 use snapback::model::setup::apparent_restitution;
@@ -312,11 +313,7 @@ proptest! {
         prop_assert!(e.residual.abs() < 1e-9, "{:?}", e);
         let n_peak = b.setup.n0;
         for s in b.series(64) {
-            // |F| <= mu N, within the rounding of the forces at the peak (N vanishes at the ends).
-            prop_assert!(
-                s.friction.abs() <= p.mu * s.normal + 1e-9 * p.mu * n_peak + 1e-12,
-                "|F| = {} > mu N = {} at t = {}", s.friction.abs(), p.mu * s.normal, s.t
-            );
+            within_the_cone(&p, &s, n_peak)?;
             if s.kind == PhaseKind::Grip {
                 prop_assert!(s.slip.abs() <= 1e-9 * p.speed, "slip {} in a grip", s.slip);
             }

@@ -9,7 +9,7 @@ use crate::support::chain::random_chain;
 use crate::support::chain_integrator;
 use crate::support::energy::assert_nothing_created;
 use crate::support::phases::each_phase;
-use crate::support::prop::config;
+use crate::support::prop::{config, within_the_cone};
 use crate::support::rng::Rng;
 use snapback::model::chain::{ChainOfMasses, ChainState};
 use snapback::model::contact::Contact;
@@ -187,10 +187,7 @@ proptest! {
         prop_assert!(e.residual.abs() < 1e-9, "{:?}", e);
         let n_peak = b.setup.n0;
         for s in b.series(64) {
-            prop_assert!(
-                s.friction.abs() <= p.mu * s.normal + 1e-9 * p.mu * n_peak + 1e-12,
-                "|F| = {} > mu N = {} at t = {}", s.friction.abs(), p.mu * s.normal, s.t
-            );
+            within_the_cone(&p, &s, n_peak)?;
             if s.kind == PhaseKind::Grip {
                 prop_assert!(s.slip.abs() <= 1e-9 * p.speed, "slip {} in a grip", s.slip);
             }

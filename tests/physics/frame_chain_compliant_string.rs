@@ -16,7 +16,7 @@ use crate::support::compliant::{incoming, peak_friction, random_compliant, solve
 use crate::support::energy::assert_string_friction_works;
 use crate::support::phases::each_phase;
 use crate::support::phases::regimes;
-use crate::support::prop::config;
+use crate::support::prop::{config, within_the_cone};
 use crate::support::rng::Rng;
 use snapback::model::chain::ChainState;
 use snapback::model::compliant::CompliantBall;
@@ -226,10 +226,7 @@ proptest! {
         prop_assert!(e.residual.abs() < 1e-9, "{:?}", e);
         let n_peak = b.setup.n0;
         for s in b.series(64) {
-            prop_assert!(
-                s.friction.abs() <= p.mu * s.normal + 1e-9 * p.mu * n_peak + 1e-12,
-                "|F| = {} > mu N = {} at t = {}", s.friction.abs(), p.mu * s.normal, s.t
-            );
+            within_the_cone(&p, &s, n_peak)?;
         }
     }
 }

@@ -8,7 +8,7 @@ use proptest::prelude::*;
 use crate::support::chain_compliant_integrator::{Reference, integrate, step_for};
 use crate::support::compliant::{incoming, random_compliant, solved_or_refused};
 use crate::support::energy::assert_nothing_created;
-use crate::support::prop::config;
+use crate::support::prop::{config, within_the_cone};
 use crate::support::rng::Rng;
 use snapback::model::{Bounce, Params, PhaseKind, solve};
 
@@ -161,10 +161,7 @@ proptest! {
         prop_assert!(e.residual.abs() < 1e-9, "{:?}", e);
         let n_peak = b.setup.n0;
         for s in b.series(64) {
-            prop_assert!(
-                s.friction.abs() <= p.mu * s.normal + 1e-9 * p.mu * n_peak + 1e-12,
-                "|F| = {} > mu N = {} at t = {}", s.friction.abs(), p.mu * s.normal, s.t
-            );
+            within_the_cone(&p, &s, n_peak)?;
             if s.kind == PhaseKind::Grip {
                 // The patch holds while the ball grips: its slip on the surface is nil.
                 prop_assert!(s.patch_slip.abs() <= 1e-9 * p.speed, "patch slip {}", s.patch_slip);

@@ -6,6 +6,7 @@ use proptest::prelude::*;
 use snapback::model::{Cart, Params, PhaseKind, solve};
 
 use crate::support::prop;
+use crate::support::prop::within_the_cone;
 use prop::{check_cart_motion, config, log_range};
 
 fn params() -> impl Strategy<Value = Params> {
@@ -78,11 +79,7 @@ proptest! {
         let speed_scale = p.speed + p.radius * p.spin.abs();
         let series = b.series(300);
         for s in &series {
-            // |F| <= mu N, up to rounding.
-            prop_assert!(
-                s.friction.abs() <= p.mu * s.normal + 1e-9 * p.mu * n_peak + 1e-12,
-                "|F| = {} > mu N = {} at t = {}", s.friction.abs(), p.mu * s.normal, s.t
-            );
+            within_the_cone(&p, s, n_peak)?;
             if s.kind == PhaseKind::Grip {
                 prop_assert!(s.slip.abs() <= 1e-9 * speed_scale, "slip {} in grip at {}", s.slip, s.t);
             }

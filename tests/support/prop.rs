@@ -1,9 +1,9 @@
-//! Shared by the property tests: their configuration, a log-uniform strategy, and the check that string
+//! Shared by the property tests: their configuration, a log-uniform strategy, the friction cone, and the check that string
 //! friction holds the cart (or a chain's first mass) still and lets a moving one turn only at an event.
 
 use proptest::prelude::*;
 use proptest::test_runner::{FileFailurePersistence, TestCaseError};
-use snapback::model::{Bounce, Cart, Params};
+use snapback::model::{Bounce, Cart, Params, Sample};
 
 /// `default` cases, or as many as `PROPTEST_CASES` asks for (`PROPTEST_CASES=100000` searches deeper).
 /// Failures are kept beside the test's source (`chain.rs` -> `chain.proptest-regressions`).
@@ -46,5 +46,18 @@ pub fn check_cart_motion(p: &Params, b: &Bounce) -> Result<(), TestCaseError> {
             }
         }
     }
+    Ok(())
+}
+
+/// |F| <= mu N at the sample `s`, within the rounding of the forces at the peak normal force `n_peak`
+/// (N vanishes at the ends of the contact).
+pub fn within_the_cone(p: &Params, s: &Sample, n_peak: f64) -> Result<(), TestCaseError> {
+    prop_assert!(
+        s.friction.abs() <= p.mu * s.normal + 1e-9 * p.mu * n_peak + 1e-12,
+        "|F| = {} > mu N = {} at t = {}",
+        s.friction.abs(),
+        p.mu * s.normal,
+        s.t
+    );
     Ok(())
 }
