@@ -93,9 +93,13 @@ impl Grip {
             return None;
         }
         let gain = setup.grip_gain;
+        let (x0, swing) = (self.start.x, self.start.v / omega);
+        let w2 = setup.w * setup.w;
+        let fourth = gain * omega.powi(4) * (x0 * x0 + swing * swing).sqrt() + setup.peak_friction() * w2 * w2;
         Some(ForceSums {
-            x0: self.start.x,
-            swing: self.start.v / omega,
+            x0,
+            swing,
+            fourth: fourth * (1.0 + 1e-9),
             gains: [
                 gain,
                 gain * omega,
@@ -223,6 +227,9 @@ pub struct ForceSums {
     x0: f64,
     /// V0/Ω.
     swing: f64,
+    /// A bound on the margins' fourth derivative, g Ω⁴ sqrt(X0² + (V0/Ω)²) + mu N0 w⁴ (with room for
+    /// rounding).
+    pub fourth: f64,
     /// g, g Ω, g Ω², g Ω³.
     gains: [f64; 4],
 }

@@ -13,7 +13,7 @@ pub use slide::Slide;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::first_rise;
+use super::events::{first_rise, first_rise_within};
 use super::params::Params;
 use super::quadrature::integrate;
 use super::recent::Recent;
@@ -236,7 +236,8 @@ impl Contact for SingleCart {
                         probes.record(t, (t, angles));
                         [sums.event(angles, constants)]
                     };
-                    let event = first_rise(f, t0, end, step, [slip_curvature], [slip_noise]);
+                    let bounds = [[slip_curvature], [sums.fourth]];
+                    let event = first_rise_within(f, t0, end, step, bounds, [slip_noise]);
                     let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
                     last.record(t, slide.sample_given(setup, t, angles).0);
                     event.map(|(t, _)| (t, Cause::SlipZero))
@@ -316,8 +317,8 @@ impl Contact for SingleCart {
                         probes.record(t, (t, angles));
                         sums.margins(setup, angles)
                     };
-                    let curvature = [margin_curvature; 2];
-                    let event = first_rise(f, t0, end, step, curvature, [margin_noise; 2]);
+                    let bounds = [[margin_curvature; 2], [sums.fourth; 2]];
+                    let event = first_rise_within(f, t0, end, step, bounds, [margin_noise; 2]);
                     let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
                     last.record(t, grip.state_given(setup, t, angles));
                     event.map(|(t, branch)| (t, broke(branch)))

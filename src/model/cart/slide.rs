@@ -191,6 +191,7 @@ impl Slide {
         let free_cos = dir * (s0.v - amplitude * w * self.cos_wt0);
         let free_sin = dir * (s0.x - amplitude * self.sin_wt0) * omega;
         let rates = |c: f64, r: f64| [c, c * r, c * r * r, c * r * r * r];
+        let fourth = ball.abs() * w * w * w + omega.powi(4) * (free_cos * free_cos + free_sin * free_sin).sqrt();
         Some(SlipSums {
             slip0: setup.slip(s0),
             v0: s0.v,
@@ -201,6 +202,7 @@ impl Slide {
             free_cos: rates(free_cos, omega),
             free_sin: rates(free_sin, omega),
             dir,
+            fourth: fourth * (1.0 + 1e-9),
         })
     }
 
@@ -346,6 +348,8 @@ pub struct SlipSums {
     /// Q, Q Ω, Q Ω², Q Ω³.
     free_sin: [f64; 4],
     dir: f64,
+    /// A bound on the event's fourth derivative, |P| w³ + Ω⁴ sqrt(B² + Q²) (with room for rounding).
+    pub fourth: f64,
 }
 
 impl SlipSums {
