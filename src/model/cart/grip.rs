@@ -95,7 +95,8 @@ impl Grip {
         let gain = setup.grip_gain;
         let (x0, swing) = (self.start.x, self.start.v / omega);
         let w2 = setup.w * setup.w;
-        let fourth = gain * omega.powi(4) * (x0 * x0 + swing * swing).sqrt() + setup.peak_friction() * w2 * w2;
+        let fourth = gain * omega.powi(4) * (x0 * x0 + swing * swing).sqrt()
+            + setup.peak_friction() * w2 * w2;
         Some(ForceSums {
             x0,
             swing,

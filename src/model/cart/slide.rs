@@ -191,7 +191,8 @@ impl Slide {
         let free_cos = dir * (s0.v - amplitude * w * self.cos_wt0);
         let free_sin = dir * (s0.x - amplitude * self.sin_wt0) * omega;
         let rates = |c: f64, r: f64| [c, c * r, c * r * r, c * r * r * r];
-        let fourth = ball.abs() * w * w * w + omega.powi(4) * (free_cos * free_cos + free_sin * free_sin).sqrt();
+        let fourth = ball.abs() * w * w * w
+            + omega.powi(4) * (free_cos * free_cos + free_sin * free_sin).sqrt();
         Some(SlipSums {
             slip0: setup.slip(s0),
             v0: s0.v,
