@@ -194,37 +194,37 @@ impl Contact for SingleCart {
         };
         let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
         let forces = setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
-        // The states at the last few times an event function was evaluated.
-        let last = Recent::new(state.t, *state);
-        let event = match (motion, cart) {
+        let (event, last) = match (motion, cart) {
             (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
                 let (slip_curvature, cart_curvature) = slide.curvature(setup);
                 let slip_noise = ROUNDING * speeds;
                 let step = setup.event_step(setup.omega_slide);
                 if setup.cart_friction > 0.0 {
-                    let cart_dir = f64::from(cart_dir);
-                    let f = |t: f64| {
-                        let (s, friction) = slide.sample(setup, t);
-                        last.record(s.t, s);
-                        let slip = slide.slip_event(setup, &s, friction, slip_offset);
-                        let [accel, jerk, snap] = slide.cart_derivatives(setup, &s, friction);
-                        let stop = (
-                            -cart_dir * (s.v - v_offset),
-                            -cart_dir * accel,
-                            -cart_dir * jerk,
-                            -cart_dir * snap,
-                        );
-                        [slip, stop]
-                    };
-                    let noise = [slip_noise, ROUNDING * slide.cart_speed_scale(setup)];
-                    let curvature = [slip_curvature, cart_curvature];
-                    first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
-                        let cause = if branch == 0 {
-                            Cause::SlipZero
-                        } else {
-                            Cause::CartStop
+                    recorded(state, end, |last| {
+                        let cart_dir = f64::from(cart_dir);
+                        let f = |t: f64| {
+                            let (s, friction) = slide.sample(setup, t);
+                            last.record(s.t, s);
+                            let slip = slide.slip_event(setup, &s, friction, slip_offset);
+                            let [accel, jerk, snap] = slide.cart_derivatives(setup, &s, friction);
+                            let stop = (
+                                -cart_dir * (s.v - v_offset),
+                                -cart_dir * accel,
+                                -cart_dir * jerk,
+                                -cart_dir * snap,
+                            );
+                            [slip, stop]
                         };
-                        (t, cause)
+                        let noise = [slip_noise, ROUNDING * slide.cart_speed_scale(setup)];
+                        let curvature = [slip_curvature, cart_curvature];
+                        first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                            let cause = if branch == 0 {
+                                Cause::SlipZero
+                            } else {
+                                Cause::CartStop
+                            };
+                            (t, cause)
+                        })
                     })
                 } else if let Some(sums) = slide.slip_sums(setup) {
                     // Without string friction the cart's stopping changes nothing: the slip alone is
@@ -239,21 +239,23 @@ impl Contact for SingleCart {
                     let bounds = [[slip_curvature], [sums.fourth]];
                     let event = first_rise_within(f, t0, end, step, bounds, [slip_noise]);
                     let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
-                    last.record(t, slide.sample_given(setup, t, angles).0);
-                    event.map(|(t, _)| (t, Cause::SlipZero))
+                    let event = event.map(|(t, _)| (t, Cause::SlipZero));
+                    (event, slide.sample_given(setup, t, angles).0)
                 } else {
                     // Without string friction the cart's stopping changes nothing: the slip alone is
                     // watched.
-                    let f = |t: f64| {
-                        let (s, friction) = slide.sample(setup, t);
-                        last.record(s.t, s);
-                        [slide.slip_event(setup, &s, friction, slip_offset)]
-                    };
-                    first_rise(f, t0, end, step, [slip_curvature], [slip_noise])
-                        .map(|(t, _)| (t, Cause::SlipZero))
+                    recorded(state, end, |last| {
+                        let f = |t: f64| {
+                            let (s, friction) = slide.sample(setup, t);
+                            last.record(s.t, s);
+                            [slide.slip_event(setup, &s, friction, slip_offset)]
+                        };
+                        first_rise(f, t0, end, step, [slip_curvature], [slip_noise])
+                            .map(|(t, _)| (t, Cause::SlipZero))
+                    })
                 }
             }
-            (CartMotion::Slide(slide), Cart::Stuck) => {
+            (CartMotion::Slide(slide), Cart::Stuck) => recorded(state, end, |last| {
                 let f = |t: f64| {
                     let (s, friction) = slide.sample(setup, t);
                     last.record(s.t, s);
@@ -276,36 +278,38 @@ impl Contact for SingleCart {
                 let curvature = [slip_curvature, push_curvature, push_curvature];
                 first_rise(f, t0, end, step, curvature, noise)
                     .map(|(t, branch)| (t, Cause::of_held(branch)))
-            }
+            }),
             (CartMotion::Grip(grip), Cart::Moving(cart_dir)) => {
                 let (margin_curvature, cart_curvature) = grip.curvature(setup);
                 let margin_noise = ROUNDING * forces;
                 let step = setup.event_step(setup.omega_grip);
                 let broke = |branch: usize| Cause::GripBreak(if branch == 0 { 1.0 } else { -1.0 });
                 if setup.cart_friction > 0.0 {
-                    let cart_dir = f64::from(cart_dir);
-                    let f = |t: f64| {
-                        let (s, [forward, backward]) = grip.evaluate(setup, t);
-                        last.record(s.t, s);
-                        let [accel, jerk, snap] = grip.cart_derivatives(setup, &s);
-                        let stop = (
-                            -cart_dir * (s.v - v_offset),
-                            -cart_dir * accel,
-                            -cart_dir * jerk,
-                            -cart_dir * snap,
-                        );
-                        [forward, backward, stop]
-                    };
-                    let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
-                    let noise = [margin_noise, margin_noise, cart_noise];
-                    let curvature = [margin_curvature, margin_curvature, cart_curvature];
-                    first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
-                        let cause = if branch == 2 {
-                            Cause::CartStop
-                        } else {
-                            broke(branch)
+                    recorded(state, end, |last| {
+                        let cart_dir = f64::from(cart_dir);
+                        let f = |t: f64| {
+                            let (s, [forward, backward]) = grip.evaluate(setup, t);
+                            last.record(s.t, s);
+                            let [accel, jerk, snap] = grip.cart_derivatives(setup, &s);
+                            let stop = (
+                                -cart_dir * (s.v - v_offset),
+                                -cart_dir * accel,
+                                -cart_dir * jerk,
+                                -cart_dir * snap,
+                            );
+                            [forward, backward, stop]
                         };
-                        (t, cause)
+                        let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
+                        let noise = [margin_noise, margin_noise, cart_noise];
+                        let curvature = [margin_curvature, margin_curvature, cart_curvature];
+                        first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                            let cause = if branch == 2 {
+                                Cause::CartStop
+                            } else {
+                                broke(branch)
+                            };
+                            (t, cause)
+                        })
                     })
                 } else if let Some(sums) = grip.force_sums(setup) {
                     // Without string friction only the margins are watched, here by their sums; the
@@ -320,26 +324,25 @@ impl Contact for SingleCart {
                     let bounds = [[margin_curvature; 2], [sums.fourth; 2]];
                     let event = first_rise_within(f, t0, end, step, bounds, [margin_noise; 2]);
                     let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
-                    last.record(t, grip.state_given(setup, t, angles));
-                    event.map(|(t, branch)| (t, broke(branch)))
+                    let event = event.map(|(t, branch)| (t, broke(branch)));
+                    (event, grip.state_given(setup, t, angles))
                 } else {
                     // Without string friction only the margins are watched.
-                    let f = |t: f64| {
-                        let (s, margins) = grip.evaluate(setup, t);
-                        last.record(s.t, s);
-                        margins
-                    };
-                    let curvature = [margin_curvature; 2];
-                    first_rise(f, t0, end, step, curvature, [margin_noise; 2])
-                        .map(|(t, branch)| (t, broke(branch)))
+                    recorded(state, end, |last| {
+                        let f = |t: f64| {
+                            let (s, margins) = grip.evaluate(setup, t);
+                            last.record(s.t, s);
+                            margins
+                        };
+                        let curvature = [margin_curvature; 2];
+                        first_rise(f, t0, end, step, curvature, [margin_noise; 2])
+                            .map(|(t, branch)| (t, broke(branch)))
+                    })
                 }
             }
             // Rolling on a still cart: nothing changes until the ball leaves.
-            (CartMotion::Grip(_), Cart::Stuck) => None,
+            (CartMotion::Grip(_), Cart::Stuck) => (None, *state),
         };
-        // The search's last evaluations usually hold the state at the event (the crossing Newton
-        // found, before the evaluations that proved nothing rose earlier) or at the end of contact.
-        let last = last.at(event.map_or(end, |(t, _)| t));
         Found {
             event,
             last: Some(last),
@@ -360,6 +363,20 @@ impl Contact for SingleCart {
         }
         transition::next(setup, &touched(setup, state), ball, cart, cause)
     }
+}
+
+/// The event `search` finds, given where to record the states it evaluates (the last few are kept),
+/// and the state at the event or, without one, at the end of contact `end`: usually among the
+/// search's last evaluations (the crossing Newton found, before the evaluations that proved nothing
+/// rose earlier), else the latest.
+fn recorded(
+    start: &State,
+    end: f64,
+    search: impl FnOnce(&Recent<State>) -> Option<(f64, Cause)>,
+) -> (Option<(f64, Cause)>, State) {
+    let last = Recent::new(start.t, *start);
+    let event = search(&last);
+    (event, last.at(event.map_or(end, |(t, _)| t)))
 }
 
 /// The cart as the transition rules see it.
