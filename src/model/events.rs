@@ -466,8 +466,8 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize> Search<'_, F, K> {
     /// True when the Taylor polynomials of branch `i` to third order from `a` over the first half
     /// of `[a, b]` and from `b` over the second, each with the bound on the fourth derivative in its
     /// remainder, prove it at most `noise` there ([`Branch::higher`] gives f'' and f''' at the ends;
-    /// a branch without them proves nothing). Each half is bounded in two quarters, each by
-    /// [`taylor_ceiling`]. The polynomials follow the branch through changes in its curvature that
+    /// a branch without them proves nothing). Each half is bounded by [`taylor_ceiling`] at once,
+    /// or else in two quarters. The polynomials follow the branch through changes in its curvature that
     /// the parabolas, with one bound on |f''| for the whole interval, cannot: a slip that leaves
     /// zero with zero rate and bends away (the slide after a grip broke), or margins that turn
     /// toward zero only at the far end of a long interval.
@@ -494,14 +494,14 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize> Search<'_, F, K> {
             -third_b / 6.0,
             fourth,
         ];
-        let quarter = 0.25 * (b.t - a.t);
+        let half = 0.5 * (b.t - a.t);
         let noise = self.noise[i];
-        [(0.0, quarter), (quarter, 2.0 * quarter)]
-            .iter()
-            .all(|&(near, far)| {
-                taylor_ceiling(&from_a, near, far) <= noise
-                    && taylor_ceiling(&from_b, near, far) <= noise
-            })
+        let below = |near: f64, far: f64| {
+            taylor_ceiling(&from_a, near, far) <= noise
+                && taylor_ceiling(&from_b, near, far) <= noise
+        };
+        // Each half at once, or else in two quarters.
+        below(0.0, half) || (below(0.0, 0.5 * half) && below(0.5 * half, half))
     }
 }
 
