@@ -222,7 +222,7 @@ pub fn first_rise<B: Branch, const K: usize>(
         curvature,
         fourth: [f64::INFINITY; K],
     };
-    search(f, t0, t1, step, bounds, noise, Start::Downward)
+    search::<B, K, false>(f, t0, t1, step, bounds, noise, Start::Downward)
 }
 
 /// As [`first_rise`], for branches that carry f'' and f''' ([`Branch::higher`]), with `fourth`
@@ -240,7 +240,7 @@ pub fn first_rise_within<B: Branch, const K: usize>(
     noise: [f64; K],
 ) -> Option<(f64, usize)> {
     let bounds = Bounds { curvature, fourth };
-    search(f, t0, t1, step, bounds, noise, Start::Downward)
+    search::<B, K, true>(f, t0, t1, step, bounds, noise, Start::Downward)
 }
 
 /// As [`first_rise`], for a phase whose branches may leave their zero upward (a compliant ball's grip,
@@ -260,7 +260,7 @@ pub fn first_rise_from_tangent<B: Branch, const K: usize>(
         curvature,
         fourth: [f64::INFINITY; K],
     };
-    search(f, t0, t1, step, bounds, noise, Start::Tangent)
+    search::<B, K, false>(f, t0, t1, step, bounds, noise, Start::Tangent)
 }
 
 /// Bounds on the branches' second and fourth derivatives (infinite where none is known).
@@ -276,7 +276,9 @@ enum Start {
     Tangent,
 }
 
-fn search<B: Branch, const K: usize>(
+/// The search; with `TAYLOR`, proofs that the parabolas fail are tried by the Taylor polynomials
+/// (only [`first_rise_within`]'s, so that the other searches carry no test for it).
+fn search<B: Branch, const K: usize, const TAYLOR: bool>(
     f: impl Event<B, K>,
     t0: f64,
     t1: f64,
@@ -290,7 +292,7 @@ fn search<B: Branch, const K: usize>(
     }
     let mut a = Point::at(&f, t0);
     let at_zero: [bool; K] = std::array::from_fn(|i| a.branches[i].value() >= -noise[i]);
-    let mut search = Search {
+    let mut search = Search::<_, K, TAYLOR> {
         f: &f,
         start: t0,
         half_curvature: curvature.map(|c| 0.5 * c),
@@ -358,7 +360,7 @@ impl<B: Branch, const K: usize> Point<B, K> {
     }
 }
 
-struct Search<'a, F, const K: usize> {
+struct Search<'a, F, const K: usize, const TAYLOR: bool> {
     f: &'a F,
     /// Where the phase starts: no crossing lies before it.
     start: f64,
@@ -370,7 +372,7 @@ struct Search<'a, F, const K: usize> {
     ends_only: [bool; K],
 }
 
-impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize> Search<'_, F, K> {
+impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize, const TAYLOR: bool> Search<'_, F, K, TAYLOR> {
     /// The first branch above its noise at `p`.
     fn risen(&self, p: &Point<B, K>) -> Option<usize> {
         (0..K).find(|&i| p.branches[i].value() > self.noise[i])
@@ -460,7 +462,7 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize> Search<'_, F, K> {
         let width = b.t - a.t;
         crossing_peak((fa, ra), (fb, rb), self.half_curvature[i], width)
             .is_none_or(|peak| peak <= self.noise[i])
-            || (self.fourth_term[i].is_finite() && self.proved_below_by_taylor(a, b, i))
+            || (TAYLOR && self.fourth_term[i].is_finite() && self.proved_below_by_taylor(a, b, i))
     }
 
     /// True when the Taylor polynomials of branch `i` to third order from `a` over the first half
