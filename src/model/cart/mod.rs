@@ -13,7 +13,7 @@ pub use slide::Slide;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::{first_rise, first_rise_within};
+use super::events::first_rise_within;
 use super::params::Params;
 use super::quadrature::integrate;
 use super::recent::Recent;
@@ -197,6 +197,7 @@ impl Contact for SingleCart {
         let (event, last) = match (motion, cart) {
             (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
                 let (slip_curvature, cart_curvature) = slide.curvature(setup);
+                let [slip_fourth, cart_fourth] = slide_fourth(setup, cart_curvature);
                 let slip_noise = ROUNDING * speeds;
                 let step = setup.event_step(setup.omega_slide);
                 if setup.cart_friction > 0.0 {
@@ -217,7 +218,15 @@ impl Contact for SingleCart {
                         };
                         let noise = [slip_noise, ROUNDING * slide.cart_speed_scale(setup)];
                         let curvature = [slip_curvature, cart_curvature];
-                        first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                        first_rise_within(
+                            f,
+                            t0,
+                            end,
+                            step,
+                            [curvature, [slip_fourth, cart_fourth]],
+                            noise,
+                        )
+                        .map(|(t, branch)| {
                             let cause = if branch == 0 {
                                 Cause::SlipZero
                             } else {
@@ -250,8 +259,15 @@ impl Contact for SingleCart {
                             last.record(s.t, s);
                             [slide.slip_event(setup, &s, friction, slip_offset)]
                         };
-                        first_rise(f, t0, end, step, [slip_curvature], [slip_noise])
-                            .map(|(t, _)| (t, Cause::SlipZero))
+                        first_rise_within(
+                            f,
+                            t0,
+                            end,
+                            step,
+                            [[slip_curvature], [slip_fourth]],
+                            [slip_noise],
+                        )
+                        .map(|(t, _)| (t, Cause::SlipZero))
                     })
                 }
             }
@@ -273,14 +289,30 @@ impl Contact for SingleCart {
                     ]
                 };
                 let (slip_curvature, push_curvature) = slide.curvature(setup);
+                // The still cart: slip'''' = -F'''/m_eff, push'''' = F''''.
+                let [slip_fourth, _] = slide_fourth(setup, 0.0);
+                let push_fourth = setup.peak_friction() * setup.w.powi(4) * (1.0 + 1e-9);
                 let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
                 let step = setup.event_step(0.0);
                 let curvature = [slip_curvature, push_curvature, push_curvature];
-                first_rise(f, t0, end, step, curvature, noise)
-                    .map(|(t, branch)| (t, Cause::of_held(branch)))
+                first_rise_within(
+                    f,
+                    t0,
+                    end,
+                    step,
+                    [curvature, [slip_fourth, push_fourth, push_fourth]],
+                    noise,
+                )
+                .map(|(t, branch)| (t, Cause::of_held(branch)))
             }),
             (CartMotion::Grip(grip), Cart::Moving(cart_dir)) => {
                 let (margin_curvature, cart_curvature) = grip.curvature(setup);
+                // |V''| <= Ω³ A bounds |X''''| by Ω⁴ A and |V''''| by Ω⁵ A; mu N'''' is at most mu N0 w⁴.
+                let omega = setup.omega_grip;
+                let margin_fourth = (setup.grip_gain * omega * cart_curvature
+                    + setup.peak_friction() * setup.w.powi(4))
+                    * (1.0 + 1e-9);
+                let cart_fourth = omega * omega * cart_curvature * (1.0 + 1e-9);
                 let margin_noise = ROUNDING * forces;
                 let step = setup.event_step(setup.omega_grip);
                 let broke = |branch: usize| Cause::GripBreak(if branch == 0 { 1.0 } else { -1.0 });
@@ -302,7 +334,15 @@ impl Contact for SingleCart {
                         let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
                         let noise = [margin_noise, margin_noise, cart_noise];
                         let curvature = [margin_curvature, margin_curvature, cart_curvature];
-                        first_rise(f, t0, end, step, curvature, noise).map(|(t, branch)| {
+                        first_rise_within(
+                            f,
+                            t0,
+                            end,
+                            step,
+                            [curvature, [margin_fourth, margin_fourth, cart_fourth]],
+                            noise,
+                        )
+                        .map(|(t, branch)| {
                             let cause = if branch == 2 {
                                 Cause::CartStop
                             } else {
@@ -335,8 +375,15 @@ impl Contact for SingleCart {
                             margins
                         };
                         let curvature = [margin_curvature; 2];
-                        first_rise(f, t0, end, step, curvature, [margin_noise; 2])
-                            .map(|(t, branch)| (t, broke(branch)))
+                        first_rise_within(
+                            f,
+                            t0,
+                            end,
+                            step,
+                            [curvature, [margin_fourth; 2]],
+                            [margin_noise; 2],
+                        )
+                        .map(|(t, branch)| (t, broke(branch)))
                     })
                 }
             }
@@ -377,6 +424,16 @@ fn recorded(
     let last = Recent::new(start.t, *start);
     let event = search(&last);
     (event, last.at(event.map_or(end, |(t, _)| t)))
+}
+
+/// Bounds on the fourth derivatives of a slide's slip and of its cart's velocity, given the bound
+/// `cart_curvature` on |V''| over the phase (0 for a still cart): M V' = F - k X less the constant
+/// string friction gives M V'''' = F''' - k V'', and slip' = -F/m_eff - V', with |F'''| <= mu N0 w³.
+fn slide_fourth(setup: &Setup, cart_curvature: f64) -> [f64; 2] {
+    let jerk = setup.peak_friction() * setup.w.powi(3);
+    let cart = (jerk + setup.k * cart_curvature) / setup.cart_mass;
+    let room = 1.0 + 1e-9;
+    [(jerk / setup.m_eff + cart) * room, cart * room]
 }
 
 /// The cart as the transition rules see it.
