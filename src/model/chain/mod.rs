@@ -447,12 +447,12 @@ impl Contact for ChainOfMasses {
             Ball::Slide(dir) => {
                 // A slip that starts on its zero is measured from its start value.
                 let slip_offset = if matches!(cause, Cause::SlipZero | Cause::GripBreak(_)) {
-                    setup.slip(&motion.contact(setup, t0).state)
+                    setup.slip(&motion.probe(setup, t0).state)
                 } else {
                     0.0
                 };
                 let f = |t: f64| {
-                    let c = motion.contact(setup, t);
+                    let c = motion.probe(setup, t);
                     let rate = -c.friction / setup.m_eff - c.accel;
                     [(-dir * (setup.slip(&c.state) - slip_offset), -dir * rate)]
                 };
@@ -464,7 +464,7 @@ impl Contact for ChainOfMasses {
             }
             Ball::Grip => {
                 let f = |t: f64| {
-                    let c = motion.contact(setup, t);
+                    let c = motion.probe(setup, t);
                     setup.grip_margins(t, c.friction, c.friction_rate)
                 };
                 let (curvature, terms) = motion.margin_curvature(setup);

@@ -182,18 +182,28 @@ impl<const R: usize, S: Shares<R>> Rows<R, S> {
         }
     }
 
-    /// The rows given sin and cos of the modes' angles and (sin w t, cos w t) (sliding only).
+    /// The first `need` rows given sin and cos of the modes' angles and (sin w t, cos w t) (sliding
+    /// only); the others are left 0. Each row is summed on its own, so a row has the same bits
+    /// however many are summed.
     #[inline(always)]
-    fn at(&self, n: usize, sin: &[f64], cos: &[f64], wt: Option<(f64, f64)>) -> [f64; R] {
+    fn at(
+        &self,
+        n: usize,
+        (sin, cos): (&[f64], &[f64]),
+        wt: Option<(f64, f64)>,
+        need: usize,
+    ) -> [f64; R] {
         let mut rows = [0.0; R];
         let shares = self.shares.as_ref()[..n].iter();
         for ((cos_share, sin_share), (&c, &s)) in shares.zip(cos.iter().zip(sin)) {
-            for ((row, a), b) in rows.iter_mut().zip(cos_share).zip(sin_share) {
+            let terms = rows[..need].iter_mut().zip(cos_share).zip(sin_share);
+            for ((row, a), b) in terms {
                 *row += a * c + b * s;
             }
         }
         if let Some((sin_wt, cos_wt)) = wt {
-            for ((row, a), b) in rows.iter_mut().zip(&self.sin_wt).zip(&self.cos_wt) {
+            let terms = rows[..need].iter_mut().zip(&self.sin_wt).zip(&self.cos_wt);
+            for ((row, a), b) in terms {
                 *row += a * sin_wt + b * cos_wt;
             }
         }
@@ -528,7 +538,9 @@ impl Motion {
 
     /// sin and cos of every Ω_j τ, and of w τ while sliding (in the last place), into `sin` and
     /// `cos` by [`sin_cos_each`] (to about 2 ulp, for [`Motion::rows`]); sin(w τ), cos(w τ) ((0, 1)
-    /// gripping).
+    /// gripping). The rigid translation on a free frame turns through no angle: it is left out of
+    /// the batch (whose every angle goes to the same method, so that leaving out a zero changes no
+    /// other's bits) and given its exact (0, 1).
     #[inline(always)]
     fn angles_each(
         &self,
@@ -611,14 +623,15 @@ impl Motion {
     }
 
     /// The rows of [`Sums`] at `t` through the phase's combinations `sums`, with sin(w τ) and
-    /// cos(w τ); `rigid` is the rigid translation if the combinations hold it.
+    /// cos(w τ); `rigid` is the rigid translation if the combinations hold it. Only the first `need`
+    /// rows are summed over the combinations (the others are 0 but for the modes left out).
     #[inline(always)]
     fn rows<const R: usize, S: Shares<R>>(
         &self,
         (sums, rigid): (&Sums<R, S>, Option<usize>),
         weights: impl Fn(usize) -> [(f64, bool); R],
-        setup: &Setup,
-        t: f64,
+        (setup, t): (&Setup, f64),
+        need: usize,
     ) -> ([f64; R], (f64, f64)) {
         let modes = self.modes();
         let tau = t - self.start.t;
@@ -636,7 +649,7 @@ impl Motion {
                 self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau,
             )
         });
-        let mut rows = sums.main.at(n, &sin, &cos, wt);
+        let mut rows = sums.main.at(n, (&sin, &cos), wt, need);
         for &j in &sums.odd[..sums.odd_n] {
             let motion = self.mode_at(modes, w, (j, tau), (sin[j], cos[j]), w_tau);
             add(&mut rows, weights(j), motion);
@@ -651,13 +664,14 @@ impl Motion {
     }
 
     /// The main and the frame's rows of [`Sums`] at `t` through the phase's combinations `sums`, with
-    /// sin(w τ) and cos(w τ).
+    /// sin(w τ) and cos(w τ); the frame's rows only if `all`.
     #[inline(always)]
     fn frame_rows(
         &self,
         sums: &Sums<7, Vec<Share<7>>>,
         setup: &Setup,
         t: f64,
+        all: bool,
     ) -> ([f64; 4], [f64; 3], (f64, f64)) {
         let (modes, frame) = (self.modes(), self.start.frame);
         let weights = |j| Sums::framed_weights(modes, frame, j);
@@ -665,7 +679,8 @@ impl Motion {
         let rigid = modes
             .rigid
             .filter(|&r| !matches!(self.response[r], Response::Forced { .. }));
-        let ([a, b, c, d, e, f, g], w_tau) = self.rows((sums, rigid), weights, setup, t);
+        let need = if all { 7 } else { 4 };
+        let ([a, b, c, d, e, f, g], w_tau) = self.rows((sums, rigid), weights, (setup, t), need);
         ([a, b, c, d], [e, f, g], w_tau)
     }
 
@@ -680,9 +695,25 @@ impl Motion {
         (impulse, force * sin_wt.max(0.0))
     }
 
-    /// The ball, the first mass and the friction at `t`.
-    #[inline]
+    /// The ball, the first mass and the friction at `t`. (One body for every caller: inlined into
+    /// the event functions it made the chain with string friction 3% slower.)
+    #[inline(never)]
     pub fn contact(&self, setup: &Setup, t: f64) -> Contact {
+        self.contact_of(setup, t, true)
+    }
+
+    /// [`Motion::contact`] for the event search without string friction, which reads the ball, the
+    /// first mass's velocity and acceleration and the friction: on a free frame the frame's rows are
+    /// not summed (the displacement relative to it and its motion are wrong); the rest has the bits
+    /// `contact` gives. (One body for its callers, as `contact` is.)
+    #[inline(never)]
+    pub fn probe(&self, setup: &Setup, t: f64) -> Contact {
+        self.contact_of(setup, t, false)
+    }
+
+    /// [`Motion::contact`], with the frame's rows summed only if `all`.
+    #[inline(always)]
+    fn contact_of(&self, setup: &Setup, t: f64, all: bool) -> Contact {
         let frame = self.start.frame;
         if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
@@ -690,11 +721,11 @@ impl Motion {
         match self.sums() {
             Some(Written::Wall(sums)) => {
                 let weights = |j| Sums::main_weights(self.modes(), j);
-                let (rows, w_tau) = self.rows((sums, None), weights, setup, t);
+                let (rows, w_tau) = self.rows((sums, None), weights, (setup, t), 4);
                 return self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau);
             }
             Some(Written::Frame(sums)) => {
-                let (main, framed, w_tau) = self.frame_rows(sums, setup, t);
+                let (main, framed, w_tau) = self.frame_rows(sums, setup, t, all);
                 return self.moving_contact(setup, t, (&main, &framed), w_tau);
             }
             None => {}
@@ -822,10 +853,10 @@ impl Motion {
             self.held_contact(setup, t)
         } else if let Some(Written::Wall(sums)) = self.sums() {
             let weights = |j| Sums::main_weights(modes, j);
-            let (rows, w_tau) = self.rows((sums, None), weights, setup, t);
+            let (rows, w_tau) = self.rows((sums, None), weights, (setup, t), 4);
             self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau)
         } else if let Some(Written::Frame(sums)) = self.sums() {
-            let (main, framed, w_tau) = self.frame_rows(sums, setup, t);
+            let (main, framed, w_tau) = self.frame_rows(sums, setup, t, true);
             searched = Some((main, framed));
             self.moving_contact(setup, t, (&main, &framed), w_tau)
         } else {
