@@ -21,6 +21,7 @@
 pub mod modes;
 pub mod motion;
 pub mod ring;
+mod spare;
 mod string;
 
 use std::cell::RefCell;
@@ -35,6 +36,7 @@ use super::quadrature::integrate;
 use super::setup::{Setup, State};
 use modes::{MAX, Modes};
 use motion::Motion;
+pub use spare::ChainMotion;
 
 /// The chain: its links, and its modes while the ball slides and while it grips.
 #[derive(Clone, Debug)]
@@ -276,9 +278,6 @@ impl ChainState {
     }
 }
 
-/// The phase motion of a chain bounce, shared by the phase and its copies.
-pub type ChainMotion = Arc<Motion>;
-
 impl PhaseMotion for Motion {
     fn state_at(&self, setup: &Setup, t: f64) -> State {
         self.contact(setup, t).state
@@ -428,7 +427,7 @@ impl Contact for ChainOfMasses {
             Ball::Slide(dir) => dir,
             Ball::Grip => 0.0,
         };
-        Arc::new(Motion::new(self.chain.clone(), setup, *state, dir, cart))
+        ChainMotion::new(&self.chain, setup, state, dir, cart)
     }
 
     fn first_event(
@@ -448,12 +447,12 @@ impl Contact for ChainOfMasses {
             Ball::Slide(dir) => {
                 // A slip that starts on its zero is measured from its start value.
                 let slip_offset = if matches!(cause, Cause::SlipZero | Cause::GripBreak(_)) {
-                    setup.slip(&motion.contact(setup, t0).state)
+                    setup.slip(&motion.probe(setup, t0).state)
                 } else {
                     0.0
                 };
                 let f = |t: f64| {
-                    let c = motion.contact(setup, t);
+                    let c = motion.probe(setup, t);
                     let rate = -c.friction / setup.m_eff - c.accel;
                     [(-dir * (setup.slip(&c.state) - slip_offset), -dir * rate)]
                 };
@@ -465,7 +464,7 @@ impl Contact for ChainOfMasses {
             }
             Ball::Grip => {
                 let f = |t: f64| {
-                    let c = motion.contact(setup, t);
+                    let c = motion.probe(setup, t);
                     setup.grip_margins(t, c.friction, c.friction_rate)
                 };
                 let (curvature, terms) = motion.margin_curvature(setup);

@@ -265,10 +265,16 @@ impl Modes {
     /// The modal coordinates q = Φᵀ D x of displacements (or velocities) `x`.
     pub fn project(&self, x: &[f64; MAX]) -> [f64; MAX] {
         let mut q = [0.0; MAX];
+        self.project_into(x, &mut q);
+        q
+    }
+
+    /// [`Modes::project`] written into the first `n` entries of `q` (the rest left as they are).
+    #[inline]
+    pub fn project_into(&self, x: &[f64; MAX], q: &mut [f64; MAX]) {
         for (qj, row) in q.iter_mut().zip(&self.inverse).take(self.n) {
             *qj = row[..self.n].iter().zip(x).map(|(a, x)| a * x).sum();
         }
-        q
     }
 
     /// The displacements (or velocities) x = Φ q of modal coordinates `q`.

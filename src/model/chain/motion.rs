@@ -50,19 +50,25 @@ pub struct Motion {
     /// The first mass's velocity at the start as the modal sum gives it (the grip's impulse on the ball
     /// is measured from it, so that it is exactly zero at the start).
     v1_start: f64,
-    /// The contact's modal sums written out for this phase, for a moving first mass ([`Sums`]).
-    sums: Option<Written>,
+    /// The contact's modal sums written out for this phase, for a moving first mass ([`Sums`], read
+    /// through [`Motion::sums`]).
+    store: Store,
 }
 
-/// A phase's [`Sums`]: on the wall, or on a free frame with the frame's three rows after the main four.
-#[derive(Clone, Debug)]
-#[expect(
-    clippy::large_enum_variant,
-    reason = "the wall's sums stay in place: boxed, every clamped phase would pay an allocation"
-)]
-enum Written {
-    Wall(Sums<4, [Share<4>; MAX]>),
-    Frame(Sums<7, Vec<Share<7>>>),
+/// Where the phases built in one storage write their [`Sums`]: on the wall, or on a free frame with
+/// the frame's three rows after the main four. Each is kept from phase to phase (a held phase leaves
+/// them unread), so that a phase writes its sums over the last one's.
+#[derive(Clone, Debug, Default)]
+struct Store {
+    wall: Option<Sums<4, [Share<4>; MAX]>>,
+    frame: Option<Sums<7, Vec<Share<7>>>>,
+}
+
+/// A moving phase's [`Sums`]: on the wall, or on a free frame.
+#[derive(Clone, Copy)]
+enum Written<'a> {
+    Wall(&'a Sums<4, [Share<4>; MAX]>),
+    Frame(&'a Sums<7, Vec<Share<7>>>),
 }
 
 /// The sums [`Motion::moving_contact`] needs over the modes (rows of Φ, or Φ_1j Ω_j², against q or q'),
@@ -110,23 +116,32 @@ struct Swing {
 /// A mode's coefficients of cos Ω_j τ and of sin Ω_j τ in each of `R` rows.
 type Share<const R: usize> = ([f64; R], [f64; R]);
 
-/// Where [`Rows`] keeps its shares: the wall's four rows in place for every possible mode (cleared
-/// inline), the free frame's seven on the heap for the phase's modes only (in place they would take
-/// clearing and copying 2 KB at every phase).
+/// Where [`Rows`] keeps its shares: the wall's four rows in place for every possible mode, the free
+/// frame's seven on the heap for the phase's modes only (in place they would make every phase's
+/// storage 2 KB larger). Either is written over from phase to phase, only the phase's modes' entries.
 trait Shares<const R: usize>: AsRef<[Share<R>]> + AsMut<[Share<R>]> {
     /// Zero shares for `n` modes.
     fn zeros(n: usize) -> Self;
+
+    /// Room for `n` modes' shares (their values are written next).
+    fn fit(&mut self, n: usize);
 }
 
 impl<const R: usize> Shares<R> for [Share<R>; MAX] {
     fn zeros(_: usize) -> Self {
         [([0.0; R], [0.0; R]); MAX]
     }
+
+    fn fit(&mut self, _: usize) {}
 }
 
 impl<const R: usize> Shares<R> for Vec<Share<R>> {
     fn zeros(n: usize) -> Self {
         vec![([0.0; R], [0.0; R]); n]
+    }
+
+    fn fit(&mut self, n: usize) {
+        self.resize(n, ([0.0; R], [0.0; R]));
     }
 }
 
@@ -137,6 +152,18 @@ impl<const R: usize, S: Shares<R>> Rows<R, S> {
             sin_wt: [0.0; R],
             cos_wt: [0.0; R],
         }
+    }
+
+    /// Ready to be filled for `n` modes: room for their shares, no sin w t or cos w t terms.
+    fn reset(&mut self, n: usize) {
+        self.shares.fit(n);
+        self.sin_wt = [0.0; R];
+        self.cos_wt = [0.0; R];
+    }
+
+    /// Mode j left out of every row.
+    fn clear(&mut self, j: usize) {
+        self.shares.as_mut()[j] = ([0.0; R], [0.0; R]);
     }
 
     /// Mode j's share, each row weighing it by `weights` (and summing its rate where marked).
@@ -155,18 +182,28 @@ impl<const R: usize, S: Shares<R>> Rows<R, S> {
         }
     }
 
-    /// The rows given sin and cos of the modes' angles and (sin w t, cos w t) (sliding only).
+    /// The first `need` rows given sin and cos of the modes' angles and (sin w t, cos w t) (sliding
+    /// only); the others are left 0. Each row is summed on its own, so a row has the same bits
+    /// however many are summed.
     #[inline(always)]
-    fn at(&self, n: usize, sin: &[f64], cos: &[f64], wt: Option<(f64, f64)>) -> [f64; R] {
+    fn at(
+        &self,
+        n: usize,
+        (sin, cos): (&[f64], &[f64]),
+        wt: Option<(f64, f64)>,
+        need: usize,
+    ) -> [f64; R] {
         let mut rows = [0.0; R];
         let shares = self.shares.as_ref()[..n].iter();
         for ((cos_share, sin_share), (&c, &s)) in shares.zip(cos.iter().zip(sin)) {
-            for ((row, a), b) in rows.iter_mut().zip(cos_share).zip(sin_share) {
+            let terms = rows[..need].iter_mut().zip(cos_share).zip(sin_share);
+            for ((row, a), b) in terms {
                 *row += a * c + b * s;
             }
         }
         if let Some((sin_wt, cos_wt)) = wt {
-            for ((row, a), b) in rows.iter_mut().zip(&self.sin_wt).zip(&self.cos_wt) {
+            let terms = rows[..need].iter_mut().zip(&self.sin_wt).zip(&self.cos_wt);
+            for ((row, a), b) in terms {
                 *row += a * sin_wt + b * cos_wt;
             }
         }
@@ -183,21 +220,29 @@ fn add<const R: usize>(rows: &mut [f64; R], weights: [(f64, bool); R], (q, dq): 
 }
 
 impl<const R: usize, S: Shares<R>> Sums<R, S> {
+    /// Sums for `n` modes, all zero.
+    fn empty(n: usize) -> Sums<R, S> {
+        Sums {
+            main: Rows::new(n),
+            odd: [0; MAX],
+            odd_n: 0,
+        }
+    }
+
     /// The sums for modes `modes` from q0, q0' with the responses `response`, each row weighing mode
-    /// j by `weights(j)`.
-    fn new(
+    /// j by `weights(j)`, written over these.
+    fn write(
+        &mut self,
         modes: &Modes,
         w: f64,
         (q0, dq0): (&[f64; MAX], &[f64; MAX]),
         response: &[Response; MAX],
         (sin_wt0, cos_wt0): (f64, f64),
         weights: impl Fn(usize) -> [(f64, bool); R],
-    ) -> Sums<R, S> {
-        let mut sums = Sums {
-            main: Rows::new(modes.n),
-            odd: [0; MAX],
-            odd_n: 0,
-        };
+    ) {
+        let sums = self;
+        sums.main.reset(modes.n);
+        sums.odd_n = 0;
         for j in 0..modes.n {
             let omega = modes.omega[j];
             let rigid = modes.rigid == Some(j);
@@ -207,6 +252,7 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
                 _ => {
                     sums.odd[sums.odd_n] = j;
                     sums.odd_n += 1;
+                    sums.main.clear(j);
                     continue;
                 }
             };
@@ -234,7 +280,6 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
             };
             sums.main.fill(j, weights(j), swing);
         }
-        sums
     }
 }
 
@@ -300,6 +345,8 @@ pub struct Contact {
 }
 
 impl Motion {
+    /// The phase from `start`: sliding with the slip's sign `dir` or gripping (`dir` 0), while the
+    /// first mass moves or is held (`cart`).
     pub fn new(
         chain: Arc<Chain>,
         setup: &Setup,
@@ -307,65 +354,112 @@ impl Motion {
         dir: f64,
         cart: Cart,
     ) -> Motion {
-        let (sin_wt0, cos_wt0) = sin_cos(setup.w * start.t);
+        let mut motion = Motion {
+            chain,
+            dir,
+            cart,
+            start,
+            sin_wt0: 0.0,
+            cos_wt0: 1.0,
+            q0: [0.0; MAX],
+            dq0: [0.0; MAX],
+            response: [Response::Free; MAX],
+            push: 0.0,
+            v1_start: 0.0,
+            store: Store::default(),
+        };
+        motion.write(setup, dir, cart);
+        motion
+    }
+
+    /// [`Motion::new`] written over this phase's storage (see `spare.rs`): every field the new phase
+    /// reads is written, the sums' storage kept.
+    pub fn rebuild(
+        &mut self,
+        chain: &Arc<Chain>,
+        setup: &Setup,
+        start: &ChainState,
+        dir: f64,
+        cart: Cart,
+    ) {
+        if !Arc::ptr_eq(&self.chain, chain) {
+            self.chain = Arc::clone(chain);
+        }
+        self.start = *start;
+        self.write(setup, dir, cart);
+    }
+
+    /// Writes the phase from `self.start` with `dir` and `cart` ([`Motion::new`]) over this one.
+    fn write(&mut self, setup: &Setup, dir: f64, cart: Cart) {
+        (self.sin_wt0, self.cos_wt0) = sin_cos(setup.w * self.start.t);
+        (self.dir, self.cart, self.push) = (dir, cart, cart.friction(setup));
+        let chain = &*self.chain;
+        let start = &self.start;
         let held = cart == Cart::Stuck;
         if held && start.frame == 0 {
-            return Motion::held(chain, start, dir, (sin_wt0, cos_wt0));
+            // The masses behind a first mass held still swing freely about their rest line
+            // X_i = X_1 (N + 1 - i)/N.
+            let modes = chain.clamped();
+            let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
+            for i in 0..modes.n {
+                x[i] = start.x[i + 1] - rest_line(chain, start, i + 1);
+                v[i] = start.v[i + 1];
+            }
+            modes.project_into(&x, &mut self.q0);
+            modes.project_into(&v, &mut self.dq0);
+            self.response[..modes.n].fill(Response::Free);
+            self.v1_start = 0.0;
+            return;
         }
         // Held to a free frame, the ring of first mass and frame and the links behind ([`ring`]).
-        let (modes, (x, v)) = if held {
-            (chain.held(dir), ring::coordinates(&chain, &start))
+        let modes = if held {
+            let (x, v) = ring::coordinates(chain, start);
+            let modes = chain.held(dir);
+            modes.project_into(&x, &mut self.q0);
+            modes.project_into(&v, &mut self.dq0);
+            modes
         } else {
-            (chain.modes(dir), (start.x, start.v))
+            let modes = chain.modes(dir);
+            modes.project_into(&start.x, &mut self.q0);
+            modes.project_into(&start.v, &mut self.dq0);
+            modes
         };
-        let q0 = modes.project(&x);
-        let dq0 = modes.project(&v);
-        let v1_start = (0..modes.n).map(|j| modes.shape[0][j] * dq0[j]).sum();
+        let (q0, dq0) = (&self.q0, &self.dq0);
+        self.v1_start = (0..modes.n).map(|j| modes.shape[0][j] * dq0[j]).sum();
         let force = dir * setup.peak_friction();
         let speeds = start.vx.abs()
             + setup.r * start.omega.abs()
             + start.v[..modes.n].iter().map(|v| v.abs()).sum::<f64>();
         let w = setup.w;
-        let mut response = [Response::Free; MAX];
-        if dir != 0.0 {
-            for (j, r) in response.iter_mut().enumerate().take(modes.n) {
+        let response = &mut self.response;
+        for (j, r) in response.iter_mut().enumerate().take(modes.n) {
+            *r = if dir == 0.0 {
+                Response::Free
+            } else {
                 let omega = modes.omega[j];
                 let drive = modes.shape[0][j] * force;
                 let amplitude = drive / (omega * omega - w * w);
-                *r = if (amplitude * w * modes.largest[j]).abs() <= DETUNED_GAIN * speeds {
+                if (amplitude * w * modes.largest[j]).abs() <= DETUNED_GAIN * speeds {
                     Response::Detuned { amplitude }
                 } else {
                     Response::Forced { drive }
-                };
-            }
+                }
+            };
         }
-        let start_wt = (sin_wt0, cos_wt0);
-        let sums = match start.frame {
-            _ if held => None,
+        let start_wt = (self.sin_wt0, self.cos_wt0);
+        let n = modes.n;
+        match start.frame {
+            _ if held => {}
             0 => {
                 let weights = |j| Sums::main_weights(modes, j);
-                let sums = Sums::new(modes, w, (&q0, &dq0), &response, start_wt, weights);
-                Some(Written::Wall(sums))
+                let sums = self.store.wall.get_or_insert_with(|| Sums::empty(n));
+                sums.write(modes, w, (q0, dq0), response, start_wt, weights);
             }
             frame => {
                 let weights = |j| Sums::framed_weights(modes, frame, j);
-                let sums = Sums::new(modes, w, (&q0, &dq0), &response, start_wt, weights);
-                Some(Written::Frame(sums))
+                let sums = self.store.frame.get_or_insert_with(|| Sums::empty(n));
+                sums.write(modes, w, (q0, dq0), response, start_wt, weights);
             }
-        };
-        Motion {
-            chain,
-            dir,
-            cart,
-            start,
-            sin_wt0,
-            cos_wt0,
-            q0,
-            dq0,
-            response,
-            push: cart.friction(setup),
-            v1_start,
-            sums,
         }
     }
 
@@ -380,36 +474,6 @@ impl Motion {
         setup.m_eff * stiff
     }
 
-    /// The phase with the first mass held still: the masses behind it swing freely about their rest
-    /// line X_i = X_1 (N + 1 - i)/N.
-    fn held(
-        chain: Arc<Chain>,
-        start: ChainState,
-        dir: f64,
-        (sin_wt0, cos_wt0): (f64, f64),
-    ) -> Motion {
-        let modes = chain.clamped();
-        let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
-        for i in 0..modes.n {
-            x[i] = start.x[i + 1] - rest_line(&chain, &start, i + 1);
-            v[i] = start.v[i + 1];
-        }
-        Motion {
-            q0: modes.project(&x),
-            dq0: modes.project(&v),
-            sums: None,
-            chain,
-            dir,
-            cart: Cart::Stuck,
-            start,
-            sin_wt0,
-            cos_wt0,
-            response: [Response::Free; MAX],
-            push: 0.0,
-            v1_start: 0.0,
-        }
-    }
-
     pub fn chain(&self) -> &Chain {
         &self.chain
     }
@@ -420,6 +484,18 @@ impl Motion {
         match self.cart {
             Cart::Stuck => self.chain.held(self.dir),
             Cart::Moving(_) => self.chain.modes(self.dir),
+        }
+    }
+
+    /// The phase's sums, written for a moving first mass (`None` held).
+    #[inline]
+    fn sums(&self) -> Option<Written<'_>> {
+        if self.is_held() {
+            return None;
+        }
+        match self.start.frame {
+            0 => self.store.wall.as_ref().map(Written::Wall),
+            _ => self.store.frame.as_ref().map(Written::Frame),
         }
     }
 
@@ -462,7 +538,9 @@ impl Motion {
 
     /// sin and cos of every Ω_j τ, and of w τ while sliding (in the last place), into `sin` and
     /// `cos` by [`sin_cos_each`] (to about 2 ulp, for [`Motion::rows`]); sin(w τ), cos(w τ) ((0, 1)
-    /// gripping).
+    /// gripping). The rigid translation on a free frame turns through no angle: it is left out of
+    /// the batch (whose every angle goes to the same method, so that leaving out a zero changes no
+    /// other's bits) and given its exact (0, 1).
     #[inline(always)]
     fn angles_each(
         &self,
@@ -545,14 +623,15 @@ impl Motion {
     }
 
     /// The rows of [`Sums`] at `t` through the phase's combinations `sums`, with sin(w τ) and
-    /// cos(w τ); `rigid` is the rigid translation if the combinations hold it.
+    /// cos(w τ); `rigid` is the rigid translation if the combinations hold it. Only the first `need`
+    /// rows are summed over the combinations (the others are 0 but for the modes left out).
     #[inline(always)]
     fn rows<const R: usize, S: Shares<R>>(
         &self,
         (sums, rigid): (&Sums<R, S>, Option<usize>),
         weights: impl Fn(usize) -> [(f64, bool); R],
-        setup: &Setup,
-        t: f64,
+        (setup, t): (&Setup, f64),
+        need: usize,
     ) -> ([f64; R], (f64, f64)) {
         let modes = self.modes();
         let tau = t - self.start.t;
@@ -570,7 +649,7 @@ impl Motion {
                 self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau,
             )
         });
-        let mut rows = sums.main.at(n, &sin, &cos, wt);
+        let mut rows = sums.main.at(n, (&sin, &cos), wt, need);
         for &j in &sums.odd[..sums.odd_n] {
             let motion = self.mode_at(modes, w, (j, tau), (sin[j], cos[j]), w_tau);
             add(&mut rows, weights(j), motion);
@@ -585,13 +664,14 @@ impl Motion {
     }
 
     /// The main and the frame's rows of [`Sums`] at `t` through the phase's combinations `sums`, with
-    /// sin(w τ) and cos(w τ).
+    /// sin(w τ) and cos(w τ); the frame's rows only if `all`.
     #[inline(always)]
     fn frame_rows(
         &self,
         sums: &Sums<7, Vec<Share<7>>>,
         setup: &Setup,
         t: f64,
+        all: bool,
     ) -> ([f64; 4], [f64; 3], (f64, f64)) {
         let (modes, frame) = (self.modes(), self.start.frame);
         let weights = |j| Sums::framed_weights(modes, frame, j);
@@ -599,7 +679,8 @@ impl Motion {
         let rigid = modes
             .rigid
             .filter(|&r| !matches!(self.response[r], Response::Forced { .. }));
-        let ([a, b, c, d, e, f, g], w_tau) = self.rows((sums, rigid), weights, setup, t);
+        let need = if all { 7 } else { 4 };
+        let ([a, b, c, d, e, f, g], w_tau) = self.rows((sums, rigid), weights, (setup, t), need);
         ([a, b, c, d], [e, f, g], w_tau)
     }
 
@@ -614,21 +695,37 @@ impl Motion {
         (impulse, force * sin_wt.max(0.0))
     }
 
-    /// The ball, the first mass and the friction at `t`.
-    #[inline]
+    /// The ball, the first mass and the friction at `t`. (One body for every caller: inlined into
+    /// the event functions it made the chain with string friction 3% slower.)
+    #[inline(never)]
     pub fn contact(&self, setup: &Setup, t: f64) -> Contact {
+        self.contact_of(setup, t, true)
+    }
+
+    /// [`Motion::contact`] for the event search without string friction, which reads the ball, the
+    /// first mass's velocity and acceleration and the friction: on a free frame the frame's rows are
+    /// not summed (the displacement relative to it and its motion are wrong); the rest has the bits
+    /// `contact` gives. (One body for its callers, as `contact` is.)
+    #[inline(never)]
+    pub fn probe(&self, setup: &Setup, t: f64) -> Contact {
+        self.contact_of(setup, t, false)
+    }
+
+    /// [`Motion::contact`], with the frame's rows summed only if `all`.
+    #[inline(always)]
+    fn contact_of(&self, setup: &Setup, t: f64, all: bool) -> Contact {
         let frame = self.start.frame;
         if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
         }
-        match &self.sums {
+        match self.sums() {
             Some(Written::Wall(sums)) => {
                 let weights = |j| Sums::main_weights(self.modes(), j);
-                let (rows, w_tau) = self.rows((sums, None), weights, setup, t);
+                let (rows, w_tau) = self.rows((sums, None), weights, (setup, t), 4);
                 return self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau);
             }
             Some(Written::Frame(sums)) => {
-                let (main, framed, w_tau) = self.frame_rows(sums, setup, t);
+                let (main, framed, w_tau) = self.frame_rows(sums, setup, t, all);
                 return self.moving_contact(setup, t, (&main, &framed), w_tau);
             }
             None => {}
@@ -754,12 +851,12 @@ impl Motion {
         let mut searched = None;
         let contact = if self.is_held() && self.start.frame == 0 {
             self.held_contact(setup, t)
-        } else if let Some(Written::Wall(sums)) = &self.sums {
+        } else if let Some(Written::Wall(sums)) = self.sums() {
             let weights = |j| Sums::main_weights(modes, j);
-            let (rows, w_tau) = self.rows((sums, None), weights, setup, t);
+            let (rows, w_tau) = self.rows((sums, None), weights, (setup, t), 4);
             self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau)
-        } else if let Some(Written::Frame(sums)) = &self.sums {
-            let (main, framed, w_tau) = self.frame_rows(sums, setup, t);
+        } else if let Some(Written::Frame(sums)) = self.sums() {
+            let (main, framed, w_tau) = self.frame_rows(sums, setup, t, true);
             searched = Some((main, framed));
             self.moving_contact(setup, t, (&main, &framed), w_tau)
         } else {
@@ -778,7 +875,7 @@ impl Motion {
                 v[i] = v[i - 1];
             }
             (x[0], v[0]) = (contact.x, 0.0);
-        } else if let Some(Written::Wall(_)) = self.sums {
+        } else if let Some(Written::Wall(_)) = self.sums() {
             (x[0], v[0]) = (contact.x, contact.v);
         } else if let Some(([x1, v1, ..], [xf, _, vf])) = searched {
             let frame = self.start.frame;

@@ -21,7 +21,8 @@ use super::super::contact::{Ball, Cart, Cause, Mode, ROUNDING};
 use super::super::events::first_rise;
 use super::super::setup::Setup;
 use super::modes::{MAX, Modes};
-use super::{Chain, ChainMotion, ChainState};
+use super::motion::Motion;
+use super::{Chain, ChainState};
 
 /// The ring's coordinates and velocities at `start` (the first mass held to the frame): B's, the
 /// frame's X_f and V_f, then each link's behind the first, less its offset d (N + 1 - i)/N on the rest
@@ -77,7 +78,7 @@ fn springs(chain: &Chain, s: &ChainState) -> [(f64, f64); 2] {
 /// or the grip breaking, and the push on the first mass reaching ±F_c.
 pub fn first_event(
     setup: &Setup,
-    motion: &ChainMotion,
+    motion: &Motion,
     state: &ChainState,
     ball: Ball,
     incoming: f64,
@@ -179,7 +180,7 @@ pub fn rest_push(chain: &Chain, friction: f64, full: &ChainState) -> f64 {
 }
 
 /// A bound on |push''| over a held phase, and the size of push's terms (the rigid ball's ring phase).
-pub fn push_bounds(motion: &ChainMotion, setup: &Setup) -> (f64, f64) {
+pub fn push_bounds(motion: &Motion, setup: &Setup) -> (f64, f64) {
     let chain = motion.chain();
     let share = chain.frame.unwrap_or(0.0) / (chain.link_mass + chain.frame.unwrap_or(0.0));
     let sliding = !motion.is_grip();
@@ -250,7 +251,7 @@ pub fn ring_push_bounds(
 /// size of its terms: V_1 - V_f = Σ (Φ_1j - Φ_fj) q_j', each mode swinging freely about its equilibrium
 /// under the string friction q_e = (Φ_1j - Φ_fj) push/Ω_j², so |q_j'''| <= Ω_j² E_j with E_j =
 /// sqrt(q_j'² + Ω_j² (q_j - q_e)²) fixed (the rigid translation has Φ_1j = Φ_fj and drops out).
-pub fn grip_relative_curvature(motion: &ChainMotion, setup: &Setup) -> (f64, f64) {
+pub fn grip_relative_curvature(motion: &Motion, setup: &Setup) -> (f64, f64) {
     let modes = motion.modes();
     let start = &motion.start;
     let frame = start.frame;
