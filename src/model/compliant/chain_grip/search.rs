@@ -161,7 +161,9 @@ impl ChainGrip {
         let remaining = setup.duration - self.start.t;
         let frame = self.start.frame;
         let start = (self.start.v[0] - if frame > 0 { self.start.v[frame] } else { 0.0 }).abs();
-        match (&g.modes, &self.coefficients) {
+        // The still modes move V_f alone.
+        let (still_curvature, still_size) = self.still_bounds(|m| m.frame);
+        let (curvature, size) = match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
                 let (mut curvature, mut size) = (0.0, start);
                 for (i, (mode, ci)) in list.iter().zip(c).enumerate() {
@@ -184,7 +186,8 @@ impl ChainGrip {
                 let (curvature, size) = self.energy_bounds(setup, &first);
                 (curvature, size + start)
             }
-        }
+        };
+        (curvature + still_curvature, size + still_size)
     }
 
     /// For a row h in z-coordinates, bounds on |h z''| and |h z| over the rest of the contact through
