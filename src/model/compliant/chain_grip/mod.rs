@@ -346,6 +346,9 @@ pub struct ChainGrip {
 /// How many modes [`ChainGrip::at`] takes the sines of at once (small arrays, set up without a call).
 const CHUNK: usize = 10;
 
+/// Room for a grip's state (u, Q, u', Q').
+const STATE: usize = 2 * MAX + 2;
+
 /// The contact's sums u, u', F, F', e, e', e'' and X_1'' (= u'' - e'').
 const SUMS: usize = 8;
 
@@ -485,42 +488,52 @@ impl ChainGrip {
         (curvature, size)
     }
 
-    /// (u, Q, u', Q') and its rate at `t`.
-    fn propagate(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
+    /// (u, Q, u', Q') and, if `rates`, its rate at `t` (the first 2N + 2 entries of each).
+    fn propagate(&self, t: f64, rates: bool) -> ([f64; STATE], [f64; STATE]) {
         let tau = t - self.start.t;
         let g = &self.modes;
         let n = g.n;
-        let mut z = vec![0.0; 2 * n + 2];
-        let mut dz = vec![0.0; 2 * n + 2];
+        let len = 2 * n + 2;
+        let (mut z, mut dz) = ([0.0; STATE], [0.0; STATE]);
         match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
+                // The positions and the rates, as slices of N + 1 (no index checks in the loops).
+                let (position, rate) = z[..len].split_at_mut(n + 1);
+                let (_, acceleration) = dz[..len].split_at_mut(n + 1);
                 for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
                     let (a, da) = self.term(mode, ci, i, tau);
-                    let dda = da * mode.s;
-                    z[0] += (a * mode.u).re;
-                    z[n + 1] += (da * mode.u).re;
-                    dz[n + 1] += (dda * mode.u).re;
-                    for j in 0..n {
-                        z[j + 1] += (a * mode.q[j]).re;
-                        z[n + 2 + j] += (da * mode.q[j]).re;
-                        dz[n + 2 + j] += (dda * mode.q[j]).re;
+                    let q = &mode.q[..n];
+                    position[0] += (a * mode.u).re;
+                    rate[0] += (da * mode.u).re;
+                    for ((x, v), q) in position[1..].iter_mut().zip(&mut rate[1..]).zip(q) {
+                        *x += (a * q).re;
+                        *v += (da * q).re;
+                    }
+                    if rates {
+                        let dda = da * mode.s;
+                        acceleration[0] += (dda * mode.u).re;
+                        for (w, q) in acceleration[1..].iter_mut().zip(q) {
+                            *w += (dda * q).re;
+                        }
                     }
                 }
-                dz[..=n].copy_from_slice(&z[n + 1..]);
+                if rates {
+                    dz[..=n].copy_from_slice(&z[n + 1..len]);
+                }
             }
             _ if self.push != 0.0 => {
                 let dof = n + 1;
                 let (augmented, _, _) = g.forced_checkpoint();
                 let zt = self.exponential(tau);
                 let dzt = augmented * &zt;
-                z.copy_from_slice(&g.energy_to_state(&zt.rows(0, 2 * dof).into_owned()));
-                dz.copy_from_slice(&g.energy_to_state(&dzt.rows(0, 2 * dof).into_owned()));
+                z[..len].copy_from_slice(&g.energy_to_state(&zt.rows(0, 2 * dof).into_owned()));
+                dz[..len].copy_from_slice(&g.energy_to_state(&dzt.rows(0, 2 * dof).into_owned()));
             }
             _ => {
                 let zt = self.exponential(tau);
                 let dzt = &g.a * &zt;
-                z.copy_from_slice(&g.energy_to_state(&zt));
-                dz.copy_from_slice(&g.energy_to_state(&dzt));
+                z[..len].copy_from_slice(&g.energy_to_state(&zt));
+                dz[..len].copy_from_slice(&g.energy_to_state(&dzt));
             }
         }
         (z, dz)
@@ -600,7 +613,7 @@ impl ChainGrip {
                     )
                 }
                 _ => {
-                    let (z, dz) = self.propagate(t);
+                    let (z, dz) = self.propagate(t, true);
                     let x1: f64 = (0..n).map(|j| g.phi1[j] * z[j + 1]).sum();
                     let v1: f64 = (0..n).map(|j| g.phi1[j] * z[n + 2 + j]).sum();
                     let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
@@ -698,7 +711,7 @@ impl ChainGrip {
 
     /// The ball and the whole chain at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
-        let (z, _) = self.propagate(t);
+        let (z, _) = self.propagate(t, false);
         let n = self.modes.n;
         let slide = &self.modes.chain.slide;
         let tau = t - self.start.t;
