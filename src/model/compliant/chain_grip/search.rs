@@ -280,6 +280,10 @@ fn curvature(sizes: &[ModeSize], growths: &[f64; MODES]) -> f64 {
 /// grip's start: e^{Re s elapsed} for a decaying mode, e^{Re s remaining} otherwise.
 fn growth(re: f64, elapsed: f64, remaining: f64) -> f64 {
     if re <= 0.0 {
+        // e^0 = 1 exactly, without the call.
+        if elapsed == 0.0 {
+            return 1.0;
+        }
         (re * elapsed).exp()
     } else {
         (re * remaining).exp()
