@@ -77,6 +77,9 @@ const FORCE_RECONSTRUCTION: f64 = 1e-10;
 const CANCELLATION: f64 = 1e3;
 /// A mode whose share of the bound on |F''| is below this fraction sets no step for the event search.
 const NEGLIGIBLE: f64 = 1e-6;
+/// A chain mode whose Φ_1j is at most this fraction of the largest leaves the first mass still: a
+/// rounding of zero (a ring's mirror modes come out of the eigensolver at about 1e-16).
+const UNSEEN: f64 = 1e-12;
 
 /// One mode of the gripping ball and chain, scaled to carry the unit force.
 #[derive(Clone, Debug)]
@@ -96,6 +99,22 @@ struct Mode {
     norm: C64,
     /// The energy-norm size of the mode's state, sqrt(2 E).
     size: f64,
+}
+
+/// A flexible mode of the chain that leaves its first mass still (Φ_1j = 0 to rounding): on a ring
+/// through a held body ([`super::HeldRingGrip`]), every mode the ring's mirror symmetry keeps the body
+/// still in. The ball's spring neither moves it nor feels it, so it is no root of the grip's system (in
+/// which it would be a root on a pole of R(s), found twice or not at all): it swings on its own,
+/// Q_j'' + Ω_j² Q_j = p_j, p_j its share of the string friction's push.
+#[derive(Clone, Copy, Debug)]
+struct Still {
+    /// Its index among the chain's slide modes.
+    index: usize,
+    omega: f64,
+    /// Φ_fj, the frame's share of it on a free frame (0 on the wall).
+    frame: f64,
+    /// Its unit push, Φ_1j - Φ_fj (as [`GripModes::push_row`]'s).
+    push: f64,
 }
 
 /// The rigid translation of a chain on a free frame, taken out of the grip's system.
@@ -127,6 +146,8 @@ pub struct GripModes {
     omega2: [f64; MAX],
     /// Which slide mode each flexible one is.
     flexible: [usize; MAX],
+    /// The slide modes the ball's spring cannot see, apart from the grip's system.
+    still: Vec<Still>,
     /// On a free frame: the translation, and the frame's Φ_fj over the flexible modes.
     translation: Option<Translation>,
     frame_row: [f64; MAX],
@@ -169,12 +190,36 @@ impl GripModes {
                 chain_share: setup.m_eff / (setup.m_eff + total),
             }
         });
+        // The flexible modes the ball's spring sees, and those it cannot (Φ_1j zero to rounding).
+        let moving = |j: &usize| translation.is_none_or(|tr| tr.index != *j);
+        let seen = (0..modes.n)
+            .filter(moving)
+            .map(|j| modes.shape[0][j].abs())
+            .fold(0.0, f64::max);
         let mut flexible = [0; MAX];
         let mut n = 0;
-        for j in 0..modes.n {
-            if translation.is_none_or(|tr| tr.index != j) {
+        let mut still = Vec::new();
+        for j in (0..modes.n).filter(moving) {
+            if modes.shape[0][j].abs() > UNSEEN * seen {
                 flexible[n] = j;
                 n += 1;
+            } else {
+                let push = modes.shape[0][j]
+                    - if frame > 0 {
+                        modes.shape[frame][j]
+                    } else {
+                        0.0
+                    };
+                still.push(Still {
+                    index: j,
+                    omega: modes.omega[j],
+                    frame: if frame > 0 {
+                        modes.shape[frame][j]
+                    } else {
+                        0.0
+                    },
+                    push,
+                });
             }
         }
         let m_eff = match translation {
@@ -219,7 +264,10 @@ impl GripModes {
             }
         }
         let contact = 1.0 / m_eff + 1.0 / chain.link_mass;
-        let top = omega2[..n].iter().fold(0.0f64, |a, &b| a.max(b));
+        let top = still
+            .iter()
+            .map(|m| m.omega * m.omega)
+            .fold(omega2[..n].iter().fold(0.0f64, |a, &b| a.max(b)), f64::max);
         let fastest = (top + kb * contact).sqrt() + cb * contact;
         let mut grip = GripModes {
             chain,
@@ -230,6 +278,7 @@ impl GripModes {
             phi1,
             omega2,
             flexible,
+            still,
             translation,
             frame_row,
             push_row,
@@ -290,10 +339,15 @@ pub struct ChainGrip {
     checkpoints: Arc<Mutex<Vec<DVector<f64>>>>,
     /// On the wall without a push, each mode's [`Shares`] of the contact's sums.
     shares: Option<Vec<Shares>>,
+    /// Each still mode's Q and Q' at the start (`GripModes::still`).
+    still: Vec<(f64, f64)>,
 }
 
 /// How many modes [`ChainGrip::at`] takes the sines of at once (small arrays, set up without a call).
 const CHUNK: usize = 10;
+
+/// Room for a grip's state (u, Q, u', Q').
+const STATE: usize = 2 * MAX + 2;
 
 /// The contact's sums u, u', F, F', e, e', e'' and X_1'' (= u'' - e'').
 const SUMS: usize = 8;
@@ -345,25 +399,24 @@ impl ChainGrip {
         let (u0, du0) = (start.x[0] + e, start.vx - setup.r * start.omega);
         z0[0] = u0;
         z0[n + 1] = du0;
-        let mut centre = None;
-        match modes.translation {
-            None => {
-                z0[1..=n].copy_from_slice(&q[..n]);
-                z0[n + 2..].copy_from_slice(&dq[..n]);
-            }
-            Some(tr) => {
-                let (y, dy) = (tr.c * q[tr.index], tr.c * dq[tr.index]);
-                // G = u - (M/(m_eff + M)) r.
-                centre = Some((
-                    u0 - tr.ball_share * (u0 - y),
-                    du0 - tr.ball_share * (du0 - dy),
-                ));
-                (z0[0], z0[n + 1]) = (u0 - y, du0 - dy);
-                for (k, &j) in modes.flexible.iter().enumerate().take(n) {
-                    (z0[1 + k], z0[n + 2 + k]) = (q[j], dq[j]);
-                }
-            }
+        for (k, &j) in modes.flexible.iter().enumerate().take(n) {
+            (z0[1 + k], z0[n + 2 + k]) = (q[j], dq[j]);
         }
+        let mut centre = None;
+        if let Some(tr) = modes.translation {
+            let (y, dy) = (tr.c * q[tr.index], tr.c * dq[tr.index]);
+            // G = u - (M/(m_eff + M)) r.
+            centre = Some((
+                u0 - tr.ball_share * (u0 - y),
+                du0 - tr.ball_share * (du0 - dy),
+            ));
+            (z0[0], z0[n + 1]) = (u0 - y, du0 - dy);
+        }
+        let still = modes
+            .still
+            .iter()
+            .map(|m| (q[m.index], dq[m.index]))
+            .collect();
         let mut coefficients = modes
             .modes
             .as_ref()
@@ -403,45 +456,84 @@ impl ChainGrip {
             beta,
             checkpoints: Arc::new(Mutex::new(Vec::new())),
             shares,
+            still,
         }
     }
 
-    /// (u, Q, u', Q') and its rate at `t`.
-    fn propagate(&self, t: f64) -> (Vec<f64>, Vec<f64>) {
+    /// Still mode `k` after `tau`: Q, Q' and Q'' of Q'' + Ω² Q = p (p = p_k P), from its start.
+    #[inline]
+    fn still(&self, k: usize, tau: f64) -> (f64, f64, f64) {
+        let mode = &self.modes.still[k];
+        let (q0, dq0) = self.still[k];
+        let w = mode.omega;
+        let rest = mode.push * self.push / (w * w);
+        let (sin, cos) = sin_cos(w * tau);
+        let swing = q0 - rest;
+        let q = rest + swing * cos + dq0 / w * sin;
+        let dq = dq0 * cos - swing * w * sin;
+        (q, dq, -(w * w) * (q - rest))
+    }
+
+    /// A bound on the second derivative of Σ h_k Q_k' over the still modes k, and on its size: each
+    /// swings at its Ω about its rest with speed at most sqrt(((Q0 - p/Ω²) Ω)² + Q0'²).
+    fn still_bounds(&self, row: impl Fn(&Still) -> f64) -> (f64, f64) {
+        let (mut curvature, mut size) = (0.0, 0.0);
+        for (mode, &(q0, dq0)) in self.modes.still.iter().zip(&self.still) {
+            let w = mode.omega;
+            let swing = (q0 - mode.push * self.push / (w * w)) * w;
+            let speed = row(mode).abs() * swing.hypot(dq0);
+            curvature += speed * w * w;
+            size += speed;
+        }
+        (curvature, size)
+    }
+
+    /// (u, Q, u', Q') and, if `rates`, its rate at `t` (the first 2N + 2 entries of each).
+    fn propagate(&self, t: f64, rates: bool) -> ([f64; STATE], [f64; STATE]) {
         let tau = t - self.start.t;
         let g = &self.modes;
         let n = g.n;
-        let mut z = vec![0.0; 2 * n + 2];
-        let mut dz = vec![0.0; 2 * n + 2];
+        let len = 2 * n + 2;
+        let (mut z, mut dz) = ([0.0; STATE], [0.0; STATE]);
         match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
+                // The positions and the rates, as slices of N + 1 (no index checks in the loops).
+                let (position, rate) = z[..len].split_at_mut(n + 1);
+                let (_, acceleration) = dz[..len].split_at_mut(n + 1);
                 for (i, (mode, &ci)) in list.iter().zip(c).enumerate() {
                     let (a, da) = self.term(mode, ci, i, tau);
-                    let dda = da * mode.s;
-                    z[0] += (a * mode.u).re;
-                    z[n + 1] += (da * mode.u).re;
-                    dz[n + 1] += (dda * mode.u).re;
-                    for j in 0..n {
-                        z[j + 1] += (a * mode.q[j]).re;
-                        z[n + 2 + j] += (da * mode.q[j]).re;
-                        dz[n + 2 + j] += (dda * mode.q[j]).re;
+                    let q = &mode.q[..n];
+                    position[0] += (a * mode.u).re;
+                    rate[0] += (da * mode.u).re;
+                    for ((x, v), q) in position[1..].iter_mut().zip(&mut rate[1..]).zip(q) {
+                        *x += (a * q).re;
+                        *v += (da * q).re;
+                    }
+                    if rates {
+                        let dda = da * mode.s;
+                        acceleration[0] += (dda * mode.u).re;
+                        for (w, q) in acceleration[1..].iter_mut().zip(q) {
+                            *w += (dda * q).re;
+                        }
                     }
                 }
-                dz[..=n].copy_from_slice(&z[n + 1..]);
+                if rates {
+                    dz[..=n].copy_from_slice(&z[n + 1..len]);
+                }
             }
             _ if self.push != 0.0 => {
                 let dof = n + 1;
                 let (augmented, _, _) = g.forced_checkpoint();
                 let zt = self.exponential(tau);
                 let dzt = augmented * &zt;
-                z.copy_from_slice(&g.energy_to_state(&zt.rows(0, 2 * dof).into_owned()));
-                dz.copy_from_slice(&g.energy_to_state(&dzt.rows(0, 2 * dof).into_owned()));
+                z[..len].copy_from_slice(&g.energy_to_state(&zt.rows(0, 2 * dof).into_owned()));
+                dz[..len].copy_from_slice(&g.energy_to_state(&dzt.rows(0, 2 * dof).into_owned()));
             }
             _ => {
                 let zt = self.exponential(tau);
                 let dzt = &g.a * &zt;
-                z.copy_from_slice(&g.energy_to_state(&zt));
-                dz.copy_from_slice(&g.energy_to_state(&dzt));
+                z[..len].copy_from_slice(&g.energy_to_state(&zt));
+                dz[..len].copy_from_slice(&g.energy_to_state(&dzt));
             }
         }
         (z, dz)
@@ -521,7 +613,7 @@ impl ChainGrip {
                     )
                 }
                 _ => {
-                    let (z, dz) = self.propagate(t);
+                    let (z, dz) = self.propagate(t, true);
                     let x1: f64 = (0..n).map(|j| g.phi1[j] * z[j + 1]).sum();
                     let v1: f64 = (0..n).map(|j| g.phi1[j] * z[n + 2 + j]).sum();
                     let a1: f64 = (0..n).map(|j| g.phi1[j] * dz[n + 2 + j]).sum();
@@ -545,6 +637,16 @@ impl ChainGrip {
                     )
                 }
             };
+        // The still modes move the frame alone.
+        let (xf, dxf, ddxf) = if framed {
+            (0..g.still.len()).fold((xf, dxf, ddxf), |(x, v, a), k| {
+                let (q, dq, ddq) = self.still(k, tau);
+                let row = g.still[k].frame;
+                (x + row * q, v + row * dq, a + row * ddq)
+            })
+        } else {
+            (xf, dxf, ddxf)
+        };
         // On a free frame: X_1 - X_f = (X_1 - Y) - (X_f - Y), and the translation's rate
         // Y' = G' - (m_eff/(m_eff + M)) r' and Y'' added to the first mass's and the frame's.
         let (du, x1, v1, a1, frame) = match (g.translation, self.centre) {
@@ -609,28 +711,28 @@ impl ChainGrip {
 
     /// The ball and the whole chain at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
-        let (z, _) = self.propagate(t);
+        let (z, _) = self.propagate(t, false);
         let n = self.modes.n;
         let slide = &self.modes.chain.slide;
+        let tau = t - self.start.t;
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
+        for (k, &j) in self.modes.flexible.iter().enumerate().take(n) {
+            (q[j], dq[j]) = (z[1 + k], z[n + 2 + k]);
+        }
         let du = match (self.modes.translation, self.centre) {
             (Some(tr), Some((g0, dg))) => {
-                for (k, &j) in self.modes.flexible.iter().enumerate().take(n) {
-                    (q[j], dq[j]) = (z[1 + k], z[n + 2 + k]);
-                }
                 // Y = G - (m_eff/(m_eff + M)) r, and Q_0 = Y/c.
-                let tau = t - self.start.t;
                 let y = g0 + dg * tau - tr.chain_share * z[0];
                 let dy = dg - tr.chain_share * z[n + 1];
                 (q[tr.index], dq[tr.index]) = (y / tr.c, dy / tr.c);
                 dg + tr.ball_share * z[n + 1]
             }
-            _ => {
-                q[..n].copy_from_slice(&z[1..=n]);
-                dq[..n].copy_from_slice(&z[n + 2..]);
-                z[n + 1]
-            }
+            _ => z[n + 1],
         };
+        for (k, mode) in self.modes.still.iter().enumerate() {
+            let (q_k, dq_k, _) = self.still(k, tau);
+            (q[mode.index], dq[mode.index]) = (q_k, dq_k);
+        }
         let (vx, omega) = self.ball(setup, du);
         ChainState {
             t,

@@ -6,7 +6,14 @@ use super::super::super::setup::Setup;
 use super::super::stretch::SETTLED;
 use nalgebra::DVector;
 
+use super::super::super::trig::exp as fast_exp;
 use super::{C64, ChainGrip, NEGLIGIBLE};
+
+/// Room for the grip's modes, one per root pair or real root.
+const MODES: usize = 2 * MAX + 2;
+/// An estimated bound this far above half the stage's refuses a cut without the exact bound (the
+/// estimate is within 1e-12 of it, so the exact bound would refuse it too).
+const SCREEN: f64 = 1e-9;
 
 impl ChainGrip {
     /// The stages of the event search over the rest of the contact, (from, to, bound on |F''|, step),
@@ -34,12 +41,37 @@ impl ChainGrip {
             (from, end, curvature, setup.event_step(rate))
         };
         let sizes = self.mode_sizes(setup);
-        let first = self.force_bounds_with(setup, t0, &sizes);
+        let growths_at = |elapsed: f64| {
+            let mut growths = [0.0; MODES];
+            for (g, m) in growths.iter_mut().zip(&sizes) {
+                *g = growth(m.re, elapsed, end - t0);
+            }
+            growths
+        };
+        let first = self.force_bounds_with(setup, &sizes, &growths_at(0.0));
         let size = first.1;
         let mut stages = vec![stage_from(t0, first)];
+        // Each cut's bound on |F''| estimated first with a decaying mode's shrinking over a stage,
+        // e^{Re s stage}, taken once (within 1e-12 of the bound); only a cut the estimate does not
+        // clearly refuse is bounded exactly, with an exponential a mode.
+        let mut estimate = growths_at(0.0);
+        let mut shrink = [1.0; MODES];
+        for (s, m) in shrink.iter_mut().zip(&sizes) {
+            if m.re <= 0.0 {
+                *s = fast_exp(m.re * stage);
+            }
+        }
         // A cut pays for itself only where the bound has fallen by half since the stage began.
         for cut in cuts {
-            let next = stage_from(cut, self.force_bounds_with(setup, cut, &sizes));
+            for (g, s) in estimate.iter_mut().zip(&shrink) {
+                *g *= s;
+            }
+            let current = stages.last().expect("one stage at least").2;
+            if curvature(&sizes, &estimate) >= 0.5 * current * (1.0 + SCREEN) {
+                continue;
+            }
+            let growths = growths_at(cut - t0);
+            let next = stage_from(cut, self.force_bounds_with(setup, &sizes, &growths));
             let current = stages.last_mut().expect("one stage at least");
             if next.2 < 0.5 * current.2 {
                 current.1 = cut;
@@ -55,7 +87,13 @@ impl ChainGrip {
     /// From `from` on: a mode decaying at -Re s has shrunk by e^(Re s (from - t0)) there, so a strongly
     /// damped mode stops counting once it has died out. Also the fastest rate still worth resolving.
     pub fn force_bounds(&self, setup: &Setup, from: f64) -> (f64, f64, f64) {
-        self.force_bounds_with(setup, from, &self.mode_sizes(setup))
+        let sizes = self.mode_sizes(setup);
+        let (elapsed, remaining) = (from - self.start.t, setup.duration - self.start.t);
+        let mut growths = [0.0; MODES];
+        for (g, m) in growths.iter_mut().zip(&sizes) {
+            *g = growth(m.re, elapsed, remaining);
+        }
+        self.force_bounds_with(setup, &sizes, &growths)
     }
 
     /// Per mode, what [`ChainGrip::force_bounds`] scales by the mode's growth: its share of the bound
@@ -92,16 +130,19 @@ impl ChainGrip {
             .collect()
     }
 
-    /// [`ChainGrip::force_bounds`] given [`ChainGrip::mode_sizes`].
-    fn force_bounds_with(&self, setup: &Setup, from: f64, sizes: &[ModeSize]) -> (f64, f64, f64) {
+    /// [`ChainGrip::force_bounds`] given [`ChainGrip::mode_sizes`] and each mode's growth.
+    fn force_bounds_with(
+        &self,
+        setup: &Setup,
+        sizes: &[ModeSize],
+        growths: &[f64; MODES],
+    ) -> (f64, f64, f64) {
         let g = &self.modes;
-        let (elapsed, remaining) = (from - self.start.t, setup.duration - self.start.t);
         match (&g.modes, &self.coefficients) {
             (Some(_), Some(_)) => {
                 let (mut curvature, mut size) = (0.0, 0.0);
-                let mut parts = [0.0; 2 * MAX + 2];
-                for (m, slot) in sizes.iter().zip(&mut parts) {
-                    let growth = growth(m.re, elapsed, remaining);
+                let mut parts = [0.0; MODES];
+                for ((m, slot), &growth) in sizes.iter().zip(&mut parts).zip(growths) {
                     let (part, term) = match m.squared {
                         None => (m.part * growth, m.term * growth),
                         Some(squared) => {
@@ -161,7 +202,9 @@ impl ChainGrip {
         let remaining = setup.duration - self.start.t;
         let frame = self.start.frame;
         let start = (self.start.v[0] - if frame > 0 { self.start.v[frame] } else { 0.0 }).abs();
-        match (&g.modes, &self.coefficients) {
+        // The still modes move V_f alone.
+        let (still_curvature, still_size) = self.still_bounds(|m| m.frame);
+        let (curvature, size) = match (&g.modes, &self.coefficients) {
             (Some(list), Some(c)) => {
                 let (mut curvature, mut size) = (0.0, start);
                 for (i, (mode, ci)) in list.iter().zip(c).enumerate() {
@@ -184,7 +227,8 @@ impl ChainGrip {
                 let (curvature, size) = self.energy_bounds(setup, &first);
                 (curvature, size + start)
             }
-        }
+        };
+        (curvature + still_curvature, size + still_size)
     }
 
     /// For a row h in z-coordinates, bounds on |h z''| and |h z| over the rest of the contact through
@@ -220,10 +264,26 @@ struct ModeSize {
     rate: f64,
 }
 
+/// The bound on |F''| of [`ChainGrip::force_bounds_with`]'s modes alone, given their growths.
+fn curvature(sizes: &[ModeSize], growths: &[f64; MODES]) -> f64 {
+    sizes
+        .iter()
+        .zip(growths)
+        .map(|(m, &growth)| match m.squared {
+            None => m.part * growth,
+            Some(squared) => m.part * growth * squared,
+        })
+        .sum()
+}
+
 /// How much a mode of rate s may have grown (or least shrunk) over the contact from `elapsed` after the
 /// grip's start: e^{Re s elapsed} for a decaying mode, e^{Re s remaining} otherwise.
 fn growth(re: f64, elapsed: f64, remaining: f64) -> f64 {
     if re <= 0.0 {
+        // e^0 = 1 exactly, without the call.
+        if elapsed == 0.0 {
+            return 1.0;
+        }
         (re * elapsed).exp()
     } else {
         (re * remaining).exp()
