@@ -29,6 +29,7 @@
 //! expressions. The cart's displacement reported is the spring's stretch y, relative to the frame; its
 //! velocity is the cart's own (the slip is measured against it).
 
+mod sliding;
 mod sums;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
@@ -41,6 +42,7 @@ use super::recent::Recent;
 use super::setup::{Setup, State};
 use super::transition::{self, Touched};
 use super::trig::{sin_cos, sin_cos2};
+pub use sliding::Sliding;
 use sums::{Angles, ForceSums, SlipSums};
 
 /// The ball and the cart (`x` the spring's stretch y, `v` the cart's velocity), and the frame's velocity.
