@@ -111,7 +111,7 @@ pub enum Rigid {
     Chain(Arc<ChainMotion>),
     /// The single cart on a free frame, moving relative to it: the rigid ball's [`FrameMotion`], with
     /// the frame's displacement at the start (for the whole state).
-    Frame(FrameMotion, f64),
+    Frame(Box<FrameMotion>, f64),
 }
 
 /// A sliding phase of the compliant ball.
@@ -935,7 +935,7 @@ impl Contact for CompliantBall {
                                 vf: state.full.v[index],
                             };
                             let motion = FrameMotion::slide(setup, framed, start, dir, d);
-                            Rigid::Frame(motion, state.full.x[index])
+                            Rigid::Frame(Box::new(motion), state.full.x[index])
                         }
                         (Support::Cart(_), ..) => {
                             Rigid::Cart(Slide::new(setup, state.contact, dir, cart))

@@ -360,6 +360,30 @@ impl FrameMotion {
             fed.min(swing + a.abs() * w)
         })
     }
+
+    /// A bound on |slip''| over the rest of a slide on a moving cart, given [`Self::stretch_speed`]:
+    /// slip'' = -F'/m_eff - V'' with V'' = (F' - k y')/M. Away from resonance also, and whichever is
+    /// smaller, the amplitudes of the slip's sums ([`SlipSums`]: slip'' is
+    /// -dir (P w cos w t - B' Ω² cos Ωτ + Q Ω² sin Ωτ)), |P| w + (M_t/B) Ω² sqrt(b² + a² Ω²), with
+    /// P = F0 (1/m_eff + 1/B) - dir (M_t/B) A w², b = y0' - A w cos w t0, a = z0 - A sin w t0.
+    fn slip_curvature(&self, setup: &Setup, stretch_speed: f64) -> f64 {
+        let (w, peak) = (setup.w, setup.peak_friction());
+        let force_rate = peak * w;
+        let crude = force_rate / setup.m_eff + (force_rate + setup.k * stretch_speed) / self.cart;
+        self.amplitude.map_or(crude, |a| {
+            let s0 = &self.start.s;
+            let (z0, dy0) = (s0.x + self.string, s0.v - self.start.vf);
+            let body = self.cart + self.frame;
+            let share = self.frame / body;
+            let ball =
+                (peak * (1.0 / setup.m_eff + 1.0 / body) - self.dir * share * a * w * w).abs();
+            let omega = self.omega;
+            let swing = ((dy0 - a * w * self.cos_wt0).powi(2)
+                + (omega * (z0 - a * self.sin_wt0)).powi(2))
+            .sqrt();
+            crude.min(ball * w + share * omega * omega * swing)
+        })
+    }
 }
 
 impl PhaseMotion for FrameMotion {
@@ -555,8 +579,7 @@ impl Contact for FramedCart {
                 };
                 // slip'' = -F'/m_eff - V'', V'' = (F' - k y')/M; y''' = F'/M - Ω² y'.
                 let force_rate = peak * setup.w;
-                let curvature =
-                    force_rate / setup.m_eff + (force_rate + setup.k * stretch_speed) / motion.cart;
+                let curvature = motion.slip_curvature(setup, stretch_speed);
                 let stop_curvature = if string {
                     force_rate / motion.cart + motion.omega * motion.omega * stretch_speed
                 } else {

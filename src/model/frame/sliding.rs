@@ -45,15 +45,13 @@ impl FrameMotion {
         }
     }
 
-    /// A bound on the second derivative of the ball's slip over the rest of the contact,
-    /// slip'' = -F'/m_eff - V'' with V'' = (F' - k y')/M (as the rigid ball's search bounds it), and the
-    /// size of the terms the slip is summed from beyond the ball's and the cart's speeds (the frame's
-    /// speed and the stretch's).
+    /// A bound on the second derivative of the ball's slip over the rest of the contact (as the rigid
+    /// ball's search bounds it), and the size of the terms the slip is summed from beyond the ball's and
+    /// the cart's speeds (the frame's speed and the stretch's).
     pub fn slip_bounds(&self, setup: &Setup) -> (f64, f64) {
-        let force_rate = setup.peak_friction() * setup.w;
         let stretch_speed = self.stretch_speed(setup);
         (
-            force_rate / setup.m_eff + (force_rate + setup.k * stretch_speed) / self.cart,
+            self.slip_curvature(setup, stretch_speed),
             self.start.vf.abs() + stretch_speed,
         )
     }
