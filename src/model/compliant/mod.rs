@@ -7,7 +7,8 @@
 //! +F (Eq. (3)).
 //!
 //! - Slide: the patch slides on the cart and F = dir mu N(t). The ball and the cart move exactly as for
-//!   a rigid ball ([`Slide`], or the chain's [`ChainMotion`]); the stretch follows c_b e' + k_b e = F(t)
+//!   a rigid ball ([`Slide`], the single cart moving on a free frame by [`FrameMotion`], or the chain's
+//!   [`ChainMotion`]); the stretch follows c_b e' + k_b e = F(t)
 //!   (e = F/k_b without damping), solved in closed form ([`Stretch`]). The patch slips at
 //!   p' - V = (v_x - r omega - V) - e'; the slide ends when that slip reaches zero, and the patch then
 //!   always grips (a reversed slide would need the opposite force, which the continuous stretch and the

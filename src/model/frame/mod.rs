@@ -26,8 +26,10 @@
 //!
 //! Transitions follow the paper's rules ([`transition::next_on`], the cart's spring force k y, the
 //! ball's friction's share M_t/(M + M_t) on the held cart), located by [`first_rise`] on the exact
-//! expressions. The cart's displacement reported is the spring's stretch y, relative to the frame; its
-//! velocity is the cart's own (the slip is measured against it).
+//! expressions: without string friction a detuned slide's slip and a grip's margins written once per
+//! phase (`sums.rs`), else the state at each probe. The cart's displacement reported is the spring's
+//! stretch y, relative to the frame; its velocity is the cart's own (the slip is measured against it).
+//! A compliant ball's patch slides on the moving cart by this model's slide (`sliding.rs`).
 
 mod sliding;
 mod sums;

@@ -156,3 +156,171 @@ impl ForceSums {
         ]
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::contact::{Ball, Cart, Contact};
+    use super::super::super::params::Params;
+    use super::super::{FrameState, FramedCart};
+    use super::*;
+
+    /// Fig. 3(c) on frames of 188 g and 20 g, and with a light cart on a stiff spring.
+    fn cases() -> Vec<(Setup, FramedCart)> {
+        let base = Params::default();
+        let light = Params {
+            cart_mass: 0.002,
+            stiffness: 40e3,
+            ..base
+        };
+        [(base, 0.188), (base, 0.02), (light, 0.188)]
+            .into_iter()
+            .map(|(params, frame)| {
+                let params = Params {
+                    frame_mass: frame,
+                    ..params
+                };
+                let setup = Setup::new(&params);
+                let model = FramedCart::new(&params, &setup, frame).unwrap();
+                (setup, model)
+            })
+            .collect()
+    }
+
+    /// `sums` (value and three derivatives) against `exact` (value and rate from the full state) at
+    /// times across the rest of the contact: the value and rate to rounding, the second and third
+    /// derivatives against central differences of the rate and the second.
+    fn agree(
+        setup: &Setup,
+        t0: f64,
+        sums: impl Fn(f64) -> (f64, f64, f64, f64),
+        exact: impl Fn(f64) -> (f64, f64),
+        scale: (f64, f64),
+    ) {
+        let h = 1e-4 * (setup.duration - t0);
+        for i in 1..=20 {
+            let t = t0 + (setup.duration - t0 - 2.0 * h) * f64::from(i) / 20.0;
+            let (value, rate, second, third) = sums(t);
+            let (exact_value, exact_rate) = exact(t);
+            assert!(
+                (value - exact_value).abs() <= 1e-12 * scale.0,
+                "{value} {exact_value} at {t}"
+            );
+            assert!(
+                (rate - exact_rate).abs() <= 1e-9 * scale.1,
+                "{rate} {exact_rate} at {t}"
+            );
+            let (before, after) = (sums(t - h), sums(t + h));
+            let second_by_difference = (after.1 - before.1) / (2.0 * h);
+            let third_by_difference = (after.2 - before.2) / (2.0 * h);
+            let size = second.abs() + third.abs() * h + scale.1 / setup.duration;
+            assert!(
+                (second - second_by_difference).abs() <= 1e-5 * size,
+                "{second} at {t}"
+            );
+            let size = third.abs() + scale.1 / setup.duration.powi(2);
+            assert!(
+                (third - third_by_difference).abs() <= 1e-5 * size,
+                "{third} at {t}"
+            );
+        }
+    }
+
+    #[test]
+    fn the_slip_sums_are_the_slide_s_slip() {
+        for (setup, model) in cases() {
+            let (start, (ball, cart)) = model.start(&setup);
+            let Ball::Slide(dir) = ball else {
+                panic!("Fig. 3(c) starts sliding")
+            };
+            let first = model.motion(&setup, &start, (ball, cart));
+            // From first contact, and again from where that slide stands at a quarter of the contact
+            // (where the stretch, its free swing and the normal force's phase are all under way).
+            let later = first.moving_at(&setup, 0.25 * setup.duration).0.state;
+            let again = model.motion(&setup, &later, (ball, cart));
+            for (motion, from) in [(first, start), (again, later)] {
+                let t0 = from.s.t;
+                let offset = 0.25 * setup.slip(&from.s);
+                let sums = SlipSums::new(&motion, &setup, offset).expect("a detuned slide");
+                // At the start, exactly dir (offset - slip0).
+                assert_eq!(
+                    sums.event(motion.angles(&setup, t0)).0,
+                    dir * (offset - setup.slip(&from.s))
+                );
+                let exact = |t: f64| {
+                    let (p, _) = motion.moving_at(&setup, t);
+                    let rate = -p.friction / setup.m_eff - p.accel;
+                    (-dir * (setup.slip(&p.state.s) - offset), -dir * rate)
+                };
+                // The search's bound on the second derivative holds over the rest of the contact.
+                let bound = motion.slip_curvature(&setup, motion.stretch_speed(&setup));
+                for i in 0..=50 {
+                    let t = t0 + (setup.duration - t0) * f64::from(i) / 50.0;
+                    let second = sums.event(motion.angles(&setup, t)).2;
+                    assert!(second.abs() <= bound * (1.0 + 1e-12), "{second} {bound}");
+                }
+                let speeds = setup.vx1.abs() + setup.r * start.s.omega.abs();
+                let scale = (speeds, speeds / setup.duration);
+                agree(
+                    &setup,
+                    t0,
+                    |t| sums.event(motion.angles(&setup, t)),
+                    exact,
+                    scale,
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_force_sums_are_the_grip_s_margins() {
+        for (setup, model) in cases() {
+            // A grip from where the slide stands at a third of the contact.
+            let (start, mode) = model.start(&setup);
+            let slide = model.motion(&setup, &start, mode);
+            let t0 = setup.duration / 3.0;
+            let state: FrameState = slide.moving_at(&setup, t0).0.state;
+            let grip = model.motion(&setup, &state, (Ball::Grip, Cart::Moving(1)));
+            let sums = ForceSums::new(&grip, &setup).expect("a moving grip on a spring");
+            for branch in 0..2 {
+                let exact = |t: f64| {
+                    let (p, normal) = grip.moving_at(&setup, t);
+                    let margins = setup.grip_margins_given(normal, p.friction, p.friction_rate);
+                    margins[branch]
+                };
+                let force = setup.peak_friction() + setup.k * state.s.x.abs();
+                let scale = (force, force / setup.duration);
+                agree(
+                    &setup,
+                    t0,
+                    |t| sums.margins(&setup, grip.angles(&setup, t))[branch],
+                    exact,
+                    scale,
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_frame_moves_at_its_velocity() {
+        for (setup, model) in cases() {
+            let (start, mode) = model.start(&setup);
+            let slide = model.motion(&setup, &start, mode);
+            let x0 = 1e-3;
+            let at = |t: f64| {
+                let y = slide.moving_at(&setup, t).0.state.s.x;
+                slide.frame_displacement(&setup, t, y, x0)
+            };
+            assert_eq!(at(0.0), x0);
+            let h = 1e-6 * setup.duration;
+            for i in 1..10 {
+                let t = setup.duration * f64::from(i) / 10.0;
+                let vf = slide.moving_at(&setup, t).0.state.vf;
+                let by_difference = (at(t + h) - at(t - h)) / (2.0 * h);
+                assert!(
+                    (by_difference - vf).abs() <= 1e-6 * (vf.abs() + 1e-3),
+                    "{by_difference} {vf}"
+                );
+            }
+        }
+    }
+}
