@@ -21,6 +21,7 @@
 pub mod modes;
 pub mod motion;
 pub mod ring;
+pub mod ring_coordinates;
 mod spare;
 mod string;
 

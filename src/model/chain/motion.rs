@@ -13,7 +13,7 @@ use super::super::oscillator::{detuned, forced, free_given, step};
 use super::super::setup::{Setup, State};
 use super::super::trig::{sin_cos, sin_cos_each, sin_cos2};
 use super::modes::{MAX, Modes};
-use super::{Chain, ChainState, ring};
+use super::{Chain, ChainState, ring_coordinates};
 
 /// How one mode moves in a sliding phase (see `Slide`'s cart response, of which this is the modal copy).
 #[derive(Clone, Copy, Debug)]
@@ -413,7 +413,7 @@ impl Motion {
         }
         // Held to a free frame, the ring of first mass and frame and the links behind ([`ring`]).
         let modes = if held {
-            let (x, v) = ring::coordinates(chain, start);
+            let (x, v) = ring_coordinates::coordinates(chain, start);
             let modes = chain.held(dir);
             modes.project_into(&x, &mut self.q0);
             modes.project_into(&v, &mut self.dq0);
@@ -867,7 +867,7 @@ impl Motion {
         .state;
         let (mut x, mut v) = (modes.expand(&q), modes.expand(&dq));
         if self.is_held() && self.start.frame > 0 {
-            (x, v) = ring::place(&self.chain, &self.start, &x, &v);
+            (x, v) = ring_coordinates::place(&self.chain, &self.start, &x, &v);
         } else if self.is_held() {
             // Behind the held mass: its rest line plus the swing.
             for i in (1..self.chain.n).rev() {

@@ -4,14 +4,14 @@
 //! m_B = M/N + M_t, and the links behind form a ring tied to B at both ends ([`ring`]). The ball's
 //! spring and dashpot pull on B: ball, stretch and ring are the compliant ball's grip on a chain whose
 //! modes are the ring's, B first ([`Chain::held_ring`]), with the rigid translation taken out as on any
-//! free frame ([`ChainGrip`]), in the ring's coordinates (`ring::coordinates`, `ring::place`). The
+//! free frame ([`ChainGrip`]), in the ring's coordinates (`ring_coordinates::coordinates`, `ring_coordinates::place`). The
 //! phase ends when |F| reaches mu N, or when the force the frame must give the first mass,
 //! push = F - T_1 - (M/N) a_B ([`ring::held_push`]), reaches ±F_c.
 
 use std::sync::Arc;
 
-use super::super::chain::ring;
 use super::super::chain::{Chain, ChainState};
+use super::super::chain::{ring, ring_coordinates};
 use super::super::setup::Setup;
 use super::{ChainGrip, GripModes, Point};
 
@@ -35,7 +35,7 @@ impl HeldRingGrip {
         start: ChainState,
         e: f64,
     ) -> Self {
-        let (x, v) = ring::coordinates(&chain, &start);
+        let (x, v) = ring_coordinates::coordinates(&chain, &start);
         // The ring as its grip's chain: a framed chain of N - 1 links, its frame the last entry.
         let on_ring = ChainState {
             x,
@@ -62,7 +62,7 @@ impl HeldRingGrip {
     /// The ball, the whole chain and the frame at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
         let on_ring = self.grip.full(setup, t);
-        let (x, v) = ring::place(&self.chain, &self.start, &on_ring.x, &on_ring.v);
+        let (x, v) = ring_coordinates::place(&self.chain, &self.start, &on_ring.x, &on_ring.v);
         ChainState {
             x,
             v,

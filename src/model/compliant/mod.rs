@@ -7,7 +7,8 @@
 //! +F (Eq. (3)).
 //!
 //! - Slide: the patch slides on the cart and F = dir mu N(t). The ball and the cart move exactly as for
-//!   a rigid ball ([`Slide`], or the chain's [`ChainMotion`]); the stretch follows c_b e' + k_b e = F(t)
+//!   a rigid ball ([`Slide`], the single cart moving on a free frame by [`FrameMotion`], or the chain's
+//!   [`ChainMotion`]); the stretch follows c_b e' + k_b e = F(t)
 //!   (e = F/k_b without damping), solved in closed form ([`Stretch`]). The patch slips at
 //!   p' - V = (v_x - r omega - V) - e'; the slide ends when that slip reaches zero, and the patch then
 //!   always grips (a reversed slide would need the opposite force, which the continuous stretch and the
@@ -76,6 +77,7 @@ use super::chain::{Chain, ChainState, ring};
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise_from_tangent;
+use super::frame::{FrameMotion, FrameState, FramedCart};
 use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::quadrature::integrate;
@@ -108,6 +110,9 @@ impl BallSpring {
 pub enum Rigid {
     Cart(Slide),
     Chain(Arc<ChainMotion>),
+    /// The single cart on a free frame, moving relative to it: the rigid ball's [`FrameMotion`], with
+    /// the frame's displacement at the start (for the whole state).
+    Frame(Box<FrameMotion>, f64),
 }
 
 /// A sliding phase of the compliant ball.
@@ -156,13 +161,14 @@ impl CompliantSlide {
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> Point {
         let (e, de, dde) = self.stretch.at(setup.w, t);
-        let (state, friction, slip_rate, accel, frame) = match &self.rigid {
+        let (state, friction, friction_rate, slip_rate, accel, frame) = match &self.rigid {
             Rigid::Cart(slide) => {
                 let (state, friction) = slide.evaluate(setup, t);
                 let accel = slide.cart_acceleration(setup, &state, friction);
                 (
                     state,
                     friction,
+                    slide.dir * setup.friction_limit_rate(t),
                     slide.slip_rate(setup, &state, friction),
                     accel,
                     (0.0, 0.0),
@@ -171,13 +177,34 @@ impl CompliantSlide {
             Rigid::Chain(motion) => {
                 let c = motion.contact(setup, t);
                 let slip_rate = -c.friction / setup.m_eff - c.accel;
-                (c.state, c.friction, slip_rate, c.accel, c.frame)
+                let friction_rate = motion.dir * setup.friction_limit_rate(t);
+                (
+                    c.state,
+                    c.friction,
+                    friction_rate,
+                    slip_rate,
+                    c.accel,
+                    c.frame,
+                )
+            }
+            // The frame's closed form carries the friction's rate.
+            Rigid::Frame(motion, _) => {
+                let c = motion.sliding_at(setup, t);
+                let slip_rate = -c.friction / setup.m_eff - c.accel;
+                (
+                    c.state,
+                    c.friction,
+                    c.friction_rate,
+                    slip_rate,
+                    c.accel,
+                    c.frame,
+                )
             }
         };
         Point {
             state,
             friction,
-            friction_rate: self.dir() * setup.friction_limit_rate(t),
+            friction_rate,
             e,
             de,
             dde,
@@ -191,6 +218,7 @@ impl CompliantSlide {
         match &self.rigid {
             Rigid::Cart(slide) => slide.dir,
             Rigid::Chain(motion) => motion.dir,
+            Rigid::Frame(motion, _) => motion.dir,
         }
     }
 
@@ -208,6 +236,10 @@ impl CompliantSlide {
             Rigid::Chain(motion) => {
                 let (curvature, terms) = motion.slip_curvature(setup);
                 (curvature, terms, motion.chain().slide.fastest)
+            }
+            Rigid::Frame(motion, _) => {
+                let (curvature, terms) = motion.slip_bounds(setup);
+                (curvature, terms, motion.fastest(setup))
             }
         }
     }
@@ -251,6 +283,7 @@ impl CompliantMotion {
             CompliantMotion::Slide(s) => match &s.rigid {
                 Rigid::Cart(slide) => slide.start,
                 Rigid::Chain(motion) => motion.start.contact(),
+                Rigid::Frame(motion, _) => motion.start.s,
             },
             CompliantMotion::Grip(g) => g.start,
             CompliantMotion::ChainGrip(g) => g.start.contact(),
@@ -409,6 +442,10 @@ impl PhaseMotion for CompliantMotion {
     fn frame_velocity(&self, setup: &Setup, t: f64) -> f64 {
         let full = match self {
             CompliantMotion::Slide(CompliantSlide {
+                rigid: Rigid::Frame(motion, _),
+                ..
+            }) => return motion.sliding_at(setup, t).frame.0,
+            CompliantMotion::Slide(CompliantSlide {
                 rigid: Rigid::Chain(chain),
                 ..
             }) => chain.full(setup, t),
@@ -472,6 +509,8 @@ pub struct CompliantBall {
     support: Support,
     /// On a free frame with string friction, the single cart held to the frame.
     hold: Option<Arc<FrameHold>>,
+    /// On a free frame, the single cart moving relative to it (its slides are the rigid ball's).
+    framed: Option<FramedCart>,
     /// On a free frame with string friction on a chain, the grip's modes of the ball on the ring of a
     /// first mass held to the frame ([`HeldRingGrip`]).
     ring: Option<Arc<GripModes>>,
@@ -554,9 +593,18 @@ impl CompliantBall {
         if ball_radians > MAX_RADIANS {
             return Err(too_fast_ball(params, &setup, &spring, ball_radians));
         }
+        // The single cart on a free frame slides as the rigid ball's (whose own refusals are the chain's
+        // above: where it would refuse, the chain's modes stand in).
+        let framed = match (&support, setup.frame_mass) {
+            (Support::Chain { chain, .. }, Some(frame)) if chain.n == 1 => {
+                FramedCart::new(params, &setup, frame).ok()
+            }
+            _ => None,
+        };
         let model = CompliantBall {
             support,
             hold,
+            framed,
             ring,
             share,
             spring,
@@ -878,21 +926,32 @@ impl Contact for CompliantBall {
         }
         match ball {
             Ball::Slide(dir) => {
-                let rigid = match &self.support {
-                    Support::Cart(_) => Rigid::Cart(Slide::new(setup, state.contact, dir, cart)),
-                    // The single cart on the wall, a chain of one mass for its grips: it slides as
-                    // the rigid ball's cart, the same closed form in fewer operations.
-                    Support::Chain { chain, .. } if chain.n == 1 && chain.frame_index() == 0 => {
-                        Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
-                    }
-                    Support::Chain { chain, .. } => Rigid::Chain(Arc::new(ChainMotion::new(
-                        chain.clone(),
-                        setup,
-                        state.full,
-                        dir,
-                        cart,
-                    ))),
-                };
+                let rigid =
+                    match (&self.support, &self.framed, cart) {
+                        // The single cart moving on a free frame slides as the rigid ball's.
+                        (_, Some(framed), Cart::Moving(d)) => {
+                            let index = state.full.frame;
+                            let start = FrameState {
+                                s: state.contact,
+                                vf: state.full.v[index],
+                            };
+                            let motion = FrameMotion::slide(setup, framed, start, dir, d);
+                            Rigid::Frame(Box::new(motion), state.full.x[index])
+                        }
+                        (Support::Cart(_), ..) => {
+                            Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
+                        }
+                        // The single cart on the wall, a chain of one mass for its grips: it slides as
+                        // the rigid ball's cart, the same closed form in fewer operations.
+                        (Support::Chain { chain, .. }, ..)
+                            if chain.n == 1 && chain.frame_index() == 0 =>
+                        {
+                            Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
+                        }
+                        (Support::Chain { chain, .. }, ..) => Rigid::Chain(Arc::new(
+                            ChainMotion::new(chain.clone(), setup, state.full, dir, cart),
+                        )),
+                    };
                 CompliantMotion::Slide(CompliantSlide {
                     rigid,
                     stretch: Stretch::new(&self.spring, setup, dir, t0, state.e),
@@ -1002,7 +1061,9 @@ impl Contact for CompliantBall {
                         Rigid::Chain(motion) if motion.is_held() => {
                             events.at_chain(setup, &p, motion.link(setup, t))
                         }
-                        Rigid::Chain(_) => events.at_chain(setup, &p, (0.0, 0.0)),
+                        Rigid::Chain(_) | Rigid::Frame(..) => {
+                            events.at_chain(setup, &p, (0.0, 0.0))
+                        }
                     };
                     [slip, first, second]
                 };
@@ -1035,6 +1096,11 @@ impl Contact for CompliantBall {
                             0 => motion.cart_curvature(setup),
                             _ => motion.relative_curvature(setup),
                         };
+                        (curvature, ROUNDING * (v_offset.abs() + terms))
+                    }
+                    // Moving relative to the free frame: V - V_f.
+                    Rigid::Frame(motion, _) => {
+                        let (curvature, terms) = motion.stop_bounds(setup);
                         (curvature, ROUNDING * (v_offset.abs() + terms))
                     }
                 };
@@ -1225,6 +1291,19 @@ impl Contact for CompliantBall {
                 rigid: Rigid::Chain(chain),
                 ..
             }) => chain.full(setup, t),
+            CompliantMotion::Slide(CompliantSlide {
+                rigid: Rigid::Frame(motion, x0),
+                ..
+            }) => {
+                // The cart at the frame's displacement plus the stretch, the frame's entry after it.
+                let y = point.state.x;
+                let frame = motion.frame_displacement(setup, t, y, *x0);
+                let mut full = ChainState::from_contact(&point.state);
+                full.frame = 1;
+                (full.x[0], full.x[1]) = (frame + y, frame);
+                full.v[1] = point.frame.0;
+                full
+            }
             CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldOnFrame(held) => held.full(t),

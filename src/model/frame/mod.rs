@@ -26,8 +26,13 @@
 //!
 //! Transitions follow the paper's rules ([`transition::next_on`], the cart's spring force k y, the
 //! ball's friction's share M_t/(M + M_t) on the held cart), located by [`first_rise`] on the exact
-//! expressions. The cart's displacement reported is the spring's stretch y, relative to the frame; its
-//! velocity is the cart's own (the slip is measured against it).
+//! expressions: without string friction a detuned slide's slip and a grip's margins written once per
+//! phase (`sums.rs`), else the state at each probe. The cart's displacement reported is the spring's
+//! stretch y, relative to the frame; its velocity is the cart's own (the slip is measured against it).
+//! A compliant ball's patch slides on the moving cart by this model's slide (`sliding.rs`).
+
+mod sliding;
+mod sums;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
@@ -39,6 +44,8 @@ use super::recent::Recent;
 use super::setup::{Setup, State};
 use super::transition::{self, Touched};
 use super::trig::{sin_cos, sin_cos2};
+pub use sliding::Sliding;
+use sums::{Angles, ForceSums, SlipSums};
 
 /// The ball and the cart (`x` the spring's stretch y, `v` the cart's velocity), and the frame's velocity.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -226,16 +233,13 @@ impl FrameMotion {
         self.moving_at(setup, t).0
     }
 
-    /// Everything at `t` on a moving cart, the stretch solved as z = y + `string` (see the module), and
-    /// sin(w t), cos(w t) while the ball grips (for the margins of its grip; sliding, (0, 1) in their
-    /// place). The stretch's angle Ωτ and the normal force's (w t gripping, w τ sliding) are taken
-    /// together; at the phase's start, where the event search begins, they are known.
-    #[inline]
-    fn moving_at(&self, setup: &Setup, t: f64) -> (Point, (f64, f64)) {
-        let s0 = &self.start.s;
-        let tau = t - s0.t;
+    /// sin and cos of the stretch's angle Ωτ and of the normal force's (w t gripping, w τ sliding) at `t`,
+    /// computed together; at the phase's start, where the event search begins, they are known.
+    #[inline(always)]
+    fn angles(&self, setup: &Setup, t: f64) -> Angles {
+        let tau = t - self.start.s.t;
         let grip = self.dir == 0.0;
-        let ((sin_omega_tau, cos_omega_tau), normal) = if tau == 0.0 {
+        if tau == 0.0 {
             let normal = if grip {
                 (self.sin_wt0, self.cos_wt0)
             } else {
@@ -246,7 +250,28 @@ impl FrameMotion {
             sin_cos2(self.omega * tau, setup.w * t)
         } else {
             sin_cos2(self.omega * tau, setup.w * tau)
-        };
+        }
+    }
+
+    /// Everything at `t` on a moving cart, the stretch solved as z = y + `string` (see the module), and
+    /// sin(w t), cos(w t) while the ball grips (for the margins of its grip; sliding, (0, 1) in their
+    /// place).
+    #[inline]
+    fn moving_at(&self, setup: &Setup, t: f64) -> (Point, (f64, f64)) {
+        self.moving_given(setup, t, self.angles(setup, t))
+    }
+
+    /// [`FrameMotion::moving_at`] with the phase's `Angles` at `t` at hand.
+    #[inline]
+    fn moving_given(
+        &self,
+        setup: &Setup,
+        t: f64,
+        ((sin_omega_tau, cos_omega_tau), normal): Angles,
+    ) -> (Point, (f64, f64)) {
+        let s0 = &self.start.s;
+        let tau = t - s0.t;
+        let grip = self.dir == 0.0;
         let (z0, dy0) = (s0.x + self.string, s0.v - self.start.vf);
         let (z_free, dy_free) = free_given(z0, dy0, self.omega, tau, sin_omega_tau, cos_omega_tau);
         if grip {
@@ -324,15 +349,41 @@ impl FrameMotion {
         }
         let s0 = &self.start.s;
         let (z0, dy0) = (s0.x + self.string, s0.v - self.start.vf);
-        let free = dy0.hypot(self.omega * z0);
+        let free = (dy0 * dy0 + (self.omega * z0).powi(2)).sqrt();
         if self.dir == 0.0 {
             return free;
         }
         let fed = free + setup.peak_friction() * (setup.duration - s0.t) / self.cart;
         self.amplitude.map_or(fed, |a| {
             let w = setup.w;
-            let swing = (dy0 - a * w * self.cos_wt0).hypot(self.omega * (z0 - a * self.sin_wt0));
+            let swing = ((dy0 - a * w * self.cos_wt0).powi(2)
+                + (self.omega * (z0 - a * self.sin_wt0)).powi(2))
+            .sqrt();
             fed.min(swing + a.abs() * w)
+        })
+    }
+
+    /// A bound on |slip''| over the rest of a slide on a moving cart, given [`Self::stretch_speed`]:
+    /// slip'' = -F'/m_eff - V'' with V'' = (F' - k y')/M. Away from resonance also, and whichever is
+    /// smaller, the amplitudes of the slip's sums ([`SlipSums`]: slip'' is
+    /// -dir (P w cos w t - B' Ω² cos Ωτ + Q Ω² sin Ωτ)), |P| w + (M_t/B) Ω² sqrt(b² + a² Ω²), with
+    /// P = F0 (1/m_eff + 1/B) - dir (M_t/B) A w², b = y0' - A w cos w t0, a = z0 - A sin w t0.
+    fn slip_curvature(&self, setup: &Setup, stretch_speed: f64) -> f64 {
+        let (w, peak) = (setup.w, setup.peak_friction());
+        let force_rate = peak * w;
+        let crude = force_rate / setup.m_eff + (force_rate + setup.k * stretch_speed) / self.cart;
+        self.amplitude.map_or(crude, |a| {
+            let s0 = &self.start.s;
+            let (z0, dy0) = (s0.x + self.string, s0.v - self.start.vf);
+            let body = self.cart + self.frame;
+            let share = self.frame / body;
+            let ball =
+                (peak * (1.0 / setup.m_eff + 1.0 / body) - self.dir * share * a * w * w).abs();
+            let omega = self.omega;
+            let swing = ((dy0 - a * w * self.cos_wt0).powi(2)
+                + (omega * (z0 - a * self.sin_wt0)).powi(2))
+            .sqrt();
+            crude.min(ball * w + share * omega * omega * swing)
         })
     }
 }
@@ -530,8 +581,7 @@ impl Contact for FramedCart {
                 };
                 // slip'' = -F'/m_eff - V'', V'' = (F' - k y')/M; y''' = F'/M - Ω² y'.
                 let force_rate = peak * setup.w;
-                let curvature =
-                    force_rate / setup.m_eff + (force_rate + setup.k * stretch_speed) / motion.cart;
+                let curvature = motion.slip_curvature(setup, stretch_speed);
                 let stop_curvature = if string {
                     force_rate / motion.cart + motion.omega * motion.omega * stretch_speed
                 } else {
@@ -541,6 +591,18 @@ impl Contact for FramedCart {
                 let noise = ROUNDING * speeds;
                 let found = if string {
                     first_rise(f, t0, end, step, [curvature, stop_curvature], [noise; 2])
+                } else if let Some(sums) = SlipSums::new(motion, setup, slip_offset) {
+                    // The slip alone, by its sums; the state is computed only where the search ends.
+                    let probes = Recent::new(t0, (t0, motion.angles(setup, t0)));
+                    let slip = |t: f64| {
+                        let angles = motion.angles(setup, t);
+                        probes.record(t, (t, angles));
+                        [sums.event(angles)]
+                    };
+                    let found = first_rise(slip, t0, end, step, [curvature], [noise]);
+                    let (t, angles) = probes.at(found.map_or(end, |(t, _)| t));
+                    last.record(t, motion.moving_given(setup, t, angles).0.state);
+                    found
                 } else {
                     // The stand-in costs a search branch: leave it out.
                     first_rise(|t| [f(t)[0]], t0, end, step, [curvature], [noise])
@@ -577,6 +639,19 @@ impl Contact for FramedCart {
                 let curvatures = [curvature, curvature, stop_curvature];
                 let found = if string {
                     first_rise(f, t0, end, step, curvatures, noise)
+                } else if let Some(sums) = ForceSums::new(motion, setup) {
+                    // The margins alone, by their sums; the state is computed only where the search
+                    // ends.
+                    let probes = Recent::new(t0, (t0, motion.angles(setup, t0)));
+                    let margins = |t: f64| {
+                        let angles = motion.angles(setup, t);
+                        probes.record(t, (t, angles));
+                        sums.margins(setup, angles)
+                    };
+                    let found = first_rise(margins, t0, end, step, [curvature; 2], [noise[0]; 2]);
+                    let (t, angles) = probes.at(found.map_or(end, |(t, _)| t));
+                    last.record(t, motion.moving_given(setup, t, angles).0.state);
+                    found
                 } else {
                     let margins = |t| {
                         let [forward, backward, _] = f(t);
