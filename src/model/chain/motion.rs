@@ -405,8 +405,7 @@ impl Motion {
                 x[i] = start.x[i + 1] - rest_line(chain, start, i + 1);
                 v[i] = start.v[i + 1];
             }
-            modes.project_into(&x, &mut self.q0);
-            modes.project_into(&v, &mut self.dq0);
+            modes.project_both((&x, &v), (&mut self.q0, &mut self.dq0));
             self.response[..modes.n].fill(Response::Free);
             self.v1_start = 0.0;
             return;
@@ -415,13 +414,11 @@ impl Motion {
         let modes = if held {
             let (x, v) = ring::coordinates(chain, start);
             let modes = chain.held(dir);
-            modes.project_into(&x, &mut self.q0);
-            modes.project_into(&v, &mut self.dq0);
+            modes.project_both((&x, &v), (&mut self.q0, &mut self.dq0));
             modes
         } else {
             let modes = chain.modes(dir);
-            modes.project_into(&start.x, &mut self.q0);
-            modes.project_into(&start.v, &mut self.dq0);
+            modes.project_both((&start.x, &start.v), (&mut self.q0, &mut self.dq0));
             modes
         };
         let (q0, dq0) = (&self.q0, &self.dq0);
@@ -865,7 +862,8 @@ impl Motion {
             self.moving_contact(setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
         }
         .state;
-        let (mut x, mut v) = (modes.expand(&q), modes.expand(&dq));
+        let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
+        modes.expand_both((&q, &dq), (&mut x, &mut v));
         if self.is_held() && self.start.frame > 0 {
             (x, v) = ring::place(&self.chain, &self.start, &x, &v);
         } else if self.is_held() {
