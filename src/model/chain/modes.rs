@@ -468,6 +468,32 @@ mod tests {
     }
 
     #[test]
+    fn projecting_and_expanding_both_are_each_alone_bit_for_bit() {
+        let all = [
+            Modes::new(8, 0.01 / 8.0, 8.0 * 15000.0, 0.03),
+            Modes::framed(4, 0.0025, 60000.0, 0.0, 0.188),
+            Modes::ring(5, 0.002, 75000.0, 0.19, 0.03),
+            Modes::clamped(3, 0.0025, 60000.0),
+        ];
+        for modes in all {
+            let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
+            for i in 0..modes.n {
+                (x[i], v[i]) = (1e-3 * (i as f64 + 0.3).sin(), -2.0 * (1.7 * i as f64).cos());
+            }
+            let (mut q, mut dq) = ([7.0; MAX], [7.0; MAX]);
+            modes.project_both((&x, &v), (&mut q, &mut dq));
+            let (mut y, mut u) = ([7.0; MAX], [7.0; MAX]);
+            modes.expand_both((&q, &dq), (&mut y, &mut u));
+            let n = modes.n;
+            let bits = |a: &[f64]| a[..n].iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&q), bits(&modes.project(&x)), "n {n}");
+            assert_eq!(bits(&dq), bits(&modes.project(&v)), "n {n}");
+            assert_eq!(bits(&y), bits(&modes.expand(&q)), "n {n}");
+            assert_eq!(bits(&u), bits(&modes.expand(&dq)), "n {n}");
+        }
+    }
+
+    #[test]
     fn one_link_is_the_single_cart() {
         let modes = Modes::new(1, 0.01, 15000.0, 0.0);
         assert_eq!(modes.omega[0], (15000.0f64 / 0.01).sqrt());
