@@ -21,8 +21,7 @@ use super::super::contact::{Ball, Cart, Cause, Mode, ROUNDING};
 use super::super::events::first_rise;
 use super::super::setup::Setup;
 use super::modes::{MAX, Modes};
-use super::motion::Motion;
-use super::{Chain, ChainState};
+use super::{Chain, ChainState, Motion};
 
 /// The ring's coordinates and velocities at `start` (the first mass held to the frame): B's, the
 /// frame's X_f and V_f, then each link's behind the first, less its offset d (N + 1 - i)/N on the rest
