@@ -265,15 +265,35 @@ impl Modes {
     /// The modal coordinates q = Φᵀ D x of displacements (or velocities) `x`.
     pub fn project(&self, x: &[f64; MAX]) -> [f64; MAX] {
         let mut q = [0.0; MAX];
-        self.project_into(x, &mut q);
+        for (qj, row) in q.iter_mut().zip(&self.inverse).take(self.n) {
+            *qj = row[..self.n].iter().zip(x).map(|(a, x)| a * x).sum();
+        }
         q
     }
 
-    /// [`Modes::project`] written into the first `n` entries of `q` (the rest left as they are).
-    #[inline]
-    pub fn project_into(&self, x: &[f64; MAX], q: &mut [f64; MAX]) {
-        for (qj, row) in q.iter_mut().zip(&self.inverse).take(self.n) {
-            *qj = row[..self.n].iter().zip(x).map(|(a, x)| a * x).sum();
+    /// [`Modes::project`] of displacements `x` and velocities `v` together, written into the first
+    /// `n` entries of `q` and `dq` (the rest left as they are), reading each row of Φᵀ D once: the
+    /// same sums, bit for bit.
+    pub fn project_both(
+        &self,
+        (x, v): (&[f64; MAX], &[f64; MAX]),
+        (q, dq): (&mut [f64; MAX], &mut [f64; MAX]),
+    ) {
+        let n = self.n;
+        for ((row, qj), dqj) in self
+            .inverse
+            .iter()
+            .zip(q.iter_mut())
+            .zip(dq.iter_mut())
+            .take(n)
+        {
+            // From -0.0, as `Iterator::sum` starts.
+            let (mut sq, mut sdq) = (-0.0, -0.0);
+            for ((a, xi), vi) in row[..n].iter().zip(x).zip(v) {
+                sq += a * xi;
+                sdq += a * vi;
+            }
+            (*qj, *dqj) = (sq, sdq);
         }
     }
 
@@ -284,6 +304,31 @@ impl Modes {
             *xi = (0..self.n).map(|j| self.shape[i][j] * q[j]).sum();
         }
         x
+    }
+
+    /// [`Modes::expand`] of the coordinates `q` and of their rates `dq` together, into `x` and `v`
+    /// (their first `n` entries), reading each row of Φ once: the same sums, bit for bit.
+    pub fn expand_both(
+        &self,
+        (q, dq): (&[f64; MAX], &[f64; MAX]),
+        (x, v): (&mut [f64; MAX], &mut [f64; MAX]),
+    ) {
+        let n = self.n;
+        for ((row, xi), vi) in self
+            .shape
+            .iter()
+            .zip(x.iter_mut())
+            .zip(v.iter_mut())
+            .take(n)
+        {
+            // From -0.0, as `Iterator::sum` starts.
+            let (mut sx, mut sv) = (-0.0, -0.0);
+            for ((phi, qj), dqj) in row[..n].iter().zip(q).zip(dq) {
+                sx += phi * qj;
+                sv += phi * dqj;
+            }
+            (*xi, *vi) = (sx, sv);
+        }
     }
 }
 
@@ -419,6 +464,32 @@ mod tests {
                 assert_eq!(rigid.len(), 1, "n {n} body {body}");
                 assert_eq!(modes.rigid, Some(rigid[0]));
             }
+        }
+    }
+
+    #[test]
+    fn projecting_and_expanding_both_are_each_alone_bit_for_bit() {
+        let all = [
+            Modes::new(8, 0.01 / 8.0, 8.0 * 15000.0, 0.03),
+            Modes::framed(4, 0.0025, 60000.0, 0.0, 0.188),
+            Modes::ring(5, 0.002, 75000.0, 0.19, 0.03),
+            Modes::clamped(3, 0.0025, 60000.0),
+        ];
+        for modes in all {
+            let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
+            for i in 0..modes.n {
+                (x[i], v[i]) = (1e-3 * (i as f64 + 0.3).sin(), -2.0 * (1.7 * i as f64).cos());
+            }
+            let (mut q, mut dq) = ([7.0; MAX], [7.0; MAX]);
+            modes.project_both((&x, &v), (&mut q, &mut dq));
+            let (mut y, mut u) = ([7.0; MAX], [7.0; MAX]);
+            modes.expand_both((&q, &dq), (&mut y, &mut u));
+            let n = modes.n;
+            let bits = |a: &[f64]| a[..n].iter().map(|v| v.to_bits()).collect::<Vec<_>>();
+            assert_eq!(bits(&q), bits(&modes.project(&x)), "n {n}");
+            assert_eq!(bits(&dq), bits(&modes.project(&v)), "n {n}");
+            assert_eq!(bits(&y), bits(&modes.expand(&q)), "n {n}");
+            assert_eq!(bits(&u), bits(&modes.expand(&dq)), "n {n}");
         }
     }
 

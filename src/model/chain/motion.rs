@@ -88,6 +88,8 @@ struct Sums<const R: usize, S> {
     /// The modes left out of the combinations.
     odd: [usize; MAX],
     odd_n: usize,
+    /// The rigid translation of a free frame, if the combinations hold it (with τ and 1).
+    rigid: Option<usize>,
 }
 
 /// `R` sums over the modes as combinations of sin Ω_j τ, cos Ω_j τ, sin w t and cos w t.
@@ -226,6 +228,7 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
             main: Rows::new(n),
             odd: [0; MAX],
             odd_n: 0,
+            rigid: None,
         }
     }
 
@@ -243,6 +246,7 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
         let sums = self;
         sums.main.reset(modes.n);
         sums.odd_n = 0;
+        sums.rigid = None;
         for j in 0..modes.n {
             let omega = modes.omega[j];
             let rigid = modes.rigid == Some(j);
@@ -266,6 +270,7 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
             };
             // The rigid translation's X + V τ, rate V: τ and 1 stand for sin Ωτ and cos Ωτ.
             let (y, omega_x) = if rigid {
+                sums.rigid = Some(j);
                 (v, 0.0)
             } else {
                 (v / omega, omega * x)
@@ -405,8 +410,7 @@ impl Motion {
                 x[i] = start.x[i + 1] - rest_line(chain, start, i + 1);
                 v[i] = start.v[i + 1];
             }
-            modes.project_into(&x, &mut self.q0);
-            modes.project_into(&v, &mut self.dq0);
+            modes.project_both((&x, &v), (&mut self.q0, &mut self.dq0));
             self.response[..modes.n].fill(Response::Free);
             self.v1_start = 0.0;
             return;
@@ -415,13 +419,11 @@ impl Motion {
         let modes = if held {
             let (x, v) = ring_coordinates::coordinates(chain, start);
             let modes = chain.held(dir);
-            modes.project_into(&x, &mut self.q0);
-            modes.project_into(&v, &mut self.dq0);
+            modes.project_both((&x, &v), (&mut self.q0, &mut self.dq0));
             modes
         } else {
             let modes = chain.modes(dir);
-            modes.project_into(&start.x, &mut self.q0);
-            modes.project_into(&start.v, &mut self.dq0);
+            modes.project_both((&start.x, &start.v), (&mut self.q0, &mut self.dq0));
             modes
         };
         let (q0, dq0) = (&self.q0, &self.dq0);
@@ -623,23 +625,22 @@ impl Motion {
     }
 
     /// The rows of [`Sums`] at `t` through the phase's combinations `sums`, with sin(w τ) and
-    /// cos(w τ); `rigid` is the rigid translation if the combinations hold it. Only the first `need`
-    /// rows are summed over the combinations (the others are 0 but for the modes left out).
+    /// cos(w τ), for the phase's `modes`. Only the first `need` rows are summed over the
+    /// combinations (the others are 0 but for the modes left out).
     #[inline(always)]
     fn rows<const R: usize, S: Shares<R>>(
         &self,
-        (sums, rigid): (&Sums<R, S>, Option<usize>),
+        (modes, sums): (&Modes, &Sums<R, S>),
         weights: impl Fn(usize) -> [(f64, bool); R],
         (setup, t): (&Setup, f64),
         need: usize,
     ) -> ([f64; R], (f64, f64)) {
-        let modes = self.modes();
         let tau = t - self.start.t;
         let w = setup.w;
         let n = modes.n;
         let (mut sin, mut cos) = ([0.0; MAX + 1], [0.0; MAX + 1]);
         let w_tau = self.angles_each(modes, w, tau, (&mut sin, &mut cos));
-        if let Some(r) = rigid {
+        if let Some(r) = sums.rigid {
             (sin[r], cos[r]) = (tau, 1.0);
         }
         let wt = (!self.is_grip()).then(|| {
@@ -668,19 +669,15 @@ impl Motion {
     #[inline(always)]
     fn frame_rows(
         &self,
-        sums: &Sums<7, Vec<Share<7>>>,
+        (modes, sums): (&Modes, &Sums<7, Vec<Share<7>>>),
         setup: &Setup,
         t: f64,
         all: bool,
     ) -> ([f64; 4], [f64; 3], (f64, f64)) {
-        let (modes, frame) = (self.modes(), self.start.frame);
+        let frame = self.start.frame;
         let weights = |j| Sums::framed_weights(modes, frame, j);
-        // In the combinations unless forced near resonance (Sums::new).
-        let rigid = modes
-            .rigid
-            .filter(|&r| !matches!(self.response[r], Response::Forced { .. }));
         let need = if all { 7 } else { 4 };
-        let ([a, b, c, d, e, f, g], w_tau) = self.rows((sums, rigid), weights, (setup, t), need);
+        let ([a, b, c, d, e, f, g], w_tau) = self.rows((modes, sums), weights, (setup, t), need);
         ([a, b, c, d], [e, f, g], w_tau)
     }
 
@@ -718,38 +715,38 @@ impl Motion {
         if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
         }
+        let modes = self.modes();
         match self.sums() {
             Some(Written::Wall(sums)) => {
-                let weights = |j| Sums::main_weights(self.modes(), j);
-                let (rows, w_tau) = self.rows((sums, None), weights, (setup, t), 4);
-                return self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau);
+                let weights = |j| Sums::main_weights(modes, j);
+                let (rows, w_tau) = self.rows((modes, sums), weights, (setup, t), 4);
+                return self.moving_contact(modes, setup, t, (&rows, &[0.0; 3]), w_tau);
             }
             Some(Written::Frame(sums)) => {
-                let (main, framed, w_tau) = self.frame_rows(sums, setup, t, all);
-                return self.moving_contact(setup, t, (&main, &framed), w_tau);
+                let (main, framed, w_tau) = self.frame_rows((modes, sums), setup, t, all);
+                return self.moving_contact(modes, setup, t, (&main, &framed), w_tau);
             }
             None => {}
         }
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
         let moving_frame = if self.is_held() { 0 } else { frame };
-        let (main, framed) = Sums::from_modal(self.modes(), moving_frame, (&q, &dq));
-        self.moving_contact(setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
+        let (main, framed) = Sums::from_modal(modes, moving_frame, (&q, &dq));
+        self.moving_contact(modes, setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
     }
 
-    /// [`Motion::contact`] of a moving first mass given the rows of [`Sums`] at `t` (the main and the
-    /// frame's) and sin(w τ),
-    /// cos(w τ) there.
+    /// [`Motion::contact`] of a moving first mass given the phase's `modes`, the rows of [`Sums`] at
+    /// `t` (the main and the frame's) and sin(w τ), cos(w τ) there.
     #[inline]
     fn moving_contact(
         &self,
+        modes: &Modes,
         setup: &Setup,
         t: f64,
         (main, framed): (&[f64; 4], &[f64; 3]),
         (sin_w_tau, cos_w_tau): (f64, f64),
     ) -> Contact {
         let frame = self.start.frame;
-        let modes = self.modes();
         let ([mut x, v, stiff, stiff_rate], [xf, last, vf]) = (*main, *framed);
         let mut frame_motion = (0.0, 0.0);
         if frame > 0 && !self.is_held() {
@@ -853,19 +850,20 @@ impl Motion {
             self.held_contact(setup, t)
         } else if let Some(Written::Wall(sums)) = self.sums() {
             let weights = |j| Sums::main_weights(modes, j);
-            let (rows, w_tau) = self.rows((sums, None), weights, (setup, t), 4);
-            self.moving_contact(setup, t, (&rows, &[0.0; 3]), w_tau)
+            let (rows, w_tau) = self.rows((modes, sums), weights, (setup, t), 4);
+            self.moving_contact(modes, setup, t, (&rows, &[0.0; 3]), w_tau)
         } else if let Some(Written::Frame(sums)) = self.sums() {
-            let (main, framed, w_tau) = self.frame_rows(sums, setup, t, true);
+            let (main, framed, w_tau) = self.frame_rows((modes, sums), setup, t, true);
             searched = Some((main, framed));
-            self.moving_contact(setup, t, (&main, &framed), w_tau)
+            self.moving_contact(modes, setup, t, (&main, &framed), w_tau)
         } else {
             let frame = if self.is_held() { 0 } else { self.start.frame };
             let (main, framed) = Sums::from_modal(modes, frame, (&q, &dq));
-            self.moving_contact(setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
+            self.moving_contact(modes, setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
         }
         .state;
-        let (mut x, mut v) = (modes.expand(&q), modes.expand(&dq));
+        let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
+        modes.expand_both((&q, &dq), (&mut x, &mut v));
         if self.is_held() && self.start.frame > 0 {
             (x, v) = ring_coordinates::place(&self.chain, &self.start, &x, &v);
         } else if self.is_held() {

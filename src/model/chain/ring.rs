@@ -20,7 +20,7 @@
 use super::super::contact::{Ball, Cart, Cause, Mode, ROUNDING};
 use super::super::events::first_rise;
 use super::super::setup::Setup;
-use super::modes::Modes;
+use super::modes::{MAX, Modes};
 use super::motion::Motion;
 use super::ring_coordinates::coordinates;
 use super::{Chain, ChainState};
@@ -183,7 +183,8 @@ pub fn ring_push_bounds(
     let tail = chain.link_mass / body;
     let peak = setup.peak_friction();
     let (y, v) = coordinates(chain, start);
-    let (q0, dq0) = (modes.project(&y), modes.project(&v));
+    let (mut q0, mut dq0) = ([0.0; MAX], [0.0; MAX]);
+    modes.project_both((&y, &v), (&mut q0, &mut dq0));
     let (second, last) = (1 % n, n - 1);
     let mut curvature = force_curvature;
     let d = start.x[0] - start.x[start.frame];
@@ -216,7 +217,8 @@ pub fn grip_relative_curvature(motion: &Motion, setup: &Setup) -> (f64, f64) {
     let modes = motion.modes();
     let start = &motion.start;
     let frame = start.frame;
-    let (q0, dq0) = (modes.project(&start.x), modes.project(&start.v));
+    let (mut q0, mut dq0) = ([0.0; MAX], [0.0; MAX]);
+    modes.project_both((&start.x, &start.v), (&mut q0, &mut dq0));
     let push = motion.cart.friction(setup);
     let (mut curvature, mut terms) = (0.0, 0.0);
     for j in 0..modes.n {
