@@ -202,6 +202,35 @@ impl Setup {
         ]
     }
 
+    /// [`Setup::grip_margins_given`] with the first three derivatives of each margin, given F_s and its
+    /// first three derivatives; mu N's second and third derivatives are -w² times its value and rate.
+    #[inline(always)]
+    pub fn grip_margins_with_derivatives(
+        &self,
+        normal: (f64, f64),
+        [force, rate, second, third]: [f64; 4],
+    ) -> [(f64, f64, f64, f64); 2] {
+        let [(forward, forward_rate), (backward, backward_rate)] =
+            self.grip_margins_given(normal, force, rate);
+        let w2 = self.w * self.w;
+        let limit = self.peak_friction() * normal.0.max(0.0);
+        let limit_rate = self.peak_friction() * self.w * normal.1;
+        [
+            (
+                forward,
+                forward_rate,
+                second + w2 * limit,
+                third + w2 * limit_rate,
+            ),
+            (
+                backward,
+                backward_rate,
+                w2 * limit - second,
+                w2 * limit_rate - third,
+            ),
+        ]
+    }
+
     /// How far a cart held by string friction is from coming unstuck, given the net push `push` on it
     /// (with rate `rate`): forward push - F_c and backward -push - F_c, each with its rate. The cart is
     /// pushed free the way of whichever rises above zero first (Sec. IV's enhancement).

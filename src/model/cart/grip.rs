@@ -58,7 +58,7 @@ impl Grip {
             setup.grip_gain * accel,
             setup.grip_gain * jerk,
         ];
-        (s, margins(setup, angles.1, force))
+        (s, setup.grip_margins_with_derivatives(angles.1, force))
     }
 
     /// sin and cos of Ωτ and of w t at `t`, τ = t - t0, computed together. At the phase's start, where
@@ -190,36 +190,6 @@ impl Grip {
     }
 }
 
-/// How far the grip is from breaking forward and backward, sign F_s - mu N for sign = +1 and -1, each
-/// with its first three derivatives, given sin and cos of w t and F_s with its first three derivatives;
-/// mu N's second and third derivatives are -w² times its value and rate.
-#[inline(always)]
-fn margins(
-    setup: &Setup,
-    normal: (f64, f64),
-    [force, rate, second, third]: [f64; 4],
-) -> [(f64, f64, f64, f64); 2] {
-    let [(forward, forward_rate), (backward, backward_rate)] =
-        setup.grip_margins_given(normal, force, rate);
-    let w2 = setup.w * setup.w;
-    let limit = setup.peak_friction() * normal.0.max(0.0);
-    let limit_rate = setup.peak_friction() * setup.w * normal.1;
-    [
-        (
-            forward,
-            forward_rate,
-            second + w2 * limit,
-            third + w2 * limit_rate,
-        ),
-        (
-            backward,
-            backward_rate,
-            w2 * limit - second,
-            w2 * limit_rate - third,
-        ),
-    ]
-}
-
 /// The static friction of a grip whose cart moves on a spring without string friction, F_s = g X with
 /// g = k m_eff / (M + m_eff) (Eq. (5)) and X = X0 cos Ωτ + (V0/Ω) sin Ωτ (Eq. (6)), as fixed
 /// combinations of sin and cos of Ωτ: each derivative turns the swing a quarter and scales it by Ω.
@@ -242,10 +212,7 @@ impl ForceSums {
         let x = self.x0 * c + self.swing * s;
         let rate = self.swing * c - self.x0 * s;
         let g = &self.gains;
-        margins(
-            setup,
-            normal,
-            [g[0] * x, g[1] * rate, -g[2] * x, -g[3] * rate],
-        )
+        setup
+            .grip_margins_with_derivatives(normal, [g[0] * x, g[1] * rate, -g[2] * x, -g[3] * rate])
     }
 }

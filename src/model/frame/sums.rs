@@ -133,27 +133,8 @@ impl ForceSums {
         let y = self.y0 * c + self.swing * s;
         let rate = self.swing * c - self.y0 * s;
         let g = &self.gains;
-        let (force, force_rate) = (g[0] * y, g[1] * rate);
-        let (second, third) = (-g[2] * y, -g[3] * rate);
-        let [(forward, forward_rate), (backward, backward_rate)] =
-            setup.grip_margins_given(normal, force, force_rate);
-        let w2 = setup.w * setup.w;
-        let limit = setup.peak_friction() * normal.0.max(0.0);
-        let limit_rate = setup.peak_friction() * setup.w * normal.1;
-        [
-            (
-                forward,
-                forward_rate,
-                second + w2 * limit,
-                third + w2 * limit_rate,
-            ),
-            (
-                backward,
-                backward_rate,
-                w2 * limit - second,
-                w2 * limit_rate - third,
-            ),
-        ]
+        setup
+            .grip_margins_with_derivatives(normal, [g[0] * y, g[1] * rate, -g[2] * y, -g[3] * rate])
     }
 }
 
