@@ -14,6 +14,9 @@ pub use slide::Slide;
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise_within;
+
+#[cfg(test)]
+mod bounds;
 use super::params::Params;
 use super::quadrature::integrate;
 use super::recent::Recent;
@@ -218,7 +221,8 @@ impl Contact for SingleCart {
                         };
                         let noise = [slip_noise, ROUNDING * slide.cart_speed_scale(setup)];
                         let curvature = [slip_curvature, cart_curvature];
-                        first_rise_within(
+                        searched(
+                            "slide, string friction",
                             f,
                             t0,
                             end,
@@ -246,7 +250,8 @@ impl Contact for SingleCart {
                         [sums.event(angles, constants)]
                     };
                     let bounds = [[slip_curvature], [sums.fourth]];
-                    let event = first_rise_within(f, t0, end, step, bounds, [slip_noise]);
+                    let event =
+                        searched("slide by its sums", f, t0, end, step, bounds, [slip_noise]);
                     let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
                     let event = event.map(|(t, _)| (t, Cause::SlipZero));
                     (event, slide.sample_given(setup, t, angles).0)
@@ -259,7 +264,8 @@ impl Contact for SingleCart {
                             last.record(s.t, s);
                             [slide.slip_event(setup, &s, friction, slip_offset)]
                         };
-                        first_rise_within(
+                        searched(
+                            "slide",
                             f,
                             t0,
                             end,
@@ -295,7 +301,8 @@ impl Contact for SingleCart {
                 let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
                 let step = setup.event_step(0.0);
                 let curvature = [slip_curvature, push_curvature, push_curvature];
-                first_rise_within(
+                searched(
+                    "slide on a still cart",
                     f,
                     t0,
                     end,
@@ -334,7 +341,8 @@ impl Contact for SingleCart {
                         let cart_noise = ROUNDING * grip.cart_speed_scale(setup);
                         let noise = [margin_noise, margin_noise, cart_noise];
                         let curvature = [margin_curvature, margin_curvature, cart_curvature];
-                        first_rise_within(
+                        searched(
+                            "grip, string friction",
                             f,
                             t0,
                             end,
@@ -362,7 +370,15 @@ impl Contact for SingleCart {
                         sums.margins(setup, angles)
                     };
                     let bounds = [[margin_curvature; 2], [sums.fourth; 2]];
-                    let event = first_rise_within(f, t0, end, step, bounds, [margin_noise; 2]);
+                    let event = searched(
+                        "grip by its sums",
+                        f,
+                        t0,
+                        end,
+                        step,
+                        bounds,
+                        [margin_noise; 2],
+                    );
                     let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
                     let event = event.map(|(t, branch)| (t, broke(branch)));
                     (event, grip.state_given(setup, t, angles))
@@ -375,7 +391,8 @@ impl Contact for SingleCart {
                             margins
                         };
                         let curvature = [margin_curvature; 2];
-                        first_rise_within(
+                        searched(
+                            "grip",
                             f,
                             t0,
                             end,
@@ -424,6 +441,28 @@ fn recorded(
     let last = Recent::new(start.t, *start);
     let event = search(&last);
     (event, last.at(event.map_or(end, |(t, _)| t)))
+}
+
+/// [`first_rise_within`] for the `regime` named; under test, where [`bounds`] asks it, the bounds are first
+/// checked against the branches they bound.
+#[inline(always)]
+fn searched<const K: usize>(
+    regime: &'static str,
+    f: impl Fn(f64) -> [(f64, f64, f64, f64); K],
+    t0: f64,
+    end: f64,
+    step: f64,
+    bounds: [[f64; K]; 2],
+    noise: [f64; K],
+) -> Option<(f64, usize)> {
+    #[cfg(test)]
+    let sampled = bounds::sample(regime, &f, t0, end, step, bounds);
+    #[cfg(not(test))]
+    let _ = regime;
+    let found = first_rise_within(f, t0, end, step, bounds, noise);
+    #[cfg(test)]
+    bounds::check(sampled, found.map_or(end, |(t, _)| t));
+    found
 }
 
 /// Bounds on the fourth derivatives of a slide's slip and of its cart's velocity, given the bound
