@@ -10,8 +10,9 @@
 //! bound, covered by a relative room of 1e-6, and its rounding is at most a few ulps of the largest
 //! |f'''| over h, covered by 1e3 ulps of it over h (about 1e-8 of Ω max |f'''|, far below any bound a real
 //! violation would cross: halving a bound that is reached fails the test, see `fails_when_halved`).
-//! The differences stay 2h inside the phase: at the start and end of contact the slide carries F' = 0
-//! (N = max(sin w t, 0) is not smooth there), so f''' jumps and a difference across t = 0 is no f''''.
+//! The differences stay 2h inside the phase: N = max(sin w t, 0) is not smooth at the start and end of
+//! contact, so a difference across t = 0 is no f''''. There the slide carries the rate from inside the
+//! contact (F' = mu N0 w at t = 0, tested below), as the Taylor polynomials from an interval's ends need.
 
 use std::cell::{Cell, RefCell};
 use std::collections::BTreeMap;
@@ -230,6 +231,23 @@ fn the_search_bounds_hold_over_random_bounces() {
 #[ignore = "slow tier: cargo test --release --lib -- --ignored"]
 fn the_search_bounds_hold_over_many_random_bounces() {
     run(cases(20000));
+}
+
+#[test]
+fn the_friction_rate_at_first_contact_is_the_one_inside_contact() {
+    use super::super::contact::Cart;
+    use super::super::setup::Setup;
+    use super::slide::Slide;
+    let setup = Setup::new(&Params::default());
+    let slide = Slide::new(
+        &setup,
+        setup.initial(Params::default().spin),
+        1.0,
+        Cart::Moving(1),
+    );
+    let (_, (friction, rate)) = slide.sample(&setup, 0.0);
+    assert_eq!(friction, 0.0);
+    assert_eq!(rate, setup.peak_friction() * setup.w);
 }
 
 #[test]

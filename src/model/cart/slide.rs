@@ -163,7 +163,7 @@ impl Slide {
             }
         };
         let friction = force_amplitude * sin_wt.max(0.0);
-        let friction_rate = if sin_wt > 0.0 {
+        let friction_rate = if sin_wt >= 0.0 {
             force_amplitude * w * cos_wt
         } else {
             0.0
