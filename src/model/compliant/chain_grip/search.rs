@@ -50,7 +50,8 @@ impl ChainGrip {
         };
         let first = self.force_bounds_with(setup, &sizes, &growths_at(0.0));
         let size = first.1;
-        let mut stages = vec![stage_from(t0, first)];
+        let mut stages = Vec::with_capacity(11);
+        stages.push(stage_from(t0, first));
         // Each cut's bound on |F''| estimated first with a decaying mode's shrinking over a stage,
         // e^{Re s stage}, taken once (within 1e-12 of the bound); only a cut the estimate does not
         // clearly refuse is bounded exactly, with an exponential a mode.
