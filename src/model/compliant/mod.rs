@@ -524,6 +524,12 @@ pub struct CompliantBall {
 }
 
 impl CompliantBall {
+    /// The single cart on the wall, solved as a chain of one mass: its only mass is the contact's cart,
+    /// so the contact state is the whole state.
+    fn single_on_wall(&self) -> bool {
+        matches!(&self.support, Support::Chain { chain, .. } if chain.n == 1 && chain.frame_index() == 0)
+    }
+
     /// The model for `params` and the setup it runs on, refused when the cart or the ball's spring is
     /// too fast to resolve. `modal` solves every grip as a chain's (with a spring; on the single cart
     /// without string friction); otherwise by the cart's own 4-state system, the chain's length ignored.
@@ -943,9 +949,7 @@ impl Contact for CompliantBall {
                         }
                         // The single cart on the wall, a chain of one mass for its grips: it slides as
                         // the rigid ball's cart, the same closed form in fewer operations.
-                        (Support::Chain { chain, .. }, ..)
-                            if chain.n == 1 && chain.frame_index() == 0 =>
-                        {
+                        (Support::Chain { .. }, ..) if self.single_on_wall() => {
                             Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
                         }
                         (Support::Chain { chain, .. }, ..) => Rigid::Chain(Arc::new(
@@ -1304,7 +1308,9 @@ impl Contact for CompliantBall {
                 full.v[1] = point.frame.0;
                 full
             }
-            CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
+            // The single cart on the wall, gripped as a chain of one mass: that mass is the contact
+            // point's cart, which the point already holds (no second propagation of the grip).
+            CompliantMotion::ChainGrip(grip) if !self.single_on_wall() => grip.full(setup, t),
             CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
             CompliantMotion::HeldOnFrame(held) => held.full(t),
             CompliantMotion::HeldRingGrip(grip) => grip.full(setup, t),

@@ -40,23 +40,26 @@ impl ChainGrip {
             };
             (from, end, curvature, setup.event_step(rate))
         };
-        let sizes = self.mode_sizes(setup);
+        let mut room = [ModeSize::NONE; MODES];
+        let len = self.mode_sizes(setup, &mut room);
+        let sizes = &room[..len];
         let growths_at = |elapsed: f64| {
             let mut growths = [0.0; MODES];
-            for (g, m) in growths.iter_mut().zip(&sizes) {
+            for (g, m) in growths.iter_mut().zip(sizes) {
                 *g = growth(m.re, elapsed, end - t0);
             }
             growths
         };
-        let first = self.force_bounds_with(setup, &sizes, &growths_at(0.0));
+        let first = self.force_bounds_with(setup, sizes, &growths_at(0.0));
         let size = first.1;
-        let mut stages = vec![stage_from(t0, first)];
+        let mut stages = Vec::with_capacity(11);
+        stages.push(stage_from(t0, first));
         // Each cut's bound on |F''| estimated first with a decaying mode's shrinking over a stage,
         // e^{Re s stage}, taken once (within 1e-12 of the bound); only a cut the estimate does not
         // clearly refuse is bounded exactly, with an exponential a mode.
         let mut estimate = growths_at(0.0);
         let mut shrink = [1.0; MODES];
-        for (s, m) in shrink.iter_mut().zip(&sizes) {
+        for (s, m) in shrink.iter_mut().zip(sizes) {
             if m.re <= 0.0 {
                 *s = fast_exp(m.re * stage);
             }
@@ -67,11 +70,11 @@ impl ChainGrip {
                 *g *= s;
             }
             let current = stages.last().expect("one stage at least").2;
-            if curvature(&sizes, &estimate) >= 0.5 * current * (1.0 + SCREEN) {
+            if curvature(sizes, &estimate) >= 0.5 * current * (1.0 + SCREEN) {
                 continue;
             }
             let growths = growths_at(cut - t0);
-            let next = stage_from(cut, self.force_bounds_with(setup, &sizes, &growths));
+            let next = stage_from(cut, self.force_bounds_with(setup, sizes, &growths));
             let current = stages.last_mut().expect("one stage at least");
             if next.2 < 0.5 * current.2 {
                 current.1 = cut;
@@ -87,22 +90,25 @@ impl ChainGrip {
     /// From `from` on: a mode decaying at -Re s has shrunk by e^(Re s (from - t0)) there, so a strongly
     /// damped mode stops counting once it has died out. Also the fastest rate still worth resolving.
     pub fn force_bounds(&self, setup: &Setup, from: f64) -> (f64, f64, f64) {
-        let sizes = self.mode_sizes(setup);
+        let mut room = [ModeSize::NONE; MODES];
+        let len = self.mode_sizes(setup, &mut room);
+        let sizes = &room[..len];
         let (elapsed, remaining) = (from - self.start.t, setup.duration - self.start.t);
         let mut growths = [0.0; MODES];
-        for (g, m) in growths.iter_mut().zip(&sizes) {
+        for (g, m) in growths.iter_mut().zip(sizes) {
             *g = growth(m.re, elapsed, remaining);
         }
-        self.force_bounds_with(setup, &sizes, &growths)
+        self.force_bounds_with(setup, sizes, &growths)
     }
 
     /// Per mode, what [`ChainGrip::force_bounds`] scales by the mode's growth: its share of the bound
     /// on |F''| and of the size of F's terms, and |s_i| (empty where the modes do not reproduce the
-    /// start). They stay the same over the grip, so the event search's stages take them once.
-    fn mode_sizes(&self, setup: &Setup) -> Vec<ModeSize> {
+    /// start). They stay the same over the grip, so the event search's stages take them once. Written
+    /// into `room` (no allocation); returns how many.
+    fn mode_sizes(&self, setup: &Setup, room: &mut [ModeSize; MODES]) -> usize {
         let remaining = setup.duration - self.start.t;
         let (Some(list), Some(c)) = (&self.modes.modes, &self.coefficients) else {
-            return Vec::new();
+            return 0;
         };
         list.iter()
             .zip(c)
@@ -127,7 +133,11 @@ impl ChainGrip {
                     rate: mode.s.norm(),
                 }
             })
-            .collect()
+            .zip(room.iter_mut())
+            .fold(0, |len, (size, slot)| {
+                *slot = size;
+                len + 1
+            })
     }
 
     /// [`ChainGrip::force_bounds`] given [`ChainGrip::mode_sizes`] and each mode's growth.
@@ -251,6 +261,7 @@ impl ChainGrip {
 }
 
 /// One mode's constant shares of [`ChainGrip::force_bounds`], before its growth.
+#[derive(Clone, Copy)]
 struct ModeSize {
     /// Re s_i, which sets the growth.
     re: f64,
@@ -262,6 +273,17 @@ struct ModeSize {
     squared: Option<f64>,
     /// |s_i|.
     rate: f64,
+}
+
+impl ModeSize {
+    /// An unused slot of [`ChainGrip::mode_sizes`]'s room.
+    const NONE: ModeSize = ModeSize {
+        re: 0.0,
+        part: 0.0,
+        term: 0.0,
+        squared: None,
+        rate: 0.0,
+    };
 }
 
 /// The bound on |F''| of [`ChainGrip::force_bounds_with`]'s modes alone, given their growths.
