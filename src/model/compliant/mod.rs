@@ -325,20 +325,6 @@ impl CompliantMotion {
         }
     }
 
-    /// True on a chain (where [`Self::chain_energy`] is known).
-    pub fn chain_energy_known(&self) -> bool {
-        matches!(
-            self,
-            CompliantMotion::Slide(CompliantSlide {
-                rigid: Rigid::Chain(_),
-                ..
-            }) | CompliantMotion::ChainGrip(_)
-                | CompliantMotion::HeldChainGrip(_)
-                | CompliantMotion::HeldOnFrame(_)
-                | CompliantMotion::HeldRingGrip(_)
-        )
-    }
-
     /// The fastest rate in the phase, rad/s (for quadrature panels).
     pub fn fastest(&self, setup: &Setup) -> f64 {
         match self {
