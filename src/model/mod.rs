@@ -28,6 +28,7 @@ pub mod reportable;
 pub mod setup;
 pub mod solvable;
 pub mod solve;
+pub mod sums;
 pub mod transition;
 pub mod trig;
 pub mod units;

@@ -3,6 +3,7 @@
 use super::super::contact::Cart;
 use super::super::oscillator::{free_given, step};
 use super::super::setup::{Setup, State};
+use super::super::sums::ForceSums;
 use super::super::trig::{sin_cos, sin_cos2};
 
 /// sin and cos of Ωτ, τ the time since the phase began, and of w t.
@@ -92,22 +93,8 @@ impl Grip {
         if self.cart == Cart::Stuck || self.push(setup) != 0.0 || omega == 0.0 {
             return None;
         }
-        let gain = setup.grip_gain;
-        let (x0, swing) = (self.start.x, self.start.v / omega);
-        let w2 = setup.w * setup.w;
-        let fourth = gain * omega.powi(4) * (x0 * x0 + swing * swing).sqrt()
-            + setup.peak_friction() * w2 * w2;
-        Some(ForceSums {
-            x0,
-            swing,
-            fourth: fourth * (1.0 + 1e-9),
-            gains: [
-                gain,
-                gain * omega,
-                gain * omega * omega,
-                gain * omega * omega * omega,
-            ],
-        })
+        let start = (self.start.x, self.start.v);
+        Some(ForceSums::new(setup, setup.grip_gain, omega, start))
     }
 
     /// [`Grip::at`] with sin(Ωτ) and cos(Ωτ) at hand.
@@ -187,32 +174,5 @@ impl Grip {
         let offset = self.start.x - self.push(setup) * (setup.cart_mass + setup.m_eff) / setup.k;
         let x_accel = omega * ((omega * offset).powi(2) + self.start.v.powi(2)).sqrt();
         (setup.grip_gain * x_accel + normal, omega * x_accel)
-    }
-}
-
-/// The static friction of a grip whose cart moves on a spring without string friction, F_s = g X with
-/// g = k m_eff / (M + m_eff) (Eq. (5)) and X = X0 cos Ωτ + (V0/Ω) sin Ωτ (Eq. (6)), as fixed
-/// combinations of sin and cos of Ωτ: each derivative turns the swing a quarter and scales it by Ω.
-#[derive(Clone, Copy, Debug)]
-pub struct ForceSums {
-    x0: f64,
-    /// V0/Ω.
-    swing: f64,
-    /// A bound on the margins' fourth derivative, g Ω⁴ sqrt(X0² + (V0/Ω)²) + mu N0 w⁴ (with room for
-    /// rounding).
-    pub fourth: f64,
-    /// g, g Ω, g Ω², g Ω³.
-    gains: [f64; 4],
-}
-
-impl ForceSums {
-    /// The margins of [`Grip::evaluate`] from the phase's `Angles`.
-    #[inline(always)]
-    pub fn margins(&self, setup: &Setup, ((s, c), normal): Angles) -> [(f64, f64, f64, f64); 2] {
-        let x = self.x0 * c + self.swing * s;
-        let rate = self.swing * c - self.x0 * s;
-        let g = &self.gains;
-        setup
-            .grip_margins_with_derivatives(normal, [g[0] * x, g[1] * rate, -g[2] * x, -g[3] * rate])
     }
 }

@@ -3,6 +3,7 @@
 use super::super::contact::Cart;
 use super::super::oscillator::{detuned, forced, free, free_given, step};
 use super::super::setup::{Setup, State};
+use super::super::sums::SlipTerms;
 use super::super::trig::{sin_cos, sin_cos2};
 
 /// A sliding phase from `start`, with the slip's sign `dir` (+1: the contact point moves forward
@@ -190,18 +191,17 @@ impl Slide {
         let ball = dir * (force_amplitude / setup.m_eff - amplitude * w * w);
         let free_cos = dir * (s0.v - amplitude * w * self.cos_wt0);
         let free_sin = dir * (s0.x - amplitude * self.sin_wt0) * omega;
-        let rates = |c: f64, r: f64| [c, c * r, c * r * r, c * r * r * r];
         let fourth = ball.abs() * w * w * w
             + omega.powi(4) * (free_cos * free_cos + free_sin * free_sin).sqrt();
         Some(SlipSums {
             slip0: setup.slip(s0),
             v0: s0.v,
             impulse0: dir * force_amplitude * self.cos_wt0 / (w * setup.m_eff),
-            sin_wt0: self.sin_wt0,
-            cos_wt0: self.cos_wt0,
-            ball: rates(ball / w, w),
-            free_cos: rates(free_cos, omega),
-            free_sin: rates(free_sin, omega),
+            terms: SlipTerms::new(
+                (self.sin_wt0, self.cos_wt0),
+                (w, omega),
+                [ball, free_cos, free_sin],
+            ),
             dir,
             fourth: fourth * (1.0 + 1e-9),
         })
@@ -340,14 +340,7 @@ pub struct SlipSums {
     v0: f64,
     /// dir F0 cos(w t0)/(w m_eff).
     impulse0: f64,
-    sin_wt0: f64,
-    cos_wt0: f64,
-    /// P/w, P, P w, P w².
-    ball: [f64; 4],
-    /// B, B Ω, B Ω², B Ω³.
-    free_cos: [f64; 4],
-    /// Q, Q Ω, Q Ω², Q Ω³.
-    free_sin: [f64; 4],
+    terms: SlipTerms,
     dir: f64,
     /// A bound on the event's fourth derivative, |P| w³ + Ω⁴ sqrt(B² + Q²) (with room for rounding).
     pub fourth: f64,
@@ -372,20 +365,7 @@ impl SlipSums {
         ((sin_w_tau, cos_w_tau), (s, c)): Angles,
         (start, constant): (f64, f64),
     ) -> (f64, f64, f64, f64) {
-        let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
-        let cos_wt = self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau;
-        let (p, b, q) = (&self.ball, &self.free_cos, &self.free_sin);
-        // sin w τ is 0 only at τ = 0 (w τ <= pi in contact).
-        let value = if sin_w_tau == 0.0 {
-            start
-        } else {
-            constant - p[0] * cos_wt + b[0] * c - q[0] * s
-        };
-        (
-            value,
-            p[1] * sin_wt - b[1] * s - q[1] * c,
-            p[2] * cos_wt - b[2] * c + q[2] * s,
-            -p[3] * sin_wt + b[3] * s + q[3] * c,
-        )
+        self.terms
+            .event((sin_w_tau, cos_w_tau), (s, c), (start, constant))
     }
 }

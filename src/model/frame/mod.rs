@@ -45,7 +45,7 @@ use super::setup::{Setup, State};
 use super::transition::{self, Touched};
 use super::trig::{sin_cos, sin_cos2};
 pub use sliding::Sliding;
-use sums::{Angles, ForceSums, SlipSums};
+use sums::{Angles, SlipSums, force_sums};
 
 /// The ball and the cart (`x` the spring's stretch y, `v` the cart's velocity), and the frame's velocity.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -639,7 +639,7 @@ impl Contact for FramedCart {
                 let curvatures = [curvature, curvature, stop_curvature];
                 let found = if string {
                     first_rise(f, t0, end, step, curvatures, noise)
-                } else if let Some(sums) = ForceSums::new(motion, setup) {
+                } else if let Some(sums) = force_sums(motion, setup) {
                     // The margins alone, by their sums; the state is computed only where the search
                     // ends.
                     let probes = Recent::new(t0, (t0, motion.angles(setup, t0)));

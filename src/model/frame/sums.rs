@@ -8,6 +8,7 @@
 //! cosine. (The clamped single cart's sums, `cart/slide.rs` and `cart/grip.rs`, are the limit M_t -> ∞.)
 
 use super::super::setup::Setup;
+use super::super::sums::{ForceSums, SlipTerms};
 use super::FrameMotion;
 
 /// sin and cos of Ωτ (τ the time since the phase began), and of the normal force's angle: w τ sliding,
@@ -29,19 +30,7 @@ pub struct SlipSums {
     start: f64,
     /// Its constant term, dir (offset - u0' + P0/B) + dir F0 R cos(w t0)/w.
     constant: f64,
-    sin_wt0: f64,
-    cos_wt0: f64,
-    /// P/w, P, P w, P w².
-    ball: [f64; 4],
-    /// B', B' Ω, B' Ω², B' Ω³.
-    free_cos: [f64; 4],
-    /// Q, Q Ω, Q Ω², Q Ω³.
-    free_sin: [f64; 4],
-}
-
-/// c, c r, c r², c r³.
-fn rates(c: f64, r: f64) -> [f64; 4] {
-    [c, c * r, c * r * r, c * r * r * r]
+    terms: SlipTerms,
 }
 
 impl SlipSums {
@@ -67,75 +56,38 @@ impl SlipSums {
             start: dir * (offset - setup.slip(s0)),
             constant: dir * (offset - contact + motion.p0 / body)
                 + dir * force_amplitude * inverse * motion.cos_wt0 / w,
-            sin_wt0: motion.sin_wt0,
-            cos_wt0: motion.cos_wt0,
-            ball: rates(ball / w, w),
-            free_cos: rates(free_cos, omega),
-            free_sin: rates(free_sin, omega),
+            terms: SlipTerms::new(
+                (motion.sin_wt0, motion.cos_wt0),
+                (w, omega),
+                [ball, free_cos, free_sin],
+            ),
         })
     }
 
     /// The event -dir (slip - offset) and its first three derivatives, given the slide's `Angles`.
     #[inline(always)]
     pub fn event(&self, ((s, c), (sin_w_tau, cos_w_tau)): Angles) -> (f64, f64, f64, f64) {
-        let sin_wt = self.sin_wt0 * cos_w_tau + self.cos_wt0 * sin_w_tau;
-        let cos_wt = self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau;
-        let (p, b, q) = (&self.ball, &self.free_cos, &self.free_sin);
-        // sin w τ is 0 only at τ = 0 (w τ <= pi in contact).
-        let value = if sin_w_tau == 0.0 {
-            self.start
-        } else {
-            self.constant - p[0] * cos_wt + b[0] * c - q[0] * s
-        };
-        (
-            value,
-            p[1] * sin_wt - b[1] * s - q[1] * c,
-            p[2] * cos_wt - b[2] * c + q[2] * s,
-            -p[3] * sin_wt + b[3] * s + q[3] * c,
-        )
+        self.terms
+            .event((sin_w_tau, cos_w_tau), (s, c), (self.start, self.constant))
     }
 }
 
 /// The static friction of a grip on the free frame whose cart moves on a spring without string
 /// friction, F_s = g y with g = k m_eff/(M + m_eff) (Eq. (5) with the stretch y for X) and
-/// y = y0 cos Ωτ + (y0'/Ω) sin Ωτ, Ω = Ω_g, as fixed combinations of sin and cos of Ωτ.
-#[derive(Clone, Copy, Debug)]
-pub struct ForceSums {
-    y0: f64,
-    /// y0'/Ω.
-    swing: f64,
-    /// g, g Ω, g Ω², g Ω³.
-    gains: [f64; 4],
-}
-
-impl ForceSums {
-    /// The sums of `motion`, a grip, where its cart moves on a spring without string friction (else
-    /// `None`).
-    pub fn new(motion: &FrameMotion, setup: &Setup) -> Option<Self> {
-        let omega = motion.omega;
-        if motion.held || motion.string != 0.0 || omega == 0.0 || motion.dir != 0.0 {
-            return None;
-        }
-        let s0 = &motion.start.s;
-        let gain = setup.m_eff * setup.k / motion.cart;
-        Some(ForceSums {
-            y0: s0.x,
-            swing: (s0.v - motion.start.vf) / omega,
-            gains: rates(gain, omega),
-        })
+/// y = y0 cos Ωτ + (y0'/Ω) sin Ωτ, Ω = Ω_g, as fixed combinations of sin and cos of Ωτ (else `None`).
+pub fn force_sums(motion: &FrameMotion, setup: &Setup) -> Option<ForceSums> {
+    let omega = motion.omega;
+    if motion.held || motion.string != 0.0 || omega == 0.0 || motion.dir != 0.0 {
+        return None;
     }
-
-    /// How far the grip is from breaking forward and backward, sign F_s - mu N for sign = +1 and -1,
-    /// each with its first three derivatives, given the grip's `Angles`; mu N's second and third
-    /// derivatives are -w² times its value and rate.
-    #[inline(always)]
-    pub fn margins(&self, setup: &Setup, ((s, c), normal): Angles) -> [(f64, f64, f64, f64); 2] {
-        let y = self.y0 * c + self.swing * s;
-        let rate = self.swing * c - self.y0 * s;
-        let g = &self.gains;
-        setup
-            .grip_margins_with_derivatives(normal, [g[0] * y, g[1] * rate, -g[2] * y, -g[3] * rate])
-    }
+    let s0 = &motion.start.s;
+    let gain = setup.m_eff * setup.k / motion.cart;
+    Some(ForceSums::new(
+        setup,
+        gain,
+        omega,
+        (s0.x, s0.v - motion.start.vf),
+    ))
 }
 
 #[cfg(test)]
@@ -261,7 +213,7 @@ mod tests {
             let t0 = setup.duration / 3.0;
             let state: FrameState = slide.moving_at(&setup, t0).0.state;
             let grip = model.motion(&setup, &state, (Ball::Grip, Cart::Moving(1)));
-            let sums = ForceSums::new(&grip, &setup).expect("a moving grip on a spring");
+            let sums = force_sums(&grip, &setup).expect("a moving grip on a spring");
             for branch in 0..2 {
                 let exact = |t: f64| {
                     let (p, normal) = grip.moving_at(&setup, t);
