@@ -1,19 +1,14 @@
 #!/usr/bin/env bash
 # Issue 23's speed goal: instructions per `snapback sweep` row on a free 188 g frame against the same bounce
-# clamped, counted by callgrind (noise-free) as benches/instructions.sh counts them (the difference between
-# sweeps of 2N and N rows over N). Usage: bash benches/frame_ratio.sh [path/to/snapback] [N]
+# clamped, counted by callgrind (benches/per_row.sh).
+# Usage: bash benches/frame_ratio.sh [path/to/snapback] [N]
 set -euo pipefail
 bin=${1:-target/release/snapback}
 n=${2:-300}
-count() {
-  RAYON_NUM_THREADS=1 valgrind --tool=callgrind --callgrind-out-file=/dev/null "$bin" sweep "$@" \
-    2>&1 >/dev/null | sed -n 's/.*Collected : \([0-9]*\).*/\1/p'
-}
+# shellcheck source=benches/per_row.sh
+source "$(dirname "$0")/per_row.sh"
 row() {
-  local one two
-  one=$(count --steps "$n" --vary speed --from 10 --to 10.000001 "$@")
-  two=$(count --steps $((2 * n)) --vary speed --from 10 --to 10.000001 "$@")
-  echo $(((two - one) / n))
+  per_row "$bin" "$n" --vary speed --from 10 --to 10.000001 "$@"
 }
 printf '%-22s %9s %9s %6s\n' bounce clamped frame ratio
 while read -r name args; do
