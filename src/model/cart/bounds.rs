@@ -20,6 +20,7 @@ use std::collections::BTreeMap;
 use proptest::prelude::*;
 
 use crate::model::params::Params;
+use crate::model::setup::Setup;
 use crate::model::solve::solve;
 
 thread_local! {
@@ -158,10 +159,7 @@ fn params() -> impl Strategy<Value = Params> {
     (ball, throw, contact, cart).prop_map(|(ball, throw, contact, cart)| {
         let ((mass, radius, alpha), (angle_deg, speed, spin)) = (ball, throw);
         let ((mu, duration, ey), (cart_mass, stiffness, string)) = (contact, cart);
-        let peak_friction =
-            mu * (1.0 + ey) * std::f64::consts::PI * mass * speed * angle_deg.to_radians().sin()
-                / (2.0 * duration);
-        Params {
+        let p = Params {
             angle_deg,
             speed,
             spin,
@@ -173,12 +171,13 @@ fn params() -> impl Strategy<Value = Params> {
             alpha,
             cart_mass,
             stiffness,
-            cart_friction: string * peak_friction,
             chain: 1.0,
             ball_stiffness: 0.0,
             ball_damping: 0.0,
             ..Params::default()
-        }
+        };
+        let cart_friction = string * Setup::new(&p).peak_friction();
+        Params { cart_friction, ..p }
     })
 }
 
@@ -236,7 +235,6 @@ fn the_search_bounds_hold_over_many_random_bounces() {
 #[test]
 fn the_friction_rate_at_first_contact_is_the_one_inside_contact() {
     use super::super::contact::Cart;
-    use super::super::setup::Setup;
     use super::slide::Slide;
     let setup = Setup::new(&Params::default());
     let slide = Slide::new(
