@@ -594,6 +594,22 @@ fn refine<B: Branch, const K: usize>(
     (last, below)
 }
 
+/// [`first_rise_from_tangent`] with [`first_rise_within`]'s Taylor polynomials: for a compliant ball's
+/// grip whose margins carry f'' and f''' ([`Branch::higher`]) and a bound `fourth` on each one's fourth
+/// derivative. It only proves more intervals empty, with fewer evaluations: every crossing it finds is
+/// [`first_rise_from_tangent`]'s.
+pub fn first_rise_within_from_tangent<B: Branch, const K: usize>(
+    f: impl Event<B, K>,
+    t0: f64,
+    t1: f64,
+    step: f64,
+    [curvature, fourth]: [[f64; K]; 2],
+    noise: [f64; K],
+) -> Option<(f64, usize)> {
+    let bounds = Bounds { curvature, fourth };
+    search::<B, K, true>(f, t0, t1, step, bounds, noise, Start::Tangent)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -63,7 +63,7 @@ mod stretch;
 use std::sync::Arc;
 
 pub use cart_grip::{Compliance, CompliantGrip};
-pub use chain_grip::{ChainGrip, GripModes};
+pub use chain_grip::{ChainGrip, GripModes, Stage};
 pub use held_chain::HeldChainGrip;
 pub use held_frame::{FrameHold, HeldOnFrame};
 pub use held_ring::HeldRingGrip;
@@ -76,7 +76,7 @@ use super::chain::motion::Motion as ChainMotion;
 use super::chain::{Chain, ChainState, ring};
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::first_rise_from_tangent;
+use super::events::{first_rise_from_tangent, first_rise_within_from_tangent};
 use super::frame::{FrameMotion, FrameState, FramedCart};
 use super::memo::{Slot, reuse};
 use super::params::Params;
@@ -1142,12 +1142,20 @@ impl Contact for CompliantBall {
                 };
                 stages
                     .into_iter()
-                    .find_map(|(from, to, curvature, step)| {
-                        let curvature = curvature + margin_curvature;
-                        let curvature = [curvature, curvature, stop_curvature];
-                        let noise = [noise, noise, stop_noise];
-                        first_rise_from_tangent(f, from, to, step, curvature, noise)
-                    })
+                    .find_map(
+                        |Stage {
+                             from,
+                             to,
+                             curvature,
+                             step,
+                             ..
+                         }| {
+                            let curvature = curvature + margin_curvature;
+                            let curvature = [curvature, curvature, stop_curvature];
+                            let noise = [noise, noise, stop_noise];
+                            first_rise_from_tangent(f, from, to, step, curvature, noise)
+                        },
+                    )
                     .map(|(t, branch)| match branch {
                         0 | 1 => (t, grip_break(branch)),
                         _ => (t, Cause::CartStop),
@@ -1168,14 +1176,22 @@ impl Contact for CompliantBall {
                 };
                 stages
                     .into_iter()
-                    .find_map(|(from, to, curvature, step)| {
-                        let (push_curvature, push_terms) = held.push_bounds(setup, curvature);
-                        let push_noise = ROUNDING * (push_terms + size + setup.cart_friction);
-                        let margin = curvature + margin_curvature;
-                        let curvature = [margin, margin, push_curvature, push_curvature];
-                        let noise = [noise, noise, push_noise, push_noise];
-                        first_rise_from_tangent(f, from, to, step, curvature, noise)
-                    })
+                    .find_map(
+                        |Stage {
+                             from,
+                             to,
+                             curvature,
+                             step,
+                             ..
+                         }| {
+                            let (push_curvature, push_terms) = held.push_bounds(setup, curvature);
+                            let push_noise = ROUNDING * (push_terms + size + setup.cart_friction);
+                            let margin = curvature + margin_curvature;
+                            let curvature = [margin, margin, push_curvature, push_curvature];
+                            let noise = [noise, noise, push_noise, push_noise];
+                            first_rise_from_tangent(f, from, to, step, curvature, noise)
+                        },
+                    )
                     .map(|(t, branch)| match branch {
                         0 | 1 => (t, grip_break(branch)),
                         2 => (t, Cause::Unstick(1)),
@@ -1217,15 +1233,18 @@ impl Contact for CompliantBall {
                 let (stages, size) = grip.search_stages(setup);
                 let noise = ROUNDING * (peak + size);
                 let f = |t: f64| {
-                    let p = grip.at(setup, t);
+                    let (p, margins) = grip.margins(setup, t);
                     last.set(Some(p));
-                    setup.grip_margins(t, p.friction, p.friction_rate)
+                    margins
                 };
                 stages
                     .into_iter()
-                    .find_map(|(from, to, curvature, step)| {
-                        let curvature = [curvature + margin_curvature; 2];
-                        first_rise_from_tangent(f, from, to, step, curvature, [noise; 2])
+                    .find_map(|stage| {
+                        let curvature = [stage.curvature + margin_curvature; 2];
+                        let fourth = [stage.fourth + margin_curvature * w * w; 2];
+                        let bounds = [curvature, fourth];
+                        let (from, to, step) = (stage.from, stage.to, stage.step);
+                        first_rise_within_from_tangent(f, from, to, step, bounds, [noise; 2])
                     })
                     .map(|(t, branch)| (t, grip_break(branch)))
             }

@@ -50,6 +50,7 @@ mod coefficients;
 mod fallback;
 mod roots;
 mod search;
+pub use search::Stage;
 #[cfg(test)]
 mod tests;
 
@@ -349,12 +350,14 @@ const CHUNK: usize = 10;
 /// Room for a grip's state (u, Q, u', Q').
 const STATE: usize = 2 * MAX + 2;
 
-/// The contact's sums u, u', F, F', e, e', e'' and X_1'' (= u'' - e'').
-const SUMS: usize = 8;
+/// The contact's sums u, u', F, F', e, e', e'', X_1'' (= u'' - e''), and F'' and F''' for the event
+/// search's Taylor polynomials.
+const SUMS: usize = 10;
 
 /// One mode's weighted coefficient c_i times what the mode carries into each of [`SUMS`] (u_i, s_i u_i,
-/// F_i, s_i F_i, e_i, s_i e_i, s_i² e_i, s_i² (u_i - e_i)), real and imaginary parts apart: each sum at
-/// τ is then Re Σ_i e^{s_i τ} (c_i X_i), two products a mode and sum. Taken once per grip.
+/// F_i, s_i F_i, e_i, s_i e_i, s_i² e_i, s_i² (u_i - e_i), s_i² F_i, s_i³ F_i), real and imaginary parts
+/// apart: each sum at τ is then Re Σ_i e^{s_i τ} (c_i X_i), two products a mode and sum. Taken once per
+/// grip.
 #[derive(Clone, Debug)]
 struct Shares {
     re: [f64; SUMS],
@@ -373,6 +376,8 @@ impl Shares {
             rate * mode.e,
             rate * mode.s * mode.e,
             rate * mode.s * (mode.u - mode.e),
+            rate * mode.s * mode.force,
+            rate * mode.s * mode.s * mode.force,
         ];
         Shares {
             re: sums.map(|z| z.re),
@@ -542,13 +547,25 @@ impl ChainGrip {
     /// The ball, the first mass, the force and the stretch at `t`.
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> Point {
+        self.evaluate(setup, t).0
+    }
+
+    /// [`ChainGrip::at`], with F'' and F''' where the grip sums its modes by their [`Shares`] (on the
+    /// wall without a push; `None` otherwise), for the event search's Taylor polynomials.
+    #[inline]
+    pub fn at_with_higher(&self, setup: &Setup, t: f64) -> (Point, Option<(f64, f64)>) {
+        self.evaluate(setup, t)
+    }
+
+    #[inline(always)]
+    fn evaluate(&self, setup: &Setup, t: f64) -> (Point, Option<(f64, f64)>) {
         let g = &self.modes;
         let tau = t - self.start.t;
         let n = g.n;
         // The contact quantities alone need only one exponential per mode.
         let framed = g.translation.is_some();
         // On a free frame also r'' and X_f - Y with its two rates (otherwise 0).
-        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf)) =
+        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf), higher) =
             match (&g.modes, &self.coefficients) {
                 (Some(list), Some(_)) if let Some(shares) = &self.shares => {
                     // e^{s_i τ} of every mode, CHUNK at a time: the sines and cosines together,
@@ -570,9 +587,10 @@ impl ChainGrip {
                             }
                         }
                     }
-                    let [u, du, f, df, e, de, dde, a1] = sums;
+                    let [u, du, f, df, e, de, dde, a1, ddf, dddf] = sums;
                     let none = (0.0, 0.0, 0.0);
-                    (du, f, df, e, de, dde, u - e, du - de, a1, 0.0, none)
+                    let higher = Some((ddf, dddf));
+                    (du, f, df, e, de, dde, u - e, du - de, a1, 0.0, none, higher)
                 }
                 (Some(list), Some(c)) => {
                     let zero = C64::new(0.0, 0.0);
@@ -610,6 +628,7 @@ impl ChainGrip {
                         a1.re,
                         ddu.re,
                         frame,
+                        None,
                     )
                 }
                 _ => {
@@ -634,6 +653,7 @@ impl ChainGrip {
                         a1,
                         dz[n + 1],
                         (xf, dxf, ddxf),
+                        None,
                     )
                 }
             };
@@ -663,7 +683,7 @@ impl ChainGrip {
             _ => (du, x1, v1, a1, (0.0, 0.0)),
         };
         let (vx, omega) = self.ball(setup, du);
-        Point {
+        let point = Point {
             state: State {
                 t,
                 vx,
@@ -679,7 +699,8 @@ impl ChainGrip {
             slip_rate: 0.0,
             accel: a1,
             frame,
-        }
+        };
+        (point, higher)
     }
 
     /// A mode's weighted amplitude and its rate after `tau`: c_i e^{s_i τ}, plus the push's

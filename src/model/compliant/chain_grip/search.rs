@@ -6,7 +6,9 @@ use super::super::super::setup::Setup;
 use super::super::stretch::SETTLED;
 use nalgebra::DVector;
 
-use super::super::super::trig::exp as fast_exp;
+use super::super::super::events::Branch;
+use super::super::super::trig::{exp as fast_exp, sin_cos};
+use super::super::Point;
 use super::{C64, ChainGrip, NEGLIGIBLE};
 
 /// Room for the grip's modes, one per root pair or real root.
@@ -15,12 +17,82 @@ const MODES: usize = 2 * MAX + 2;
 /// estimate is within 1e-12 of it, so the exact bound would refuse it too).
 const SCREEN: f64 = 1e-9;
 
+/// One stage of the grip's event search ([`ChainGrip::search_stages`]).
+#[derive(Clone, Copy, Debug)]
+pub struct Stage {
+    pub from: f64,
+    pub to: f64,
+    /// A bound on |F''| over the stage.
+    pub curvature: f64,
+    /// The search's coarse step.
+    pub step: f64,
+    /// A bound on |F''''| over the stage (infinite where the modes do not give one).
+    pub fourth: f64,
+}
+
+/// A margin of the grip's event ([`ChainGrip::margins`]): its value and rate, and where the modes give
+/// them, its second and third derivatives, for the Taylor polynomials of
+/// [`super::super::super::events::first_rise_within_from_tangent`]. The crossing is refined by Newton's
+/// step, as the plain (f, f') margins are.
+#[derive(Clone, Copy, Debug)]
+pub struct Margin {
+    value: f64,
+    rate: f64,
+    higher: Option<(f64, f64)>,
+}
+
+impl Branch for Margin {
+    #[inline]
+    fn value(&self) -> f64 {
+        self.value
+    }
+    #[inline]
+    fn rate(&self) -> f64 {
+        self.rate
+    }
+    #[inline]
+    fn step(&self) -> f64 {
+        -(self.value / self.rate)
+    }
+    #[inline]
+    fn higher(&self) -> Option<(f64, f64)> {
+        self.higher
+    }
+}
+
 impl ChainGrip {
-    /// The stages of the event search over the rest of the contact, (from, to, bound on |F''|, step),
-    /// and the size of the terms F is summed from. A strongly damped mode dominates the bound only
-    /// until it has died out: the first 40 e-folds of the fastest decay are cut into stages of 4, each
-    /// bounded from its start, with a step on the scale sqrt(|F''| / |F|) of its bound.
-    pub fn search_stages(&self, setup: &Setup) -> (Vec<(f64, f64, f64, f64)>, f64) {
+    /// The grip's two margins at `t` ([`Setup::grip_margins`]: F_s - mu N and -F_s - mu N), with their
+    /// second and third derivatives where the modes give F'' and F''', and the point they were taken at.
+    #[inline]
+    pub fn margins(&self, setup: &Setup, t: f64) -> (Point, [Margin; 2]) {
+        let (p, higher) = self.at_with_higher(setup, t);
+        let normal = sin_cos(setup.w * t);
+        let margins = match higher {
+            Some((second, third)) => setup
+                .grip_margins_with_derivatives(normal, [p.friction, p.friction_rate, second, third])
+                .map(|(value, rate, second, third)| Margin {
+                    value,
+                    rate,
+                    higher: Some((second, third)),
+                }),
+            None => setup
+                .grip_margins_given(normal, p.friction, p.friction_rate)
+                .map(|(value, rate)| Margin {
+                    value,
+                    rate,
+                    higher: None,
+                }),
+        };
+        (p, margins)
+    }
+
+    /// The stages of the event search over the rest of the contact, and the size of the terms F is
+    /// summed from. A strongly damped mode dominates the bound only until it has died out: the first 40
+    /// e-folds of the fastest decay are cut into stages of 4, each bounded from its start, with a step
+    /// on the scale sqrt(|F''| / |F|) of its bound. Each stage also bounds |F''''| by the same modes,
+    /// each |s_i|² times its share of |F''| (F'''' = Re Σ c_i s_i⁴ F_i e^{s_i τ}; pushed,
+    /// Re Σ (c_i s_i + β_i) s_i³ F_i e^{s_i τ}).
+    pub fn search_stages(&self, setup: &Setup) -> (Vec<Stage>, f64) {
         let (t0, end) = (self.start.t, setup.duration);
         let decay = match &self.modes.modes {
             Some(list) if self.coefficients.is_some() => {
@@ -32,13 +104,19 @@ impl ChainGrip {
         let cuts = (1..=10)
             .map(|k| t0 + k as f64 * stage)
             .take_while(|&t| t < end);
-        let stage_from = |from: f64, (curvature, terms, fastest): (f64, f64, f64)| {
+        let stage_from = |from: f64, (curvature, terms, fastest, fourth): (f64, f64, f64, f64)| {
             let rate = if terms > 0.0 {
                 (curvature / terms).sqrt().min(fastest)
             } else {
                 0.0
             };
-            (from, end, curvature, setup.event_step(rate))
+            Stage {
+                from,
+                to: end,
+                curvature,
+                step: setup.event_step(rate),
+                fourth,
+            }
         };
         let mut room = [ModeSize::NONE; MODES];
         let len = self.mode_sizes(setup, &mut room);
@@ -69,15 +147,15 @@ impl ChainGrip {
             for (g, s) in estimate.iter_mut().zip(&shrink) {
                 *g *= s;
             }
-            let current = stages.last().expect("one stage at least").2;
+            let current = stages.last().expect("one stage at least").curvature;
             if curvature(sizes, &estimate) >= 0.5 * current * (1.0 + SCREEN) {
                 continue;
             }
             let growths = growths_at(cut - t0);
             let next = stage_from(cut, self.force_bounds_with(setup, sizes, &growths));
             let current = stages.last_mut().expect("one stage at least");
-            if next.2 < 0.5 * current.2 {
-                current.1 = cut;
+            if next.curvature < 0.5 * current.curvature {
+                current.to = cut;
                 stages.push(next);
             }
         }
@@ -98,7 +176,8 @@ impl ChainGrip {
         for (g, m) in growths.iter_mut().zip(sizes) {
             *g = growth(m.re, elapsed, remaining);
         }
-        self.force_bounds_with(setup, sizes, &growths)
+        let (curvature, size, fastest, _) = self.force_bounds_with(setup, sizes, &growths);
+        (curvature, size, fastest)
     }
 
     /// Per mode, what [`ChainGrip::force_bounds`] scales by the mode's growth: its share of the bound
@@ -140,17 +219,18 @@ impl ChainGrip {
             })
     }
 
-    /// [`ChainGrip::force_bounds`] given [`ChainGrip::mode_sizes`] and each mode's growth.
+    /// [`ChainGrip::force_bounds`] given [`ChainGrip::mode_sizes`] and each mode's growth, with a bound
+    /// on |F''''| (each mode's share of the bound on |F''| times |s_i|²; infinite without the modes).
     fn force_bounds_with(
         &self,
         setup: &Setup,
         sizes: &[ModeSize],
         growths: &[f64; MODES],
-    ) -> (f64, f64, f64) {
+    ) -> (f64, f64, f64, f64) {
         let g = &self.modes;
         match (&g.modes, &self.coefficients) {
             (Some(_), Some(_)) => {
-                let (mut curvature, mut size) = (0.0, 0.0);
+                let (mut curvature, mut size, mut fourth) = (0.0, 0.0, 0.0);
                 let mut parts = [0.0; MODES];
                 for ((m, slot), &growth) in sizes.iter().zip(&mut parts).zip(growths) {
                     let (part, term) = match m.squared {
@@ -162,6 +242,7 @@ impl ChainGrip {
                     };
                     curvature += part;
                     size += term;
+                    fourth += part * (m.rate * m.rate);
                     *slot = part;
                 }
                 let fastest = sizes
@@ -170,7 +251,7 @@ impl ChainGrip {
                     .filter(|(_, part)| *part >= NEGLIGIBLE * curvature)
                     .map(|(m, _)| m.rate)
                     .fold(0.0, f64::max);
-                (curvature, size, fastest)
+                (curvature, size, fastest, fourth)
             }
             _ => {
                 // |h z| <= |T⁻ᵀ hᵀ| sqrt(2E), and F'' = h A² z = (T⁻ᵀ hᵀ)ᵀ Ã² z̃; the dashpot only lowers E.
@@ -189,7 +270,8 @@ impl ChainGrip {
                     let (curvature, _) = self.energy_bounds(setup, &force);
                     let (_, stretch) = self.energy_bounds(setup, &stretch);
                     let (_, rate) = self.energy_bounds(setup, &rate);
-                    return (curvature, stretch * g.kb + rate * g.cb, g.fastest);
+                    let terms = stretch * g.kb + rate * g.cb;
+                    return (curvature, terms, g.fastest, f64::INFINITY);
                 }
                 let second = g.a.transpose() * g.a.transpose() * g.dual(&force);
                 let size = g.energy_norm(&self.z0);
@@ -197,6 +279,7 @@ impl ChainGrip {
                     second.norm() * size,
                     (g.dual(&stretch).norm() * g.kb + g.dual(&rate).norm() * g.cb) * size,
                     g.fastest,
+                    f64::INFINITY,
                 )
             }
         }
