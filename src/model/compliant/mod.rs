@@ -1142,20 +1142,13 @@ impl Contact for CompliantBall {
                 };
                 stages
                     .into_iter()
-                    .find_map(
-                        |Stage {
-                             from,
-                             to,
-                             curvature,
-                             step,
-                             ..
-                         }| {
-                            let curvature = curvature + margin_curvature;
-                            let curvature = [curvature, curvature, stop_curvature];
-                            let noise = [noise, noise, stop_noise];
-                            first_rise_from_tangent(f, from, to, step, curvature, noise)
-                        },
-                    )
+                    .map(Stage::plain)
+                    .find_map(|(from, to, curvature, step)| {
+                        let curvature = curvature + margin_curvature;
+                        let curvature = [curvature, curvature, stop_curvature];
+                        let noise = [noise, noise, stop_noise];
+                        first_rise_from_tangent(f, from, to, step, curvature, noise)
+                    })
                     .map(|(t, branch)| match branch {
                         0 | 1 => (t, grip_break(branch)),
                         _ => (t, Cause::CartStop),
@@ -1176,22 +1169,15 @@ impl Contact for CompliantBall {
                 };
                 stages
                     .into_iter()
-                    .find_map(
-                        |Stage {
-                             from,
-                             to,
-                             curvature,
-                             step,
-                             ..
-                         }| {
-                            let (push_curvature, push_terms) = held.push_bounds(setup, curvature);
-                            let push_noise = ROUNDING * (push_terms + size + setup.cart_friction);
-                            let margin = curvature + margin_curvature;
-                            let curvature = [margin, margin, push_curvature, push_curvature];
-                            let noise = [noise, noise, push_noise, push_noise];
-                            first_rise_from_tangent(f, from, to, step, curvature, noise)
-                        },
-                    )
+                    .map(Stage::plain)
+                    .find_map(|(from, to, curvature, step)| {
+                        let (push_curvature, push_terms) = held.push_bounds(setup, curvature);
+                        let push_noise = ROUNDING * (push_terms + size + setup.cart_friction);
+                        let margin = curvature + margin_curvature;
+                        let curvature = [margin, margin, push_curvature, push_curvature];
+                        let noise = [noise, noise, push_noise, push_noise];
+                        first_rise_from_tangent(f, from, to, step, curvature, noise)
+                    })
                     .map(|(t, branch)| match branch {
                         0 | 1 => (t, grip_break(branch)),
                         2 => (t, Cause::Unstick(1)),

@@ -30,6 +30,13 @@ pub struct Stage {
     pub fourth: f64,
 }
 
+impl Stage {
+    /// (from, to, bound on |F''|, step), for a search without the Taylor polynomials.
+    pub fn plain(self) -> (f64, f64, f64, f64) {
+        (self.from, self.to, self.curvature, self.step)
+    }
+}
+
 /// A margin of the grip's event ([`ChainGrip::margins`]): its value and rate, and where the modes give
 /// them, its second and third derivatives, for the Taylor polynomials of
 /// [`super::super::super::events::first_rise_within_from_tangent`]. The crossing is refined by Newton's
