@@ -59,7 +59,10 @@ impl Branch for Margin {
     }
     #[inline]
     fn step(&self) -> f64 {
-        -(self.value / self.rate)
+        match self.higher {
+            Some((second, third)) => (self.value, self.rate, second, third).step(),
+            None => -(self.value / self.rate),
+        }
     }
     #[inline]
     fn higher(&self) -> Option<(f64, f64)> {
