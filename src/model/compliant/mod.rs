@@ -76,7 +76,7 @@ use super::chain::motion::Motion as ChainMotion;
 use super::chain::{Chain, ChainState, ring};
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::{first_rise_from_tangent, first_rise_within_from_tangent};
+use super::events::first_rise_from_tangent;
 use super::frame::{FrameMotion, FrameState, FramedCart};
 use super::memo::{Slot, reuse};
 use super::params::Params;
@@ -1214,26 +1214,9 @@ impl Contact for CompliantBall {
                     (t, cause)
                 })
             }
-            CompliantMotion::ChainGrip(grip) => {
-                let margin_curvature = peak * w * w;
-                let (stages, size) = grip.search_stages(setup);
-                let noise = ROUNDING * (peak + size);
-                let f = |t: f64| {
-                    let (p, margins) = grip.margins(setup, t);
-                    last.set(Some(p));
-                    margins
-                };
-                stages
-                    .into_iter()
-                    .find_map(|stage| {
-                        let curvature = [stage.curvature + margin_curvature; 2];
-                        let fourth = [stage.fourth + margin_curvature * w * w; 2];
-                        let bounds = [curvature, fourth];
-                        let (from, to, step) = (stage.from, stage.to, stage.step);
-                        first_rise_within_from_tangent(f, from, to, step, bounds, [noise; 2])
-                    })
-                    .map(|(t, branch)| (t, grip_break(branch)))
-            }
+            CompliantMotion::ChainGrip(grip) => grip
+                .first_break(setup, &last)
+                .map(|(t, branch)| (t, grip_break(branch))),
             CompliantMotion::Grip(grip) => {
                 let margin_curvature = peak * w * w;
                 let (curvature, size) = grip.force_bounds(setup);

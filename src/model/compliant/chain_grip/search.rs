@@ -6,7 +6,10 @@ use super::super::super::setup::Setup;
 use super::super::stretch::SETTLED;
 use nalgebra::DVector;
 
-use super::super::super::events::Branch;
+use std::cell::Cell;
+
+use super::super::super::contact::ROUNDING;
+use super::super::super::events::{Branch, first_rise_within_from_tangent};
 use super::super::super::trig::{exp as fast_exp, sin_cos};
 use super::super::Point;
 use super::{C64, ChainGrip, NEGLIGIBLE};
@@ -94,6 +97,44 @@ impl ChainGrip {
                 }),
         };
         (p, margins)
+    }
+
+    /// The first time in the rest of the contact at which a margin ([`ChainGrip::margins`]) rises
+    /// through zero, and which (0: F_s reaches +mu N, 1: -mu N), searched stage by stage
+    /// ([`ChainGrip::search_stages`]) with each stage's bounds on |f''| and |f''''| (mu N adds
+    /// mu N0 w² and mu N0 w⁴) and the Taylor polynomials where the margins carry f'' and f'''. `last`
+    /// keeps the point of the last evaluation; a stage's start, its predecessor's end, is not evaluated
+    /// again.
+    pub fn first_break(&self, setup: &Setup, last: &Cell<Option<Point>>) -> Option<(f64, usize)> {
+        let (w, peak) = (setup.w, setup.peak_friction());
+        let margin_curvature = peak * w * w;
+        let (stages, size) = self.search_stages(setup);
+        let noise = ROUNDING * (peak + size);
+        // The evaluation at the current stage's end, which the next stage starts from.
+        let end = Cell::new(f64::NAN);
+        let kept = Cell::new(None::<(Point, [Margin; 2])>);
+        let f = |t: f64| {
+            if let Some((p, margins)) = kept.get()
+                && p.state.t == t
+            {
+                last.set(Some(p));
+                return margins;
+            }
+            let (p, margins) = self.margins(setup, t);
+            last.set(Some(p));
+            if t == end.get() {
+                kept.set(Some((p, margins)));
+            }
+            margins
+        };
+        stages.into_iter().find_map(|stage| {
+            end.set(stage.to);
+            let curvature = [stage.curvature + margin_curvature; 2];
+            let fourth = [stage.fourth + margin_curvature * w * w; 2];
+            let bounds = [curvature, fourth];
+            let (from, to, step) = (stage.from, stage.to, stage.step);
+            first_rise_within_from_tangent(f, from, to, step, bounds, [noise; 2])
+        })
     }
 
     /// The stages of the event search over the rest of the contact, and the size of the terms F is
