@@ -333,3 +333,90 @@ fn a_ring_grip_solves_its_mirror_modes_apart() {
     }
     assert!(served >= 9, "the modes served {served} of 15 rings");
 }
+
+/// The largest violation over a wall grip's search stages of its F'' and F''' (against central
+/// differences of F' and F'') and of each stage's bound on |F''''| (scaled by `scale`; against the
+/// central difference of F''' at h = 1e-5 of the fastest mode's period over pi, whose truncation is
+/// about (h |s|)²/6 = 2e-11 of the bound, covered by a relative room of 1e-6, and whose rounding is a
+/// few ulps of |F'''| over h, covered by 1e3 ulps of the largest). Each stage is sampled from its start
+/// to its end, 2h inside it.
+fn fourth_violation(grip: &ChainGrip, setup: &Setup, scale: f64) -> (f64, f64) {
+    let (stages, _) = grip.search_stages(setup);
+    let fastest = grip
+        .modes
+        .modes
+        .as_ref()
+        .expect("the modes")
+        .iter()
+        .map(|m| m.s.norm())
+        .fold(0.0, f64::max);
+    let h = 1e-5 / fastest;
+    let higher = |t: f64| grip.at_with_higher(setup, t).1.expect("F'' and F'''");
+    let (mut derivatives, mut fourth) = (0.0f64, 0.0f64);
+    for stage in stages {
+        let n = 256;
+        let samples: Vec<f64> = (0..=n)
+            .map(|i| stage.from + 2.0 * h + (stage.to - stage.from - 4.0 * h) * i as f64 / n as f64)
+            .collect();
+        let largest = samples
+            .iter()
+            .map(|&t| higher(t).1.abs())
+            .fold(0.0, f64::max);
+        let slack = 1e3 * f64::EPSILON * largest / h;
+        for &t in &samples {
+            let (second, third) = higher(t);
+            let (before, after) = (grip.at(setup, t - h), grip.at(setup, t + h));
+            let rate_difference = (after.friction_rate - before.friction_rate) / (2.0 * h);
+            let (second_before, third_before) = higher(t - h);
+            let (second_after, third_after) = higher(t + h);
+            let second_difference = (second_after - second_before) / (2.0 * h);
+            // F'' and F''' within 1e-6 of the stage's bounds on them.
+            derivatives = derivatives
+                .max((second - rate_difference).abs() / stage.curvature)
+                .max((third - second_difference).abs() / (stage.curvature * fastest));
+            let difference = (third_after - third_before) / (2.0 * h);
+            let bound = scale * stage.fourth * (1.0 + 1e-6) + slack;
+            fourth = fourth.max(difference.abs() / bound);
+        }
+    }
+    (derivatives, fourth)
+}
+
+/// The wall grip's F'' and F''' (its margins' Taylor polynomials) are the derivatives of its F', and
+/// each search stage's bound on |F''''| holds over the stage, on random chains and balls; half the bound
+/// fails somewhere, so the check can fail.
+#[test]
+fn the_grip_bounds_its_fourth_derivative() {
+    let mut rng = Lcg(17);
+    let (mut checked, mut halved) = (0, 0.0f64);
+    for case in 0..60 {
+        let p = Params {
+            ball_stiffness: rng.log(1e4, 1e7),
+            ..random(&mut rng)
+        };
+        let (g, setup) = grip_modes(&p);
+        let mut start = ChainState::from_contact(&setup.initial(50.0));
+        start.t = 1e-3 * rng.unit();
+        for i in 0..g.n {
+            start.x[i] = 1e-3 * (rng.unit() - 0.5);
+            start.v[i] = rng.unit() - 0.5;
+        }
+        let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
+        if grip.shares.is_none() {
+            continue;
+        }
+        checked += 1;
+        let (derivatives, fourth) = fourth_violation(&grip, &setup, 1.0);
+        assert!(
+            derivatives <= 1e-6,
+            "case {case} {p:?}: F'', F''' {derivatives:e}"
+        );
+        assert!(
+            fourth <= 1.0,
+            "case {case} {p:?}: |F''''| at {fourth} of its bound"
+        );
+        halved = halved.max(fourth_violation(&grip, &setup, 0.5).1);
+    }
+    assert!(checked >= 50, "{checked} grips by their shares");
+    assert!(halved > 1.0, "half the bound holds everywhere ({halved})");
+}
