@@ -1215,7 +1215,7 @@ impl Contact for CompliantBall {
                 })
             }
             CompliantMotion::ChainGrip(grip) => grip
-                .first_break(setup, &last)
+                .first_break(setup)
                 .map(|(t, branch)| (t, grip_break(branch))),
             CompliantMotion::Grip(grip) => {
                 let margin_curvature = peak * w * w;

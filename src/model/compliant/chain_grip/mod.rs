@@ -350,12 +350,12 @@ const CHUNK: usize = 10;
 /// Room for a grip's state (u, Q, u', Q').
 const STATE: usize = 2 * MAX + 2;
 
-/// The contact's sums u, u', F, F', e, e', e'', X_1'' (= u'' - e''), and F'' and F''' for the event
-/// search's Taylor polynomials.
+/// The contact's sums u, u', e, e', e'', X_1'' (= u'' - e''), F and F', and F'' and F''' (the event
+/// search's, for its Taylor polynomials): the state takes the first 8, the search the last 4.
 const SUMS: usize = 10;
 
 /// One mode's weighted coefficient c_i times what the mode carries into each of [`SUMS`] (u_i, s_i u_i,
-/// F_i, s_i F_i, e_i, s_i e_i, s_i² e_i, s_i² (u_i - e_i), s_i² F_i, s_i³ F_i), real and imaginary parts
+/// e_i, s_i e_i, s_i² e_i, s_i² (u_i - e_i), F_i, s_i F_i, s_i² F_i, s_i³ F_i), real and imaginary parts
 /// apart: each sum at τ is then Re Σ_i e^{s_i τ} (c_i X_i), two products a mode and sum. Taken once per
 /// grip.
 #[derive(Clone, Debug)]
@@ -370,12 +370,12 @@ impl Shares {
         let sums = [
             ci * mode.u,
             rate * mode.u,
-            ci * mode.force,
-            rate * mode.force,
             ci * mode.e,
             rate * mode.e,
             rate * mode.s * mode.e,
             rate * mode.s * (mode.u - mode.e),
+            ci * mode.force,
+            rate * mode.force,
             rate * mode.s * mode.force,
             rate * mode.s * mode.s * mode.force,
         ];
@@ -544,53 +544,40 @@ impl ChainGrip {
         (z, dz)
     }
 
+    /// F and F' at `t`, with F'' and F''' where the grip sums its modes by their [`Shares`] (their four
+    /// sums alone, the same bits as [`ChainGrip::at`]'s F and F'; `None` otherwise), for the event
+    /// search's Taylor polynomials.
+    #[inline]
+    pub fn force_with_higher(&self, setup: &Setup, t: f64) -> ([f64; 2], Option<(f64, f64)>) {
+        match (&self.modes.modes, &self.coefficients, &self.shares) {
+            (Some(list), Some(_), Some(shares)) => {
+                let tau = t - self.start.t;
+                let [f, df, ddf, dddf] = share_sums::<6, 4>(list, shares, tau);
+                ([f, df], Some((ddf, dddf)))
+            }
+            _ => {
+                let p = self.at(setup, t);
+                ([p.friction, p.friction_rate], None)
+            }
+        }
+    }
+
     /// The ball, the first mass, the force and the stretch at `t`.
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> Point {
-        self.evaluate(setup, t).0
-    }
-
-    /// [`ChainGrip::at`], with F'' and F''' where the grip sums its modes by their [`Shares`] (on the
-    /// wall without a push; `None` otherwise), for the event search's Taylor polynomials.
-    #[inline]
-    pub fn at_with_higher(&self, setup: &Setup, t: f64) -> (Point, Option<(f64, f64)>) {
-        self.evaluate(setup, t)
-    }
-
-    #[inline(always)]
-    fn evaluate(&self, setup: &Setup, t: f64) -> (Point, Option<(f64, f64)>) {
         let g = &self.modes;
         let tau = t - self.start.t;
         let n = g.n;
         // The contact quantities alone need only one exponential per mode.
         let framed = g.translation.is_some();
         // On a free frame also r'' and X_f - Y with its two rates (otherwise 0).
-        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf), higher) =
+        let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf)) =
             match (&g.modes, &self.coefficients) {
                 (Some(list), Some(_)) if let Some(shares) = &self.shares => {
-                    // e^{s_i τ} of every mode, CHUNK at a time: the sines and cosines together,
-                    // e^{Re s_i τ} inlined.
-                    let mut sums = [0.0; SUMS];
-                    for (modes, shares) in list.chunks(CHUNK).zip(shares.chunks(CHUNK)) {
-                        let count = modes.len();
-                        let mut angle = [0.0; CHUNK];
-                        for (a, mode) in angle.iter_mut().zip(modes) {
-                            *a = mode.s.im * tau;
-                        }
-                        let (mut sin, mut cos) = ([0.0; CHUNK], [0.0; CHUNK]);
-                        sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]);
-                        for (i, (mode, share)) in modes.iter().zip(shares).enumerate() {
-                            let size = fast_exp(mode.s.re * tau);
-                            let (re, im) = (size * cos[i], size * sin[i]);
-                            for ((sum, a), b) in sums.iter_mut().zip(&share.re).zip(&share.im) {
-                                *sum += re * a - im * b;
-                            }
-                        }
-                    }
-                    let [u, du, f, df, e, de, dde, a1, ddf, dddf] = sums;
+                    // The first 8 sums (F'' and F''' are the search's).
+                    let [u, du, e, de, dde, a1, f, df] = share_sums::<0, 8>(list, shares, tau);
                     let none = (0.0, 0.0, 0.0);
-                    let higher = Some((ddf, dddf));
-                    (du, f, df, e, de, dde, u - e, du - de, a1, 0.0, none, higher)
+                    (du, f, df, e, de, dde, u - e, du - de, a1, 0.0, none)
                 }
                 (Some(list), Some(c)) => {
                     let zero = C64::new(0.0, 0.0);
@@ -628,7 +615,6 @@ impl ChainGrip {
                         a1.re,
                         ddu.re,
                         frame,
-                        None,
                     )
                 }
                 _ => {
@@ -653,7 +639,6 @@ impl ChainGrip {
                         a1,
                         dz[n + 1],
                         (xf, dxf, ddxf),
-                        None,
                     )
                 }
             };
@@ -683,7 +668,7 @@ impl ChainGrip {
             _ => (du, x1, v1, a1, (0.0, 0.0)),
         };
         let (vx, omega) = self.ball(setup, du);
-        let point = Point {
+        Point {
             state: State {
                 t,
                 vx,
@@ -699,8 +684,7 @@ impl ChainGrip {
             slip_rate: 0.0,
             accel: a1,
             frame,
-        };
-        (point, higher)
+        }
     }
 
     /// A mode's weighted amplitude and its rate after `tau`: c_i e^{s_i τ}, plus the push's
@@ -764,6 +748,35 @@ impl ChainGrip {
             frame: self.start.frame,
         }
     }
+}
+
+/// `K` of the contact's sums ([`SUMS`]) from number `FROM` at `tau`, Re Σ_i e^{s_i τ} (c_i X_i):
+/// e^{s_i τ} of every mode, CHUNK at a time, the sines and cosines together, e^{Re s_i τ} inlined.
+#[inline(always)]
+fn share_sums<const FROM: usize, const K: usize>(
+    list: &[Mode],
+    shares: &[Shares],
+    tau: f64,
+) -> [f64; K] {
+    let mut sums = [0.0; K];
+    for (modes, shares) in list.chunks(CHUNK).zip(shares.chunks(CHUNK)) {
+        let count = modes.len();
+        let mut angle = [0.0; CHUNK];
+        for (a, mode) in angle.iter_mut().zip(modes) {
+            *a = mode.s.im * tau;
+        }
+        let (mut sin, mut cos) = ([0.0; CHUNK], [0.0; CHUNK]);
+        sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]);
+        for (i, (mode, share)) in modes.iter().zip(shares).enumerate() {
+            let size = fast_exp(mode.s.re * tau);
+            let (re, im) = (size * cos[i], size * sin[i]);
+            let (real, imaginary) = (&share.re[FROM..], &share.im[FROM..]);
+            for ((sum, a), b) in sums.iter_mut().zip(real).zip(imaginary) {
+                *sum += re * a - im * b;
+            }
+        }
+    }
+    sums
 }
 
 /// e^z, with one `sin_cos` (num_complex calls `sin` and `cos` apart).

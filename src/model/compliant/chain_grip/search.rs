@@ -11,7 +11,6 @@ use std::cell::Cell;
 use super::super::super::contact::ROUNDING;
 use super::super::super::events::{Branch, first_rise_within_from_tangent};
 use super::super::super::trig::{exp as fast_exp, sin_cos};
-use super::super::Point;
 use super::{C64, ChainGrip, NEGLIGIBLE};
 
 /// Room for the grip's modes, one per root pair or real root.
@@ -75,55 +74,52 @@ impl Branch for Margin {
 
 impl ChainGrip {
     /// The grip's two margins at `t` ([`Setup::grip_margins`]: F_s - mu N and -F_s - mu N), with their
-    /// second and third derivatives where the modes give F'' and F''', and the point they were taken at.
+    /// second and third derivatives where the modes give F'' and F'''.
     #[inline]
-    pub fn margins(&self, setup: &Setup, t: f64) -> (Point, [Margin; 2]) {
-        let (p, higher) = self.at_with_higher(setup, t);
+    pub fn margins(&self, setup: &Setup, t: f64) -> [Margin; 2] {
+        let ([force, rate], higher) = self.force_with_higher(setup, t);
         let normal = sin_cos(setup.w * t);
-        let margins = match higher {
+        match higher {
             Some((second, third)) => setup
-                .grip_margins_with_derivatives(normal, [p.friction, p.friction_rate, second, third])
+                .grip_margins_with_derivatives(normal, [force, rate, second, third])
                 .map(|(value, rate, second, third)| Margin {
                     value,
                     rate,
                     higher: Some((second, third)),
                 }),
             None => setup
-                .grip_margins_given(normal, p.friction, p.friction_rate)
+                .grip_margins_given(normal, force, rate)
                 .map(|(value, rate)| Margin {
                     value,
                     rate,
                     higher: None,
                 }),
-        };
-        (p, margins)
+        }
     }
 
     /// The first time in the rest of the contact at which a margin ([`ChainGrip::margins`]) rises
     /// through zero, and which (0: F_s reaches +mu N, 1: -mu N), searched stage by stage
     /// ([`ChainGrip::search_stages`]) with each stage's bounds on |f''| and |f''''| (mu N adds
-    /// mu N0 w² and mu N0 w⁴) and the Taylor polynomials where the margins carry f'' and f'''. `last`
-    /// keeps the point of the last evaluation; a stage's start, its predecessor's end, is not evaluated
-    /// again.
-    pub fn first_break(&self, setup: &Setup, last: &Cell<Option<Point>>) -> Option<(f64, usize)> {
+    /// mu N0 w² and mu N0 w⁴) and the Taylor polynomials where the margins carry f'' and f'''. The
+    /// search evaluates the force alone; the state where it ends is evaluated once by the caller, to the
+    /// same bits. A stage's start, its predecessor's end, is not evaluated again.
+    pub fn first_break(&self, setup: &Setup) -> Option<(f64, usize)> {
         let (w, peak) = (setup.w, setup.peak_friction());
         let margin_curvature = peak * w * w;
         let (stages, size) = self.search_stages(setup);
         let noise = ROUNDING * (peak + size);
         // The evaluation at the current stage's end, which the next stage starts from.
         let end = Cell::new(f64::NAN);
-        let kept = Cell::new(None::<(Point, [Margin; 2])>);
+        let kept = Cell::new(None::<(f64, [Margin; 2])>);
         let f = |t: f64| {
-            if let Some((p, margins)) = kept.get()
-                && p.state.t == t
+            if let Some((at, margins)) = kept.get()
+                && at == t
             {
-                last.set(Some(p));
                 return margins;
             }
-            let (p, margins) = self.margins(setup, t);
-            last.set(Some(p));
+            let margins = self.margins(setup, t);
             if t == end.get() {
-                kept.set(Some((p, margins)));
+                kept.set(Some((t, margins)));
             }
             margins
         };

@@ -351,7 +351,7 @@ fn fourth_violation(grip: &ChainGrip, setup: &Setup, scale: f64) -> (f64, f64) {
         .map(|m| m.s.norm())
         .fold(0.0, f64::max);
     let h = 1e-5 / fastest;
-    let higher = |t: f64| grip.at_with_higher(setup, t).1.expect("F'' and F'''");
+    let higher = |t: f64| grip.force_with_higher(setup, t).1.expect("F'' and F'''");
     let (mut derivatives, mut fourth) = (0.0f64, 0.0f64);
     for stage in stages {
         let n = 256;
@@ -366,6 +366,13 @@ fn fourth_violation(grip: &ChainGrip, setup: &Setup, scale: f64) -> (f64, f64) {
         for &t in &samples {
             let (second, third) = higher(t);
             let (before, after) = (grip.at(setup, t - h), grip.at(setup, t + h));
+            // The search's F and F' are the state's, bit for bit.
+            let point = grip.at(setup, t);
+            let ([force, rate], _) = grip.force_with_higher(setup, t);
+            assert_eq!(
+                [force.to_bits(), rate.to_bits()],
+                [point.friction.to_bits(), point.friction_rate.to_bits()]
+            );
             let rate_difference = (after.friction_rate - before.friction_rate) / (2.0 * h);
             let (second_before, third_before) = higher(t - h);
             let (second_after, third_after) = higher(t + h);
@@ -382,7 +389,8 @@ fn fourth_violation(grip: &ChainGrip, setup: &Setup, scale: f64) -> (f64, f64) {
     (derivatives, fourth)
 }
 
-/// The wall grip's F'' and F''' (its margins' Taylor polynomials) are the derivatives of its F', and
+/// The wall grip's F'' and F''' (its margins' Taylor polynomials) are the derivatives of its F' (and its
+/// F and F' those of its state, bit for bit), and
 /// each search stage's bound on |F''''| holds over the stage, on random chains and balls; half the bound
 /// fails somewhere, so the check can fail.
 #[test]
