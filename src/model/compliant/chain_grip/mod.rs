@@ -86,6 +86,8 @@ const UNSEEN: f64 = 1e-12;
 #[derive(Clone, Debug)]
 struct Mode {
     s: C64,
+    /// |s|.
+    rate: f64,
     /// 2 for one of a complex pair (its conjugate is implied), 1 for a real root.
     weight: f64,
     /// u of the mode, -1/(m_eff s²).
@@ -398,8 +400,8 @@ impl ChainGrip {
     ) -> ChainGrip {
         let n = modes.n;
         let slide = &modes.chain.slide;
-        let q = slide.project(&start.x);
-        let dq = slide.project(&start.v);
+        let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
+        slide.project_both((&start.x, &start.v), (&mut q, &mut dq));
         let mut z0 = vec![0.0; 2 * n + 2];
         let (u0, du0) = (start.x[0] + e, start.vx - setup.r * start.omega);
         z0[0] = u0;

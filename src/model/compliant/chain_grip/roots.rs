@@ -242,6 +242,7 @@ impl GripModes {
         let size = (self.kb * e.norm_sqr() + spring + rates).sqrt();
         Mode {
             s,
+            rate: s.norm(),
             weight,
             u,
             q,

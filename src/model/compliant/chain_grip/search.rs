@@ -191,7 +191,7 @@ impl ChainGrip {
         }
         // A cut pays for itself only where the bound has fallen by half since the stage began.
         for cut in cuts {
-            for (g, s) in estimate.iter_mut().zip(&shrink) {
+            for (g, s) in estimate[..len].iter_mut().zip(&shrink) {
                 *g *= s;
             }
             let current = stages.last().expect("one stage at least").curvature;
@@ -246,7 +246,7 @@ impl ChainGrip {
                     Some(beta) => {
                         let rate = (ci * mode.s + beta[i]) * mode.force;
                         let shift = (beta[i] * mode.force).norm() * remaining;
-                        let part = rate.norm() * mode.s.norm();
+                        let part = rate.norm() * mode.rate;
                         (part, (ci * mode.force).norm() + shift, false)
                     }
                     None => ((ci * mode.force).norm(), 0.0, true),
@@ -256,7 +256,7 @@ impl ChainGrip {
                     part,
                     term,
                     squared: squared.then(|| mode.s.norm_sqr()),
-                    rate: mode.s.norm(),
+                    rate: mode.rate,
                 }
             })
             .zip(room.iter_mut())
