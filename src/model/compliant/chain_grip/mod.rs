@@ -38,8 +38,8 @@
 //! and Y = G - (m_eff/(m_eff + M)) r give the ball and the chain back.
 //!
 //! By job: this file holds the modes and a grip's evaluation; [`roots`] finds the roots, [`coefficients`]
-//! writes a start state in the modes, [`search`] bounds |F''| for the event search, and [`fallback`] is
-//! the matrix exponential.
+//! writes a start state in the modes, [`search`] bounds |F''| and |F''''| for the event search (and
+//! searches a wall grip's break), and [`fallback`] is the matrix exponential.
 
 use std::sync::{Arc, Mutex, OnceLock};
 
@@ -546,9 +546,9 @@ impl ChainGrip {
         (z, dz)
     }
 
-    /// F and F' at `t`, with F'' and F''' where the grip sums its modes by their [`Shares`] (their four
-    /// sums alone, the same bits as [`ChainGrip::at`]'s F and F'; `None` otherwise), for the event
-    /// search's Taylor polynomials.
+    /// F and F' at `t`, with F'' and F''' where the grip sums its modes by their shares of the contact's
+    /// sums (on the wall without a push: four sums alone, the same bits as [`ChainGrip::at`]'s F and F';
+    /// `None` otherwise), for the event search's Taylor polynomials.
     #[inline]
     pub fn force_with_higher(&self, setup: &Setup, t: f64) -> ([f64; 2], Option<(f64, f64)>) {
         match (&self.modes.modes, &self.coefficients, &self.shares) {

@@ -41,8 +41,8 @@ impl Stage {
 
 /// A margin of the grip's event ([`ChainGrip::margins`]): its value and rate, and where the modes give
 /// them, its second and third derivatives, for the Taylor polynomials of
-/// [`super::super::super::events::first_rise_within_from_tangent`]. The crossing is refined by Newton's
-/// step, as the plain (f, f') margins are.
+/// [`super::super::super::events::first_rise_within_from_tangent`] and the crossing's refinement by the
+/// cubic Taylor model (the (f, f', f'', f''') branch's step; Newton's without them).
 #[derive(Clone, Copy, Debug)]
 pub struct Margin {
     value: f64,
