@@ -15,7 +15,7 @@ use std::cell::Cell;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::first_rise_within;
+use super::events::{first_rise_predicted, first_rise_within};
 
 #[cfg(test)]
 mod bounds;
@@ -255,6 +255,7 @@ impl Contact for SingleCart {
                         let curvature = [slip_curvature, cart_curvature];
                         searched(
                             "slide, string friction",
+                            false,
                             f,
                             t0,
                             end,
@@ -282,8 +283,16 @@ impl Contact for SingleCart {
                         [sums.event(angles, constants)]
                     };
                     let bounds = [[slip_curvature], [sums.fourth]];
-                    let event =
-                        searched("slide by its sums", f, t0, end, step, bounds, [slip_noise]);
+                    let event = searched(
+                        "slide by its sums",
+                        true,
+                        f,
+                        t0,
+                        end,
+                        step,
+                        bounds,
+                        [slip_noise],
+                    );
                     let t = event.map_or(end, |(t, _)| t);
                     let angles = last_probe(&probe, t).unwrap_or_else(|| slide.angles(setup, t));
                     let event = event.map(|(t, _)| (t, Cause::SlipZero));
@@ -299,6 +308,7 @@ impl Contact for SingleCart {
                         };
                         searched(
                             "slide",
+                            false,
                             f,
                             t0,
                             end,
@@ -336,6 +346,7 @@ impl Contact for SingleCart {
                 let curvature = [slip_curvature, push_curvature, push_curvature];
                 searched(
                     "slide on a still cart",
+                    false,
                     f,
                     t0,
                     end,
@@ -376,6 +387,7 @@ impl Contact for SingleCart {
                         let curvature = [margin_curvature, margin_curvature, cart_curvature];
                         searched(
                             "grip, string friction",
+                            false,
                             f,
                             t0,
                             end,
@@ -412,6 +424,7 @@ impl Contact for SingleCart {
                     let bounds = [[margin_curvature; 2], [sums.fourth; 2]];
                     let event = searched(
                         "grip by its sums",
+                        true,
                         f,
                         t0,
                         end,
@@ -436,6 +449,7 @@ impl Contact for SingleCart {
                         let curvature = [margin_curvature; 2];
                         searched(
                             "grip",
+                            false,
                             f,
                             t0,
                             end,
@@ -503,11 +517,13 @@ fn recorded(
     (event, last.at(event.map_or(end, |(t, _)| t)))
 }
 
-/// [`first_rise_within`] for the `regime` named; under test, where [`bounds`] asks it, the bounds are first
-/// checked against the branches they bound.
+/// [`first_rise_within`] for the `regime` named, or with `predicted` [`first_rise_predicted`] (for the
+/// searches by sums, whose f'' and f''' are as exact as f and f'); under test, where [`bounds`] asks it,
+/// the bounds are first checked against the branches they bound.
 #[inline(always)]
 fn searched<const K: usize>(
     regime: &'static str,
+    predicted: bool,
     f: impl Fn(f64) -> [(f64, f64, f64, f64); K],
     t0: f64,
     end: f64,
@@ -519,7 +535,11 @@ fn searched<const K: usize>(
     let sampled = bounds::sample(regime, &f, t0, end, step, bounds);
     #[cfg(not(test))]
     let _ = regime;
-    let found = first_rise_within(f, t0, end, step, bounds, noise);
+    let found = if predicted {
+        first_rise_predicted(f, t0, end, step, bounds, noise)
+    } else {
+        first_rise_within(f, t0, end, step, bounds, noise)
+    };
     #[cfg(test)]
     bounds::check(sampled, found.map_or(end, |(t, _)| t));
     found

@@ -50,6 +50,7 @@ impl Slide {
     }
 
     /// [`Slide::new`] with sin and cos of w t0 at the start at hand (as `sin_cos` gives them).
+    #[inline]
     pub fn at_angle(
         setup: &Setup,
         start: State,
