@@ -244,8 +244,9 @@ pub fn first_rise_within<B: Branch, const K: usize>(
     search::<B, K, true, false>(f, t0, t1, step, bounds, noise, Start::Downward)
 }
 
-/// As [`first_rise_within`], each crossing refined from the crossing [`predicted`] from the branch's
-/// value and first three derivatives at both ends of its interval, rather than from the secant point:
+/// As [`first_rise_within`], each crossing refined from the crossing predicted from the branch's
+/// value and first three derivatives at both ends of its interval (the two-point Hermite interpolant
+/// of degree 7, `predicted`), rather than from the secant point:
 /// over a coarse step one evaluation fewer a crossing. For branches whose f'' and f''' are as exact as
 /// f and f' (the closed forms' sums, `sums.rs`); the crossing is the same root by another path, so it
 /// may differ from [`first_rise_within`]'s in its last bits.

@@ -254,8 +254,7 @@ impl Contact for SingleCart {
                         let noise = [slip_noise, ROUNDING * slide.cart_speed_scale(setup)];
                         let curvature = [slip_curvature, cart_curvature];
                         searched(
-                            "slide, string friction",
-                            false,
+                            Regime::within("slide, string friction"),
                             f,
                             t0,
                             end,
@@ -284,8 +283,7 @@ impl Contact for SingleCart {
                     };
                     let bounds = [[slip_curvature], [sums.fourth]];
                     let event = searched(
-                        "slide by its sums",
-                        true,
+                        Regime::predicted("slide by its sums"),
                         f,
                         t0,
                         end,
@@ -307,8 +305,7 @@ impl Contact for SingleCart {
                             [slide.slip_event(setup, &s, friction, slip_offset)]
                         };
                         searched(
-                            "slide",
-                            false,
+                            Regime::within("slide"),
                             f,
                             t0,
                             end,
@@ -345,8 +342,7 @@ impl Contact for SingleCart {
                 let step = setup.event_step(0.0);
                 let curvature = [slip_curvature, push_curvature, push_curvature];
                 searched(
-                    "slide on a still cart",
-                    false,
+                    Regime::within("slide on a still cart"),
                     f,
                     t0,
                     end,
@@ -386,8 +382,7 @@ impl Contact for SingleCart {
                         let noise = [margin_noise, margin_noise, cart_noise];
                         let curvature = [margin_curvature, margin_curvature, cart_curvature];
                         searched(
-                            "grip, string friction",
-                            false,
+                            Regime::within("grip, string friction"),
                             f,
                             t0,
                             end,
@@ -423,8 +418,7 @@ impl Contact for SingleCart {
                     };
                     let bounds = [[margin_curvature; 2], [sums.fourth; 2]];
                     let event = searched(
-                        "grip by its sums",
-                        true,
+                        Regime::predicted("grip by its sums"),
                         f,
                         t0,
                         end,
@@ -448,8 +442,7 @@ impl Contact for SingleCart {
                         };
                         let curvature = [margin_curvature; 2];
                         searched(
-                            "grip",
-                            false,
+                            Regime::within("grip"),
                             f,
                             t0,
                             end,
@@ -517,13 +510,38 @@ fn recorded(
     (event, last.at(event.map_or(end, |(t, _)| t)))
 }
 
-/// [`first_rise_within`] for the `regime` named, or with `predicted` [`first_rise_predicted`] (for the
-/// searches by sums, whose f'' and f''' are as exact as f and f'); under test, where [`bounds`] asks it,
-/// the bounds are first checked against the branches they bound.
+/// A search of the single cart: its name, for the test of its bounds, and whether it refines from
+/// predicted crossings.
+#[derive(Clone, Copy)]
+struct Regime {
+    name: &'static str,
+    predicted: bool,
+}
+
+impl Regime {
+    /// A search by [`first_rise_within`].
+    fn within(name: &'static str) -> Self {
+        Regime {
+            name,
+            predicted: false,
+        }
+    }
+
+    /// A search by [`first_rise_predicted`], for the searches by sums, whose f'' and f''' are as exact
+    /// as f and f'.
+    fn predicted(name: &'static str) -> Self {
+        Regime {
+            name,
+            predicted: true,
+        }
+    }
+}
+
+/// The search of `regime`; under test, where [`bounds`] asks it, the bounds are first checked against
+/// the branches they bound.
 #[inline(always)]
 fn searched<const K: usize>(
-    regime: &'static str,
-    predicted: bool,
+    regime: Regime,
     f: impl Fn(f64) -> [(f64, f64, f64, f64); K],
     t0: f64,
     end: f64,
@@ -532,10 +550,10 @@ fn searched<const K: usize>(
     noise: [f64; K],
 ) -> Option<(f64, usize)> {
     #[cfg(test)]
-    let sampled = bounds::sample(regime, &f, t0, end, step, bounds);
+    let sampled = bounds::sample(regime.name, &f, t0, end, step, bounds);
     #[cfg(not(test))]
-    let _ = regime;
-    let found = if predicted {
+    let _ = regime.name;
+    let found = if regime.predicted {
         first_rise_predicted(f, t0, end, step, bounds, noise)
     } else {
         first_rise_within(f, t0, end, step, bounds, noise)
