@@ -5,6 +5,7 @@
 
 use super::contact::{Ball, Cart, Cause};
 use super::setup::Setup;
+use super::trig::sin;
 
 /// The mass the ball touches at a transition: the single cart, or a chain's first mass.
 #[derive(Clone, Copy, Debug)]
@@ -49,6 +50,23 @@ pub fn next_on(
     cart: Cart,
     cause: Cause,
 ) -> (Ball, Cart) {
+    next_given(setup, touched, share, ball, cart, cause, || {
+        sin(setup.w * touched.t)
+    })
+}
+
+/// [`next_on`] for a model that may have sin(w t) at the transition at hand: `sin_wt` gives it, and is
+/// asked only where the modes must be measured against mu N(t) (and N(t) is not the first contact's
+/// or past the end).
+pub fn next_given(
+    setup: &Setup,
+    touched: &Touched,
+    share: f64,
+    ball: Ball,
+    cart: Cart,
+    cause: Cause,
+    sin_wt: impl FnOnce() -> f64,
+) -> (Ball, Cart) {
     match cause {
         Cause::GripBreak(sign) => return (Ball::Slide(sign), cart),
         Cause::Unstick(dir) => return (ball, Cart::Moving(dir)),
@@ -77,7 +95,7 @@ pub fn next_on(
         return (*b, *c);
     }
     let at = At {
-        limit: setup.mu * normal(setup, touched.t),
+        limit: setup.mu * normal(setup, touched.t, sin_wt),
         mass: touched.mass,
         spring: touched.spring,
         share,
@@ -99,14 +117,17 @@ pub fn next_on(
     (best.1, best.2)
 }
 
-/// N(t); at first contact (t = +0), the first transition of every bounce, N0 x +0 without the series
-/// (sin(+0) is +0, so the same bits).
+/// N(t) as [`Setup::normal`] gives it, N0 sin(w t) in contact and 0 after, with sin(w t) from `sin_wt`;
+/// at first contact (t = +0), the first transition of every bounce, N0 x +0 without the series (sin(+0)
+/// is +0, so the same bits).
 #[inline]
-fn normal(setup: &Setup, t: f64) -> f64 {
+fn normal(setup: &Setup, t: f64, sin_wt: impl FnOnce() -> f64) -> f64 {
     if t.to_bits() == 0 {
         setup.n0 * 0.0
+    } else if (0.0..=setup.duration).contains(&t) {
+        setup.n0 * sin_wt()
     } else {
-        setup.normal(t)
+        0.0
     }
 }
 

@@ -11,9 +11,11 @@ mod slide;
 pub use grip::Grip;
 pub use slide::Slide;
 
+use std::cell::Cell;
+
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::first_rise_within;
+use super::events::{first_rise_predicted, first_rise_within};
 
 #[cfg(test)]
 mod bounds;
@@ -22,6 +24,7 @@ use super::quadrature::integrate;
 use super::recent::Recent;
 use super::setup::{Setup, State};
 use super::transition::{self, Touched};
+use super::trig::sin_cos;
 
 /// A phase on the single cart.
 #[derive(Clone, Copy, Debug)]
@@ -114,6 +117,8 @@ pub struct SingleCart {
     spin: f64,
     /// |v_x1| + r |omega1|: the scale of the speeds, for the event functions' rounding.
     incoming: f64,
+    /// sin and cos of w t at the last time t they were taken ([`SingleCart::normal_angle`]), with t.
+    normal_angle: Cell<(f64, (f64, f64))>,
 }
 
 impl SingleCart {
@@ -126,7 +131,23 @@ impl SingleCart {
         Ok(SingleCart {
             spin: params.spin,
             incoming: setup.vx1.abs() + setup.r * params.spin.abs(),
+            normal_angle: Cell::new((f64::NAN, (0.0, 1.0))),
         })
+    }
+
+    /// sin and cos of w t, the normal force's angle, as `sin_cos` gives them, taken once for the times
+    /// where one phase ends and the next begins: a transition measures N(t) there, and the grip that
+    /// follows starts its search there; a grip's search ends on an evaluation that took them, and the
+    /// slide that follows starts there.
+    #[inline]
+    fn normal_angle(&self, setup: &Setup, t: f64) -> (f64, f64) {
+        let (at, angle) = self.normal_angle.get();
+        if at.to_bits() == t.to_bits() {
+            return angle;
+        }
+        let angle = sin_cos(setup.w * t);
+        self.normal_angle.set((t, angle));
+        angle
     }
 }
 
@@ -165,7 +186,18 @@ impl Contact for SingleCart {
 
     fn motion(&self, setup: &Setup, state: &State, (ball, cart): Mode) -> CartMotion {
         match ball {
-            Ball::Slide(dir) => CartMotion::Slide(Slide::new(setup, *state, dir, cart)),
+            // The first slide starts at t = 0, where sin_cos gives exactly (0, 1).
+            Ball::Slide(dir) => CartMotion::Slide(Slide::at_angle(
+                setup,
+                *state,
+                dir,
+                cart,
+                if state.t == 0.0 {
+                    (0.0, 1.0)
+                } else {
+                    self.normal_angle(setup, state.t)
+                },
+            )),
             Ball::Grip => CartMotion::Grip(Grip {
                 start: *state,
                 cart,
@@ -222,7 +254,7 @@ impl Contact for SingleCart {
                         let noise = [slip_noise, ROUNDING * slide.cart_speed_scale(setup)];
                         let curvature = [slip_curvature, cart_curvature];
                         searched(
-                            "slide, string friction",
+                            Regime::within("slide, string friction"),
                             f,
                             t0,
                             end,
@@ -243,16 +275,24 @@ impl Contact for SingleCart {
                     // Without string friction the cart's stopping changes nothing: the slip alone is
                     // watched, here by its sums; the state is computed only where the search ends.
                     let constants = sums.constants(slip_offset);
-                    let probes = Recent::new(t0, (t0, ((0.0, 1.0), (0.0, 1.0))));
+                    let probe = Cell::new((f64::NAN, ((0.0, 1.0), (0.0, 1.0))));
                     let f = |t: f64| {
                         let angles = slide.angles(setup, t);
-                        probes.record(t, (t, angles));
+                        probe.set((t, angles));
                         [sums.event(angles, constants)]
                     };
                     let bounds = [[slip_curvature], [sums.fourth]];
-                    let event =
-                        searched("slide by its sums", f, t0, end, step, bounds, [slip_noise]);
-                    let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
+                    let event = searched(
+                        Regime::predicted("slide by its sums"),
+                        f,
+                        t0,
+                        end,
+                        step,
+                        bounds,
+                        [slip_noise],
+                    );
+                    let t = event.map_or(end, |(t, _)| t);
+                    let angles = last_probe(&probe, t).unwrap_or_else(|| slide.angles(setup, t));
                     let event = event.map(|(t, _)| (t, Cause::SlipZero));
                     (event, slide.sample_given(setup, t, angles).0)
                 } else {
@@ -265,7 +305,7 @@ impl Contact for SingleCart {
                             [slide.slip_event(setup, &s, friction, slip_offset)]
                         };
                         searched(
-                            "slide",
+                            Regime::within("slide"),
                             f,
                             t0,
                             end,
@@ -302,7 +342,7 @@ impl Contact for SingleCart {
                 let step = setup.event_step(0.0);
                 let curvature = [slip_curvature, push_curvature, push_curvature];
                 searched(
-                    "slide on a still cart",
+                    Regime::within("slide on a still cart"),
                     f,
                     t0,
                     end,
@@ -342,7 +382,7 @@ impl Contact for SingleCart {
                         let noise = [margin_noise, margin_noise, cart_noise];
                         let curvature = [margin_curvature, margin_curvature, cart_curvature];
                         searched(
-                            "grip, string friction",
+                            Regime::within("grip, string friction"),
                             f,
                             t0,
                             end,
@@ -362,16 +402,23 @@ impl Contact for SingleCart {
                 } else if let Some(sums) = grip.force_sums(setup) {
                     // Without string friction only the margins are watched, here by their sums; the
                     // state is computed only where the search ends.
-                    // (Only the cart's angle matters to the state: at the start it is 0.)
-                    let probes = Recent::new(t0, (t0, ((0.0, 1.0), (0.0, 1.0))));
+                    // The normal force's angle at the start is the transition's.
+                    let angles = |t: f64| {
+                        if t == t0 {
+                            ((0.0, 1.0), self.normal_angle(setup, t))
+                        } else {
+                            grip.angles(setup, t)
+                        }
+                    };
+                    let probe = Cell::new((f64::NAN, ((0.0, 1.0), (0.0, 1.0))));
                     let f = |t: f64| {
-                        let angles = grip.angles(setup, t);
-                        probes.record(t, (t, angles));
+                        let angles = angles(t);
+                        probe.set((t, angles));
                         sums.margins(setup, angles)
                     };
                     let bounds = [[margin_curvature; 2], [sums.fourth; 2]];
                     let event = searched(
-                        "grip by its sums",
+                        Regime::predicted("grip by its sums"),
                         f,
                         t0,
                         end,
@@ -379,7 +426,10 @@ impl Contact for SingleCart {
                         bounds,
                         [margin_noise; 2],
                     );
-                    let (t, angles) = probes.at(event.map_or(end, |(t, _)| t));
+                    let t = event.map_or(end, |(t, _)| t);
+                    let angles = last_probe(&probe, t).unwrap_or_else(|| angles(t));
+                    // The slide that follows starts from this normal force's angle.
+                    self.normal_angle.set((t, angles.1));
                     let event = event.map(|(t, branch)| (t, broke(branch)));
                     (event, grip.state_given(setup, t, angles))
                 } else {
@@ -392,7 +442,7 @@ impl Contact for SingleCart {
                         };
                         let curvature = [margin_curvature; 2];
                         searched(
-                            "grip",
+                            Regime::within("grip"),
                             f,
                             t0,
                             end,
@@ -425,8 +475,25 @@ impl Contact for SingleCart {
         if cause == Cause::CartStop {
             state.v = 0.0;
         }
-        transition::next(setup, &touched(setup, state), ball, cart, cause)
+        let t = state.t;
+        transition::next_given(
+            setup,
+            &touched(setup, state),
+            1.0,
+            ball,
+            cart,
+            cause,
+            || self.normal_angle(setup, t).0,
+        )
     }
+}
+
+/// The angles of a search's last evaluation, when it was at `t` (a search by sums usually ends on the
+/// crossing it refined, or on the end of contact); else `None`, and they are computed again (the same
+/// bits: they depend on t alone).
+fn last_probe<A: Copy>(probe: &Cell<(f64, A)>, t: f64) -> Option<A> {
+    let (at, angles) = probe.get();
+    (at == t).then_some(angles)
 }
 
 /// The event `search` finds, given where to record the states it evaluates (the last few are kept),
@@ -443,11 +510,38 @@ fn recorded(
     (event, last.at(event.map_or(end, |(t, _)| t)))
 }
 
-/// [`first_rise_within`] for the `regime` named; under test, where [`bounds`] asks it, the bounds are first
-/// checked against the branches they bound.
+/// A search of the single cart: its name, for the test of its bounds, and whether it refines from
+/// predicted crossings.
+#[derive(Clone, Copy)]
+struct Regime {
+    name: &'static str,
+    predicted: bool,
+}
+
+impl Regime {
+    /// A search by [`first_rise_within`].
+    fn within(name: &'static str) -> Self {
+        Regime {
+            name,
+            predicted: false,
+        }
+    }
+
+    /// A search by [`first_rise_predicted`], for the searches by sums, whose f'' and f''' are as exact
+    /// as f and f'.
+    fn predicted(name: &'static str) -> Self {
+        Regime {
+            name,
+            predicted: true,
+        }
+    }
+}
+
+/// The search of `regime`; under test, where [`bounds`] asks it, the bounds are first checked against
+/// the branches they bound.
 #[inline(always)]
 fn searched<const K: usize>(
-    regime: &'static str,
+    regime: Regime,
     f: impl Fn(f64) -> [(f64, f64, f64, f64); K],
     t0: f64,
     end: f64,
@@ -456,10 +550,14 @@ fn searched<const K: usize>(
     noise: [f64; K],
 ) -> Option<(f64, usize)> {
     #[cfg(test)]
-    let sampled = bounds::sample(regime, &f, t0, end, step, bounds);
+    let sampled = bounds::sample(regime.name, &f, t0, end, step, bounds);
     #[cfg(not(test))]
-    let _ = regime;
-    let found = first_rise_within(f, t0, end, step, bounds, noise);
+    let _ = regime.name;
+    let found = if regime.predicted {
+        first_rise_predicted(f, t0, end, step, bounds, noise)
+    } else {
+        first_rise_within(f, t0, end, step, bounds, noise)
+    };
     #[cfg(test)]
     bounds::check(sampled, found.map_or(end, |(t, _)| t));
     found

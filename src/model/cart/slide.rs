@@ -41,11 +41,23 @@ const DETUNED_GAIN: f64 = 16.0;
 impl Slide {
     pub fn new(setup: &Setup, start: State, dir: f64, cart: Cart) -> Self {
         // The first slide starts at t = 0, where sin_cos gives exactly (0, 1).
-        let (sin_wt0, cos_wt0) = if start.t == 0.0 {
+        let angle = if start.t == 0.0 {
             (0.0, 1.0)
         } else {
             sin_cos(setup.w * start.t)
         };
+        Slide::at_angle(setup, start, dir, cart, angle)
+    }
+
+    /// [`Slide::new`] with sin and cos of w t0 at the start at hand (as `sin_cos` gives them).
+    #[inline]
+    pub fn at_angle(
+        setup: &Setup,
+        start: State,
+        dir: f64,
+        cart: Cart,
+        (sin_wt0, cos_wt0): (f64, f64),
+    ) -> Self {
         let (w, omega) = (setup.w, setup.omega_slide);
         let amplitude = dir * setup.peak_friction() / (setup.cart_mass * (omega * omega - w * w));
         let speeds = start.vx.abs() + setup.r * start.omega.abs() + start.v.abs();
