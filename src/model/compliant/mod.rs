@@ -69,7 +69,7 @@ pub use held_frame::{FrameHold, HeldOnFrame};
 pub use held_ring::HeldRingGrip;
 pub use stretch::Stretch;
 
-use std::cell::{Cell, RefCell};
+use std::cell::RefCell;
 
 use super::cart::Slide;
 use super::chain::motion::Motion as ChainMotion;
@@ -81,6 +81,7 @@ use super::frame::{FrameMotion, FrameState, FramedCart};
 use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::quadrature::integrate;
+use super::recent::Recent;
 use super::setup::{Setup, State};
 use super::transition;
 use super::units::brief;
@@ -115,12 +116,11 @@ pub enum Rigid {
     Frame(Box<FrameMotion>, f64),
 }
 
-/// A sliding phase of the compliant ball.
+/// A sliding phase of the compliant ball (the ball's spring and dashpot are its stretch's).
 #[derive(Clone, Debug)]
 pub struct CompliantSlide {
     pub rigid: Rigid,
     pub stretch: Stretch,
-    pub spring: BallSpring,
 }
 
 /// A phase of the compliant ball.
@@ -295,7 +295,7 @@ impl CompliantMotion {
 
     pub fn spring(&self) -> BallSpring {
         match self {
-            CompliantMotion::Slide(s) => s.spring,
+            CompliantMotion::Slide(s) => s.stretch.spring,
             CompliantMotion::Grip(g) => BallSpring {
                 kb: g.compliance.kb,
                 cb: g.compliance.cb,
@@ -329,8 +329,8 @@ impl CompliantMotion {
     pub fn fastest(&self, setup: &Setup) -> f64 {
         match self {
             CompliantMotion::Slide(s) => {
-                let l = if s.stretch.damped {
-                    s.stretch.lambda
+                let l = if s.stretch.damped() {
+                    s.stretch.lambda()
                 } else {
                     0.0
                 };
@@ -622,7 +622,6 @@ impl CompliantBall {
             Ball::Slide(dir) => CompliantMotion::Slide(CompliantSlide {
                 rigid: Rigid::Cart(Slide::new(body, start, dir, Cart::Moving(1))),
                 stretch: Stretch::new(&self.spring, body, dir, start.t, state.e),
-                spring: self.spring,
             }),
             Ball::Grip => CompliantMotion::Grip(Box::new(CompliantGrip::new(
                 hold.compliance,
@@ -945,7 +944,6 @@ impl Contact for CompliantBall {
                 CompliantMotion::Slide(CompliantSlide {
                     rigid,
                     stretch: Stretch::new(&self.spring, setup, dir, t0, state.e),
-                    spring: self.spring,
                 })
             }
             Ball::Grip => {
@@ -996,7 +994,9 @@ impl Contact for CompliantBall {
         let (t0, end) = (state.contact.t, setup.duration);
         let (w, peak) = (setup.w, setup.peak_friction());
         let s = &state.contact;
-        let last = Cell::new(None::<Point>);
+        // The points the search measured last: the one at the event, when among them, is the state
+        // there (not evaluated again).
+        let recent = Recent::new(t0, None::<Point>);
         let speeds = self.incoming + s.vx.abs() + setup.r * s.omega.abs() + s.v.abs();
         // The cart's velocity starts on its own zero after it stopped or came unstuck (and at first
         // contact): measured from its start value, so rounding cannot fake a stop there. On a free frame,
@@ -1032,7 +1032,7 @@ impl Contact for CompliantBall {
                 // first, at t0, is the one above).
                 let slip = |t: f64| {
                     let p = if t == t0 { start } else { slide.at(setup, t) };
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let (slip, rate) = slide.patch_slip(setup, &p);
                     (p, (-dir * (slip - offset), -dir * rate))
                 };
@@ -1107,9 +1107,9 @@ impl Contact for CompliantBall {
                 };
                 // While the stretch's transient lasts, on its scale; after, on the cart's.
                 let split = slide.stretch.settled().clamp(t0, end);
-                let early = if slide.stretch.damped {
+                let early = if slide.stretch.damped() {
                     let curvature = slip_curvature + slide.stretch.third(w, t0);
-                    let step = setup.event_step(fastest.max(slide.stretch.lambda));
+                    let step = setup.event_step(fastest.max(slide.stretch.lambda()));
                     search(t0, split, step, curvature)
                 } else {
                     None
@@ -1136,7 +1136,7 @@ impl Contact for CompliantBall {
                 let stop_noise = ROUNDING * (v_offset.abs() + speeds);
                 let f = |t: f64| {
                     let p = grip.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
                     [forward, backward, events.at_chain(setup, &p, (0.0, 0.0))[0]]
                 };
@@ -1160,7 +1160,7 @@ impl Contact for CompliantBall {
                 let noise = ROUNDING * (peak + size);
                 let f = |t: f64| {
                     let p = held.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
                     let (push, rate) = held.push(setup, &p);
                     let [up, down] = setup.unstick_margins(push, rate);
@@ -1191,7 +1191,7 @@ impl Contact for CompliantBall {
                 let push_noise = ROUNDING * (peak + size + link_terms + setup.cart_friction);
                 let f = |t: f64| {
                     let p = held.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
                     let [first, second] = events.at_chain(setup, &p, held.chain.link(setup, t));
                     [forward, backward, first, second]
@@ -1218,7 +1218,7 @@ impl Contact for CompliantBall {
                 let noise = ROUNDING * (peak + size);
                 let f = |t: f64| {
                     let p = grip.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     setup.grip_margins(t, p.friction, p.friction_rate)
                 };
                 stages
@@ -1238,7 +1238,7 @@ impl Contact for CompliantBall {
                     events.bounds(setup, grip.cart_bounds(setup), curvature, size);
                 let f = |t: f64| {
                     let p = grip.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
                     let [first, second] = events.at(setup, &p);
                     [forward, backward, first, second]
@@ -1261,7 +1261,7 @@ impl Contact for CompliantBall {
         };
         Found {
             event,
-            last: last.get(),
+            last: recent.at(event.map_or(end, |(t, _)| t)),
         }
     }
 

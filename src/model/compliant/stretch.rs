@@ -20,10 +20,11 @@ pub struct Stretch {
     transient: f64,
     /// a, m (dir mu N0 / k_b without damping).
     amplitude: f64,
-    pub(super) lambda: f64,
     /// sqrt(lambda² + w²), for the bounds (w without damping).
     rate: f64,
-    pub(super) damped: bool,
+    /// The ball's spring and dashpot. lambda = k_b/c_b is divided out where it is used rather than
+    /// stored, so that a slide is no larger than the framed cart's phase ([`super::CompliantSlide`]).
+    pub(super) spring: BallSpring,
 }
 
 impl Stretch {
@@ -39,19 +40,34 @@ impl Stretch {
                 t0,
                 transient: e0 - p0,
                 amplitude,
-                lambda,
                 rate: lambda.hypot(w),
-                damped: true,
+                spring: *c,
             }
         } else {
             Stretch {
                 t0,
                 transient: 0.0,
                 amplitude: force / c.kb,
-                lambda: f64::INFINITY,
                 rate: setup.w,
-                damped: false,
+                spring: *c,
             }
+        }
+    }
+
+    /// True with a dashpot (c_b > 0): the stretch then relaxes at the rate lambda.
+    #[inline]
+    pub(super) fn damped(&self) -> bool {
+        self.spring.cb > 0.0
+    }
+
+    /// lambda = k_b/c_b, the rate the stretch relaxes at (infinite without a dashpot: the stretch is
+    /// then F/k_b at once).
+    #[inline]
+    pub(super) fn lambda(&self) -> f64 {
+        if self.damped() {
+            self.spring.kb / self.spring.cb
+        } else {
+            f64::INFINITY
         }
     }
 
@@ -59,8 +75,8 @@ impl Stretch {
     #[inline]
     pub(super) fn at(&self, w: f64, t: f64) -> (f64, f64, f64) {
         let (s, co) = sin_cos(w * t);
-        if self.damped {
-            let l = self.lambda;
+        if self.damped() {
+            let l = self.spring.kb / self.spring.cb;
             let decay = self.transient * (-l * (t - self.t0)).exp();
             let p = self.amplitude * (l * s - w * co);
             let dp = self.amplitude * w * (l * co + w * s);
@@ -74,8 +90,8 @@ impl Stretch {
 
     /// Where the transient has died out (t0 without damping).
     pub(super) fn settled(&self) -> f64 {
-        if self.damped {
-            self.t0 + SETTLED / self.lambda
+        if self.damped() {
+            self.t0 + SETTLED / self.lambda()
         } else {
             self.t0
         }
@@ -83,8 +99,8 @@ impl Stretch {
 
     /// A bound on |e'''| from `from` (at or after t0) on.
     pub(super) fn third(&self, w: f64, from: f64) -> f64 {
-        if self.damped {
-            let l = self.lambda;
+        if self.damped() {
+            let l = self.lambda();
             let decay = (-l * (from - self.t0)).exp();
             l * l * l * self.transient.abs() * decay + self.amplitude.abs() * w.powi(3) * self.rate
         } else {
@@ -94,8 +110,8 @@ impl Stretch {
 
     /// A bound on |e'| from t0 on.
     pub(super) fn speed(&self, w: f64) -> f64 {
-        if self.damped {
-            self.lambda * self.transient.abs() + self.amplitude.abs() * w * self.rate
+        if self.damped() {
+            self.lambda() * self.transient.abs() + self.amplitude.abs() * w * self.rate
         } else {
             self.amplitude.abs() * w
         }
