@@ -1028,6 +1028,31 @@ impl Contact for CompliantBall {
                 } else {
                     0.0
                 };
+                // A detuned, damped slide on the single cart without string friction searches the
+                // patch's slip written once for the phase: the rigid slip by the cart's sums, e' by
+                // the stretch's, one `sin_cos2` and one `exp` an evaluation (at t0, the start's slip
+                // as below). The point is computed only where the search ends.
+                let by_sums = match &slide.rigid {
+                    Rigid::Cart(rigid) if setup.cart_friction == 0.0 => rigid
+                        .slip_sums(setup)
+                        .zip(slide.stretch.rates(w))
+                        .map(|(sums, rates)| (rigid, sums, rates)),
+                    _ => None,
+                }
+                .map(|(rigid, sums, rates)| {
+                    let constants = sums.constants(offset);
+                    let at_start = slide.patch_slip(setup, &start);
+                    let at_start = (-dir * (at_start.0 - offset), -dir * at_start.1);
+                    move |t: f64| {
+                        if t == t0 {
+                            return [at_start];
+                        }
+                        let angles = rigid.angles(setup, t);
+                        let (value, rate, _, _) = sums.event(angles, constants);
+                        let (de, dde) = rates.at(t, angles.0);
+                        [(value + dir * de, rate + dir * dde)]
+                    }
+                });
                 // The patch's slip against `dir`, with the point it was measured at (the search's
                 // first, at t0, is the one above).
                 let slip = |t: f64| {
@@ -1096,7 +1121,9 @@ impl Contact for CompliantBall {
                 };
                 // Without string friction the cart has no event: the slip alone is searched.
                 let search = |from: f64, to: f64, step: f64, curvature: f64| {
-                    if setup.cart_friction == 0.0 {
+                    if let Some(by_sums) = &by_sums {
+                        first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
+                    } else if setup.cart_friction == 0.0 {
                         let slip_only = |t: f64| [slip(t).1];
                         first_rise_from_tangent(slip_only, from, to, step, [curvature], [noise])
                     } else {

@@ -88,6 +88,28 @@ impl Stretch {
         }
     }
 
+    /// e' and e'' written once for the phase as fixed combinations of sin and cos of w τ (τ = t - t0)
+    /// and the transient's decay (`None` without damping), for an event search that has those angles at
+    /// hand ([`StretchRates`]).
+    pub(super) fn rates(&self, w: f64) -> Option<StretchRates> {
+        if !self.damped() {
+            return None;
+        }
+        let l = self.lambda();
+        // The particular response P = a (lambda sin wt - w cos wt), with sin wt and cos wt by angle
+        // addition from w t0: P' = a w (lambda cos wt + w sin wt), P'' = -w² P.
+        let (s0, c0) = sin_cos(w * self.t0);
+        let aw = self.amplitude * w;
+        let (lead, lag) = (l * c0 + w * s0, w * c0 - l * s0);
+        Some(StretchRates {
+            t0: self.t0,
+            lambda: l,
+            transient: self.transient,
+            first: [aw * lead, aw * lag],
+            second: [aw * w * lag, -aw * w * lead],
+        })
+    }
+
     /// Where the transient has died out (t0 without damping).
     pub(super) fn settled(&self) -> f64 {
         if self.damped() {
@@ -115,5 +137,33 @@ impl Stretch {
         } else {
             self.amplitude.abs() * w
         }
+    }
+}
+
+/// The damped stretch's rates e' = -lambda T + P' and e'' = lambda² T - w² P, T = C e^{-lambda τ} the
+/// transient, with the particular response's as fixed combinations of sin and cos of w τ
+/// ([`Stretch::rates`]): an evaluation is one exponential and a few products.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct StretchRates {
+    t0: f64,
+    lambda: f64,
+    /// C, m.
+    transient: f64,
+    /// P' = first[0] cos w τ + first[1] sin w τ.
+    first: [f64; 2],
+    /// -w² P = second[0] cos w τ + second[1] sin w τ.
+    second: [f64; 2],
+}
+
+impl StretchRates {
+    /// (e', e'') at `t`, given sin and cos of w τ there.
+    #[inline(always)]
+    pub(super) fn at(&self, t: f64, (s, c): (f64, f64)) -> (f64, f64) {
+        let l = self.lambda;
+        let decay = self.transient * (-l * (t - self.t0)).exp();
+        (
+            -l * decay + self.first[0] * c + self.first[1] * s,
+            l * l * decay + self.second[0] * c + self.second[1] * s,
+        )
     }
 }
