@@ -22,6 +22,8 @@ pub struct Stretch {
     amplitude: f64,
     /// sqrt(lambda² + w²), for the bounds (w without damping).
     rate: f64,
+    /// sin and cos of w t0, for [`Stretch::rates`] (with damping).
+    angle0: (f64, f64),
     /// The ball's spring and dashpot. lambda = k_b/c_b is divided out where it is used rather than
     /// stored, so that a slide is no larger than the framed cart's phase ([`super::CompliantSlide`]).
     pub(super) spring: BallSpring,
@@ -41,6 +43,7 @@ impl Stretch {
                 transient: e0 - p0,
                 amplitude,
                 rate: lambda.hypot(w),
+                angle0: (s, co),
                 spring: *c,
             }
         } else {
@@ -49,6 +52,7 @@ impl Stretch {
                 transient: 0.0,
                 amplitude: force / c.kb,
                 rate: setup.w,
+                angle0: (0.0, 1.0),
                 spring: *c,
             }
         }
@@ -98,7 +102,7 @@ impl Stretch {
         let l = self.lambda();
         // The particular response P = a (lambda sin wt - w cos wt), with sin wt and cos wt by angle
         // addition from w t0: P' = a w (lambda cos wt + w sin wt), P'' = -w² P.
-        let (s0, c0) = sin_cos(w * self.t0);
+        let (s0, c0) = self.angle0;
         let aw = self.amplitude * w;
         let (lead, lag) = (l * c0 + w * s0, w * c0 - l * s0);
         Some(StretchRates {
