@@ -1479,3 +1479,56 @@ impl Contact for CompliantBall {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::registry::Motion;
+    use super::super::solve::solve;
+    use super::*;
+
+    /// The patch a phase kept where the driver took its end state is the patch evaluated there afresh,
+    /// bit for bit, and it is kept (but held to a free frame): every phase, slides and grips, on the
+    /// single cart and a chain, on the wall and on a free frame, with and without string friction.
+    #[test]
+    fn the_patch_kept_at_a_phase_end_is_the_patch_evaluated_there() {
+        let mut kinds = [false; 2];
+        for (angle, damping, chain, cart_friction, frame_mass) in [
+            (30.0, 0.3, 1.0, 0.0, 0.0),
+            (30.0, 0.0, 1.0, 0.0, 0.0),
+            (80.0, 1.5, 1.0, 0.0, 0.0),
+            (60.0, 0.3, 1.0, 30.0, 0.0),
+            (45.0, 0.3, 4.0, 0.0, 0.0),
+            (45.0, 0.3, 4.0, 30.0, 0.0),
+            (30.0, 0.3, 1.0, 0.0, 0.188),
+            (30.0, 0.3, 1.0, 30.0, 0.188),
+            (45.0, 0.3, 4.0, 30.0, 0.188),
+        ] {
+            let params = Params {
+                angle_deg: angle,
+                ball_stiffness: 1e5,
+                ball_damping: damping,
+                chain,
+                cart_friction,
+                frame_mass,
+                ..Params::default()
+            };
+            let bounce = solve(&params).expect("solvable");
+            for phase in &bounce.phases {
+                let Motion::Compliant(motion) = &phase.motion else {
+                    panic!("a compliant phase");
+                };
+                let fresh = CompliantMotion::from(motion.phase.clone());
+                let kept = motion.stretch_and_patch_slip(&bounce.setup, phase.end);
+                let evaluated = fresh.stretch_and_patch_slip(&bounce.setup, phase.end);
+                let what = format!("{params:?} phase at {}", phase.start);
+                assert_eq!(kept.0.to_bits(), evaluated.0.to_bits(), "{what}");
+                assert_eq!(kept.1.to_bits(), evaluated.1.to_bits(), "{what}");
+                let held = matches!(motion.phase, CompliantPhase::HeldOnFrame(_));
+                assert_eq!(motion.end.at(phase.end).is_some(), !held, "{what}");
+                assert!(fresh.end.at(phase.end).is_none());
+                kinds[usize::from(phase.kind == super::super::phase::PhaseKind::Grip)] = true;
+            }
+        }
+        assert_eq!(kinds, [true, true], "slides and grips");
+    }
+}

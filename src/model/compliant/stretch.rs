@@ -171,3 +171,53 @@ impl StretchRates {
         )
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::params::Params;
+    use super::*;
+
+    /// The rates written as sums of sin and cos of w τ are the stretch's own e' and e'', to rounding,
+    /// from a slide starting at first contact or later, either way, light to heavy damping.
+    #[test]
+    fn the_rates_by_sums_are_the_stretchs() {
+        for (zeta, dir, start, e0) in [
+            (0.05, 1.0, 0.0, 0.0),
+            (0.3, -1.0, 0.2, 1e-4),
+            (1.0, 1.0, 0.55, -3e-4),
+            (4.0, -1.0, 0.9, 2e-5),
+        ] {
+            let params = Params {
+                ball_stiffness: 1e5,
+                ball_damping: zeta,
+                ..Params::default()
+            };
+            let setup = Setup::new(&params);
+            let spring = BallSpring::new(&params, &setup);
+            let w = setup.w;
+            let t0 = start * setup.duration;
+            let stretch = Stretch::new(&spring, &setup, dir, t0, e0);
+            let rates = stretch.rates(w).expect("damped");
+            let scale = stretch.speed(w) * (1.0 + stretch.lambda() / w);
+            for k in 0..=20 {
+                let t = t0 + (setup.duration - t0) * f64::from(k) / 20.0;
+                let (_, de, dde) = stretch.at(w, t);
+                let (by_sums, second) = rates.at(t, sin_cos(w * (t - t0)));
+                let what = format!("zeta {zeta} dir {dir} t0 {t0} t {t}");
+                assert!((by_sums - de).abs() <= 1e-13 * scale, "e' {what}");
+                assert!(
+                    (second - dde).abs() <= 1e-13 * scale * (stretch.lambda() + w),
+                    "e'' {what}"
+                );
+            }
+        }
+        let undamped = Params {
+            ball_stiffness: 1e5,
+            ball_damping: 0.0,
+            ..Params::default()
+        };
+        let setup = Setup::new(&undamped);
+        let stretch = Stretch::new(&BallSpring::new(&undamped, &setup), &setup, 1.0, 0.0, 0.0);
+        assert!(stretch.rates(setup.w).is_none());
+    }
+}
