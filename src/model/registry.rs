@@ -129,8 +129,9 @@ pub enum Motion {
     Cart(CartMotion),
     /// The rigid ball on a chain of masses (sliding or gripping).
     Chain(ChainMotion),
-    /// A compliant ball, on the single cart or on a chain.
-    Compliant(Box<CompliantMotion>),
+    /// A compliant ball, on the single cart or on a chain (unboxed: a slide is no larger than the
+    /// framed cart's phase, and a grip's large closed form is boxed inside it).
+    Compliant(CompliantMotion),
     /// The rigid ball on the single cart tied to a free frame.
     Frame(FrameMotion),
 }
@@ -142,7 +143,7 @@ impl Motion {
         match self {
             Motion::Cart(m) => m,
             Motion::Chain(m) => m.as_ref(),
-            Motion::Compliant(m) => m.as_ref(),
+            Motion::Compliant(m) => m,
             Motion::Frame(m) => m,
         }
     }
@@ -162,7 +163,7 @@ impl From<ChainMotion> for Motion {
 
 impl From<CompliantMotion> for Motion {
     fn from(motion: CompliantMotion) -> Self {
-        Motion::Compliant(Box::new(motion))
+        Motion::Compliant(motion)
     }
 }
 

@@ -186,6 +186,7 @@ impl Slide {
 
     /// The slip event written once for the phase, where the cart's response is detuned, it has a spring
     /// and no string friction (else `None`).
+    #[inline]
     pub fn slip_sums(&self, setup: &Setup) -> Option<SlipSums> {
         let CartResponse::Detuned { amplitude } = self.response else {
             return None;

@@ -61,6 +61,7 @@ mod held_ring;
 mod stretch;
 
 use std::sync::Arc;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 pub use cart_grip::{Compliance, CompliantGrip};
 pub use chain_grip::{ChainGrip, GripModes, Stage};
@@ -69,7 +70,7 @@ pub use held_frame::{FrameHold, HeldOnFrame};
 pub use held_ring::HeldRingGrip;
 pub use stretch::Stretch;
 
-use std::cell::{Cell, RefCell};
+use std::cell::RefCell;
 
 use super::cart::Slide;
 use super::chain::motion::Motion as ChainMotion;
@@ -81,6 +82,7 @@ use super::frame::{FrameMotion, FrameState, FramedCart};
 use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::quadrature::integrate;
+use super::recent::Recent;
 use super::setup::{Setup, State};
 use super::transition;
 use super::units::brief;
@@ -115,17 +117,73 @@ pub enum Rigid {
     Frame(Box<FrameMotion>, f64),
 }
 
-/// A sliding phase of the compliant ball.
+/// A sliding phase of the compliant ball (the ball's spring and dashpot are its stretch's).
 #[derive(Clone, Debug)]
 pub struct CompliantSlide {
     pub rigid: Rigid,
     pub stretch: Stretch,
-    pub spring: BallSpring,
 }
 
-/// A phase of the compliant ball.
+/// A phase of the compliant ball, with its patch where it ends.
 #[derive(Clone, Debug)]
-pub enum CompliantMotion {
+pub struct CompliantMotion {
+    pub phase: CompliantPhase,
+    /// The patch at the phase's end, kept when the driver takes the state there.
+    end: EndPatch,
+}
+
+impl From<CompliantPhase> for CompliantMotion {
+    fn from(phase: CompliantPhase) -> Self {
+        CompliantMotion {
+            phase,
+            end: EndPatch::new(),
+        }
+    }
+}
+
+/// (t, e, the patch's slip) where the driver took a phase's state ([`Contact::state_at`], at its end),
+/// so that the bounce's final patch is not evaluated again (a whole grip's or slide's closed form);
+/// any other time is evaluated. Written only by the driver, before the phase is stored and shared;
+/// the atomics make it `Sync` at the cost of plain loads and stores.
+#[derive(Debug)]
+struct EndPatch([AtomicU64; 3]);
+
+impl EndPatch {
+    /// Nothing kept: t is NaN, equal to no time.
+    fn new() -> Self {
+        EndPatch([f64::NAN, 0.0, 0.0].map(|x| AtomicU64::new(x.to_bits())))
+    }
+
+    fn keep(&self, t: f64, e: f64, slip: f64) {
+        for (slot, x) in self.0.iter().zip([t, e, slip]) {
+            slot.store(x.to_bits(), Ordering::Relaxed);
+        }
+    }
+
+    /// (e, the patch's slip) if they were kept at `t`.
+    #[inline]
+    fn at(&self, t: f64) -> Option<(f64, f64)> {
+        let [kept, e, slip] = self
+            .0
+            .each_ref()
+            .map(|x| f64::from_bits(x.load(Ordering::Relaxed)));
+        (kept == t).then_some((e, slip))
+    }
+}
+
+impl Clone for EndPatch {
+    fn clone(&self) -> Self {
+        EndPatch(
+            self.0
+                .each_ref()
+                .map(|x| AtomicU64::new(x.load(Ordering::Relaxed))),
+        )
+    }
+}
+
+/// The closed form of a phase of the compliant ball.
+#[derive(Clone, Debug)]
+pub enum CompliantPhase {
     Slide(CompliantSlide),
     Grip(Box<CompliantGrip>),
     ChainGrip(Box<ChainGrip>),
@@ -248,13 +306,13 @@ impl CompliantSlide {
 impl CompliantMotion {
     #[inline]
     pub fn at(&self, setup: &Setup, t: f64) -> Point {
-        match self {
-            CompliantMotion::Slide(s) => s.at(setup, t),
-            CompliantMotion::Grip(g) => g.at(setup, t),
-            CompliantMotion::ChainGrip(g) => g.at(setup, t),
-            CompliantMotion::HeldChainGrip(g) => g.at(setup, t),
-            CompliantMotion::HeldOnFrame(h) => h.at(t),
-            CompliantMotion::HeldRingGrip(g) => g.at(setup, t),
+        match &self.phase {
+            CompliantPhase::Slide(s) => s.at(setup, t),
+            CompliantPhase::Grip(g) => g.at(setup, t),
+            CompliantPhase::ChainGrip(g) => g.at(setup, t),
+            CompliantPhase::HeldChainGrip(g) => g.at(setup, t),
+            CompliantPhase::HeldOnFrame(h) => h.at(t),
+            CompliantPhase::HeldRingGrip(g) => g.at(setup, t),
         }
     }
 
@@ -263,84 +321,88 @@ impl CompliantMotion {
         self.stretch_and_patch_slip(setup, t).1
     }
 
-    /// The stretch e and the patch's slip on the cart at `t`, from one evaluation.
+    /// The stretch e and the patch's slip on the cart at `t`, from one evaluation (none at the
+    /// phase's end, where the driver took the state).
     pub fn stretch_and_patch_slip(&self, setup: &Setup, t: f64) -> (f64, f64) {
-        match self {
-            CompliantMotion::Slide(s) => {
+        if let Some(kept) = self.end.at(t) {
+            return kept;
+        }
+        match &self.phase {
+            CompliantPhase::Slide(s) => {
                 let p = s.at(setup, t);
                 (p.e, s.patch_slip(setup, &p).0)
             }
-            CompliantMotion::Grip(_)
-            | CompliantMotion::ChainGrip(_)
-            | CompliantMotion::HeldChainGrip(_)
-            | CompliantMotion::HeldRingGrip(_) => (self.at(setup, t).e, 0.0),
-            CompliantMotion::HeldOnFrame(h) => h.inner.stretch_and_patch_slip(&h.hold.body, t),
+            CompliantPhase::Grip(_)
+            | CompliantPhase::ChainGrip(_)
+            | CompliantPhase::HeldChainGrip(_)
+            | CompliantPhase::HeldRingGrip(_) => (self.at(setup, t).e, 0.0),
+            CompliantPhase::HeldOnFrame(h) => h.inner.stretch_and_patch_slip(&h.hold.body, t),
         }
     }
 
     pub fn initial(&self) -> State {
-        match self {
-            CompliantMotion::Slide(s) => match &s.rigid {
+        match &self.phase {
+            CompliantPhase::Slide(s) => match &s.rigid {
                 Rigid::Cart(slide) => slide.start,
                 Rigid::Chain(motion) => motion.start.contact(),
                 Rigid::Frame(motion, _) => motion.start.s,
             },
-            CompliantMotion::Grip(g) => g.start,
-            CompliantMotion::ChainGrip(g) => g.start.contact(),
-            CompliantMotion::HeldChainGrip(g) => g.ball.start,
-            CompliantMotion::HeldOnFrame(h) => h.initial(),
-            CompliantMotion::HeldRingGrip(g) => g.start.contact(),
+            CompliantPhase::Grip(g) => g.start,
+            CompliantPhase::ChainGrip(g) => g.start.contact(),
+            CompliantPhase::HeldChainGrip(g) => g.ball.start,
+            CompliantPhase::HeldOnFrame(h) => h.initial(),
+            CompliantPhase::HeldRingGrip(g) => g.start.contact(),
         }
     }
 
     pub fn spring(&self) -> BallSpring {
-        match self {
-            CompliantMotion::Slide(s) => s.spring,
-            CompliantMotion::Grip(g) => BallSpring {
+        match &self.phase {
+            CompliantPhase::Slide(s) => s.stretch.spring,
+            CompliantPhase::Grip(g) => BallSpring {
                 kb: g.compliance.kb,
                 cb: g.compliance.cb,
             },
-            CompliantMotion::HeldChainGrip(g) => BallSpring {
+            CompliantPhase::HeldChainGrip(g) => BallSpring {
                 kb: g.ball.compliance.kb,
                 cb: g.ball.compliance.cb,
             },
-            CompliantMotion::ChainGrip(g) => g.modes.spring(),
-            CompliantMotion::HeldOnFrame(h) => h.inner.spring(),
-            CompliantMotion::HeldRingGrip(g) => g.grip.modes.spring(),
+            CompliantPhase::ChainGrip(g) => g.modes.spring(),
+            CompliantPhase::HeldOnFrame(h) => h.inner.spring(),
+            CompliantPhase::HeldRingGrip(g) => g.grip.modes.spring(),
         }
     }
 
     /// The kinetic and spring energy of the whole chain at `t` (`None` on the single cart).
     pub fn chain_energy(&self, setup: &Setup, t: f64) -> Option<f64> {
-        match self {
-            CompliantMotion::Slide(CompliantSlide {
+        match &self.phase {
+            CompliantPhase::Slide(CompliantSlide {
                 rigid: Rigid::Chain(motion),
                 ..
             }) => Some(motion.chain().energy(&motion.full(setup, t))),
-            CompliantMotion::ChainGrip(g) => Some(g.modes.chain().energy(&g.full(setup, t))),
-            CompliantMotion::HeldChainGrip(g) => Some(g.chain.chain().energy(&g.full(setup, t))),
-            CompliantMotion::HeldOnFrame(h) => Some(h.hold.chain.energy(&h.full(t))),
-            CompliantMotion::HeldRingGrip(g) => Some(g.chain.energy(&g.full(setup, t))),
+            CompliantPhase::ChainGrip(g) => Some(g.modes.chain().energy(&g.full(setup, t))),
+            CompliantPhase::HeldChainGrip(g) => Some(g.chain.chain().energy(&g.full(setup, t))),
+            CompliantPhase::HeldOnFrame(h) => Some(h.hold.chain.energy(&h.full(t))),
+            CompliantPhase::HeldRingGrip(g) => Some(g.chain.energy(&g.full(setup, t))),
             _ => None,
         }
     }
 
     /// The fastest rate in the phase, rad/s (for quadrature panels).
     pub fn fastest(&self, setup: &Setup) -> f64 {
-        match self {
-            CompliantMotion::Slide(s) => {
-                let l = if s.stretch.damped {
-                    s.stretch.lambda
+        match &self.phase {
+            CompliantPhase::Slide(s) => {
+                let l = if s.stretch.damped() {
+                    s.stretch.lambda()
                 } else {
                     0.0
                 };
                 l.max(s.slip_bounds(setup).2)
             }
-            CompliantMotion::Grip(g) => g.compliance.fastest,
-            CompliantMotion::ChainGrip(g) => g.modes.fastest,
-            CompliantMotion::HeldRingGrip(g) => g.grip.modes.fastest,
-            CompliantMotion::HeldChainGrip(g) => g.fastest(),
-            CompliantMotion::HeldOnFrame(h) => h.inner.fastest(&h.hold.body),
+            CompliantPhase::Grip(g) => g.compliance.fastest,
+            CompliantPhase::ChainGrip(g) => g.modes.fastest,
+            CompliantPhase::HeldRingGrip(g) => g.grip.modes.fastest,
+            CompliantPhase::HeldChainGrip(g) => g.fastest(),
+            CompliantPhase::HeldOnFrame(h) => h.inner.fastest(&h.hold.body),
         }
     }
 
@@ -348,20 +410,20 @@ impl CompliantMotion {
     /// out and of the cart's after.
     pub fn integrate(&self, setup: &Setup, f: impl Fn(f64) -> f64, start: f64, end: f64) -> f64 {
         let w = setup.w;
-        match self {
-            CompliantMotion::Slide(s) => {
+        match &self.phase {
+            CompliantPhase::Slide(s) => {
                 let split = s.stretch.settled().clamp(start, end);
                 let fine = 2.0 / self.fastest(setup).max(w);
                 let coarse = 2.0 / s.slip_bounds(setup).2.max(w);
                 integrate(&f, start, split, fine) + integrate(&f, split, end, coarse)
             }
-            CompliantMotion::Grip(_)
-            | CompliantMotion::ChainGrip(_)
-            | CompliantMotion::HeldChainGrip(_)
-            | CompliantMotion::HeldRingGrip(_) => {
+            CompliantPhase::Grip(_)
+            | CompliantPhase::ChainGrip(_)
+            | CompliantPhase::HeldChainGrip(_)
+            | CompliantPhase::HeldRingGrip(_) => {
                 integrate(&f, start, end, 2.0 / self.fastest(setup).max(w))
             }
-            CompliantMotion::HeldOnFrame(h) => h.inner.integrate(&h.hold.body, f, start, end),
+            CompliantPhase::HeldOnFrame(h) => h.inner.integrate(&h.hold.body, f, start, end),
         }
     }
 }
@@ -426,20 +488,20 @@ impl PhaseMotion for CompliantMotion {
     /// The frame's velocity along the surface: the last entry of a chain on a free frame (the single
     /// cart on one is such a chain), 0 clamped.
     fn frame_velocity(&self, setup: &Setup, t: f64) -> f64 {
-        let full = match self {
-            CompliantMotion::Slide(CompliantSlide {
+        let full = match &self.phase {
+            CompliantPhase::Slide(CompliantSlide {
                 rigid: Rigid::Frame(motion, _),
                 ..
             }) => return motion.sliding_at(setup, t).frame.0,
-            CompliantMotion::Slide(CompliantSlide {
+            CompliantPhase::Slide(CompliantSlide {
                 rigid: Rigid::Chain(chain),
                 ..
             }) => chain.full(setup, t),
-            CompliantMotion::ChainGrip(grip) => grip.full(setup, t),
-            CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
-            CompliantMotion::HeldOnFrame(h) => h.full(t),
-            CompliantMotion::HeldRingGrip(grip) => grip.full(setup, t),
-            CompliantMotion::Slide(_) | CompliantMotion::Grip(_) => return 0.0,
+            CompliantPhase::ChainGrip(grip) => grip.full(setup, t),
+            CompliantPhase::HeldChainGrip(grip) => grip.full(setup, t),
+            CompliantPhase::HeldOnFrame(h) => h.full(t),
+            CompliantPhase::HeldRingGrip(grip) => grip.full(setup, t),
+            CompliantPhase::Slide(_) | CompliantPhase::Grip(_) => return 0.0,
         };
         match full.frame {
             0 => 0.0,
@@ -619,12 +681,11 @@ impl CompliantBall {
         let body = &hold.body;
         let start = HeldOnFrame::body_start(&state.full);
         let inner = match ball {
-            Ball::Slide(dir) => CompliantMotion::Slide(CompliantSlide {
+            Ball::Slide(dir) => CompliantPhase::Slide(CompliantSlide {
                 rigid: Rigid::Cart(Slide::new(body, start, dir, Cart::Moving(1))),
                 stretch: Stretch::new(&self.spring, body, dir, start.t, state.e),
-                spring: self.spring,
             }),
-            Ball::Grip => CompliantMotion::Grip(Box::new(CompliantGrip::new(
+            Ball::Grip => CompliantPhase::Grip(Box::new(CompliantGrip::new(
                 hold.compliance,
                 start,
                 state.e,
@@ -633,12 +694,13 @@ impl CompliantBall {
             ))),
         };
         let frame_x = state.full.x[state.full.frame];
-        CompliantMotion::HeldOnFrame(Box::new(HeldOnFrame::new(
+        CompliantPhase::HeldOnFrame(Box::new(HeldOnFrame::new(
             hold.clone(),
-            inner,
+            inner.into(),
             state.contact.x,
             frame_x,
         )))
+        .into()
     }
 
     /// The first event of a phase held to the free frame: the ball's on the body, or the push the string
@@ -665,8 +727,8 @@ impl CompliantBall {
         let share = held.hold.share;
         let spring = setup.k * held.y;
         let (w, peak) = (setup.w, setup.peak_friction());
-        let (curvature, size) = match &held.inner {
-            CompliantMotion::Grip(grip) => grip.force_bounds(body),
+        let (curvature, size) = match &held.inner.phase {
+            CompliantPhase::Grip(grip) => grip.force_bounds(body),
             _ => (peak * w * w, 0.0),
         };
         let noise = ROUNDING * (peak + spring.abs() + setup.cart_friction + EXP_ROUNDING * size);
@@ -916,7 +978,7 @@ impl Contact for CompliantBall {
         if let (Some(hold), Cart::Stuck) = (&self.hold, cart) {
             return self.held_on_frame(hold, state, ball);
         }
-        match ball {
+        let phase = match ball {
             Ball::Slide(dir) => {
                 let rigid =
                     match (&self.support, &self.framed, cart) {
@@ -942,37 +1004,37 @@ impl Contact for CompliantBall {
                             ChainMotion::new(chain.clone(), setup, state.full, dir, cart),
                         )),
                     };
-                CompliantMotion::Slide(CompliantSlide {
+                CompliantPhase::Slide(CompliantSlide {
                     rigid,
                     stretch: Stretch::new(&self.spring, setup, dir, t0, state.e),
-                    spring: self.spring,
                 })
             }
             Ball::Grip => {
                 if let (Some(ring), Support::Chain { chain, .. }, Cart::Stuck) =
                     (&self.ring, &self.support, cart)
                 {
-                    return CompliantMotion::HeldRingGrip(Box::new(HeldRingGrip::new(
+                    return CompliantPhase::HeldRingGrip(Box::new(HeldRingGrip::new(
                         ring.clone(),
                         chain.clone(),
                         setup,
                         state.full,
                         state.e,
-                    )));
+                    )))
+                    .into();
                 }
                 match &self.support {
-                    Support::Cart(compliance) => CompliantMotion::Grip(Box::new(
+                    Support::Cart(compliance) => CompliantPhase::Grip(Box::new(
                         CompliantGrip::new(**compliance, state.contact, state.e, setup, cart),
                     )),
                     Support::Chain {
                         chain,
                         held: Some(compliance),
                         ..
-                    } if cart == Cart::Stuck => CompliantMotion::HeldChainGrip(Box::new(
+                    } if cart == Cart::Stuck => CompliantPhase::HeldChainGrip(Box::new(
                         HeldChainGrip::new(**compliance, chain.clone(), setup, state.full, state.e),
                     )),
                     Support::Chain { modes, .. } => {
-                        CompliantMotion::ChainGrip(Box::new(ChainGrip::new(
+                        CompliantPhase::ChainGrip(Box::new(ChainGrip::new(
                             modes.clone(),
                             state.full,
                             state.e,
@@ -982,7 +1044,8 @@ impl Contact for CompliantBall {
                     }
                 }
             }
-        }
+        };
+        phase.into()
     }
 
     fn first_event(
@@ -996,7 +1059,9 @@ impl Contact for CompliantBall {
         let (t0, end) = (state.contact.t, setup.duration);
         let (w, peak) = (setup.w, setup.peak_friction());
         let s = &state.contact;
-        let last = Cell::new(None::<Point>);
+        // The points the search measured last: the one at the event, when among them, is the state
+        // there (not evaluated again).
+        let recent = Recent::new(t0, None::<Point>);
         let speeds = self.incoming + s.vx.abs() + setup.r * s.omega.abs() + s.v.abs();
         // The cart's velocity starts on its own zero after it stopped or came unstuck (and at first
         // contact): measured from its start value, so rounding cannot fake a stop there. On a free frame,
@@ -1014,25 +1079,66 @@ impl Contact for CompliantBall {
             v_offset,
             forces: peak + setup.k * s.x.abs() + setup.cart_friction,
         };
-        let event = match motion {
-            CompliantMotion::HeldOnFrame(held) => self.held_event(setup, held, state, ball, cause),
-            CompliantMotion::Slide(slide) => {
+        let event = match &motion.phase {
+            CompliantPhase::HeldOnFrame(held) => self.held_event(setup, held, state, ball, cause),
+            CompliantPhase::Slide(slide) => {
                 let dir = slide.dir();
+                // A detuned, damped slide on the single cart without string friction searches the
+                // patch's slip written once for the phase: the rigid slip by the cart's sums, e' by
+                // the stretch's, one `sin_cos2` and one `exp` an evaluation. Its point is computed
+                // only where the search ends; other slides evaluate theirs.
+                let sums = match &slide.rigid {
+                    Rigid::Cart(rigid) if setup.cart_friction == 0.0 => rigid
+                        .slip_sums(setup)
+                        .zip(slide.stretch.rates(w))
+                        .map(|(sums, rates)| (rigid, sums, rates)),
+                    _ => None,
+                };
+                // The patch's slip at the start, and the point there where the search evaluates
+                // points.
+                let (start_slip, start) = match &sums {
+                    Some((rigid, _, rates)) => {
+                        (setup.slip(&rigid.start) - rates.at(t0, (0.0, 1.0)).0, None)
+                    }
+                    None => {
+                        let p = slide.at(setup, t0);
+                        (slide.patch_slip(setup, &p).0, Some(p))
+                    }
+                };
                 // After a grip broke, the patch starts from rest on the cart (with a dashpot) or with
                 // the jump of e' (without): a start slip against `dir` is rounding, and counts as zero,
                 // so rounding can never fake a crossing at the start.
-                let start = slide.at(setup, t0);
-                let start_slip = slide.patch_slip(setup, &start).0;
                 let offset = if cause != Cause::Start && dir * start_slip < 0.0 {
                     start_slip
                 } else {
                     0.0
                 };
+                let by_sums = sums.map(|(rigid, sums, rates)| {
+                    let constants = sums.constants(offset);
+                    // At t0 the event is the start's slip taken exactly, as the points' below.
+                    let level = ((0.0, 1.0), (0.0, 1.0));
+                    let at_start = (
+                        -dir * (start_slip - offset),
+                        sums.event(level, constants).1 + dir * rates.at(t0, (0.0, 1.0)).1,
+                    );
+                    move |t: f64| {
+                        if t == t0 {
+                            return [at_start];
+                        }
+                        let angles = rigid.angles(setup, t);
+                        let (value, rate, _, _) = sums.event(angles, constants);
+                        let (de, dde) = rates.at(t, angles.0);
+                        [(value + dir * de, rate + dir * dde)]
+                    }
+                });
                 // The patch's slip against `dir`, with the point it was measured at (the search's
                 // first, at t0, is the one above).
                 let slip = |t: f64| {
-                    let p = if t == t0 { start } else { slide.at(setup, t) };
-                    last.set(Some(p));
+                    let p = match start {
+                        Some(p) if t == t0 => p,
+                        _ => slide.at(setup, t),
+                    };
+                    recent.record(t, Some(p));
                     let (slip, rate) = slide.patch_slip(setup, &p);
                     (p, (-dir * (slip - offset), -dir * rate))
                 };
@@ -1096,7 +1202,9 @@ impl Contact for CompliantBall {
                 };
                 // Without string friction the cart has no event: the slip alone is searched.
                 let search = |from: f64, to: f64, step: f64, curvature: f64| {
-                    if setup.cart_friction == 0.0 {
+                    if let Some(by_sums) = &by_sums {
+                        first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
+                    } else if setup.cart_friction == 0.0 {
                         let slip_only = |t: f64| [slip(t).1];
                         first_rise_from_tangent(slip_only, from, to, step, [curvature], [noise])
                     } else {
@@ -1107,9 +1215,9 @@ impl Contact for CompliantBall {
                 };
                 // While the stretch's transient lasts, on its scale; after, on the cart's.
                 let split = slide.stretch.settled().clamp(t0, end);
-                let early = if slide.stretch.damped {
+                let early = if slide.stretch.damped() {
                     let curvature = slip_curvature + slide.stretch.third(w, t0);
-                    let step = setup.event_step(fastest.max(slide.stretch.lambda));
+                    let step = setup.event_step(fastest.max(slide.stretch.lambda()));
                     search(t0, split, step, curvature)
                 } else {
                     None
@@ -1127,7 +1235,7 @@ impl Contact for CompliantBall {
                         (t, cause)
                     })
             }
-            CompliantMotion::ChainGrip(grip) if setup.cart_friction > 0.0 => {
+            CompliantPhase::ChainGrip(grip) if setup.cart_friction > 0.0 => {
                 // The grip on a first mass moving against its string friction: also its stopping.
                 let margin_curvature = peak * w * w;
                 let (stages, size) = grip.search_stages(setup);
@@ -1136,7 +1244,7 @@ impl Contact for CompliantBall {
                 let stop_noise = ROUNDING * (v_offset.abs() + speeds);
                 let f = |t: f64| {
                     let p = grip.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
                     [forward, backward, events.at_chain(setup, &p, (0.0, 0.0))[0]]
                 };
@@ -1154,14 +1262,14 @@ impl Contact for CompliantBall {
                         _ => (t, Cause::CartStop),
                     })
             }
-            CompliantMotion::HeldRingGrip(held) => {
+            CompliantPhase::HeldRingGrip(held) => {
                 // The grip on a first mass held to a free frame: also the push on it reaching ±F_c.
                 let margin_curvature = peak * w * w;
                 let (stages, size) = held.grip.search_stages(setup);
                 let noise = ROUNDING * (peak + size);
                 let f = |t: f64| {
                     let p = held.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
                     let (push, rate) = held.push(setup, &p);
                     let [up, down] = setup.unstick_margins(push, rate);
@@ -1184,7 +1292,7 @@ impl Contact for CompliantBall {
                         _ => (t, Cause::Unstick(-1)),
                     })
             }
-            CompliantMotion::HeldChainGrip(held) => {
+            CompliantPhase::HeldChainGrip(held) => {
                 let margin_curvature = peak * w * w;
                 let (curvature, size) = held.ball.force_bounds(setup);
                 let (link_curvature, link_terms) = held.chain.link_curvature();
@@ -1193,7 +1301,7 @@ impl Contact for CompliantBall {
                 let push_noise = ROUNDING * (peak + size + link_terms + setup.cart_friction);
                 let f = |t: f64| {
                     let p = held.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
                     let [first, second] = events.at_chain(setup, &p, held.chain.link(setup, t));
                     [forward, backward, first, second]
@@ -1214,10 +1322,10 @@ impl Contact for CompliantBall {
                     (t, cause)
                 })
             }
-            CompliantMotion::ChainGrip(grip) => grip
+            CompliantPhase::ChainGrip(grip) => grip
                 .first_break(setup)
                 .map(|(t, branch)| (t, grip_break(branch))),
-            CompliantMotion::Grip(grip) => {
+            CompliantPhase::Grip(grip) => {
                 let margin_curvature = peak * w * w;
                 let (curvature, size) = grip.force_bounds(setup);
                 let step = setup.event_step(grip.compliance.fastest);
@@ -1226,7 +1334,7 @@ impl Contact for CompliantBall {
                     events.bounds(setup, grip.cart_bounds(setup), curvature, size);
                 let f = |t: f64| {
                     let p = grip.at(setup, t);
-                    last.set(Some(p));
+                    recent.record(t, Some(p));
                     let [forward, backward] = setup.grip_margins(t, p.friction, p.friction_rate);
                     let [first, second] = events.at(setup, &p);
                     [forward, backward, first, second]
@@ -1249,7 +1357,7 @@ impl Contact for CompliantBall {
         };
         Found {
             event,
-            last: last.get(),
+            last: recent.at(event.map_or(end, |(t, _)| t)),
         }
     }
 
@@ -1264,12 +1372,25 @@ impl Contact for CompliantBall {
             Some(p) if p.state.t == t => p,
             _ => motion.at(setup, t),
         };
-        let full = match motion {
-            CompliantMotion::Slide(CompliantSlide {
+        // The patch there, as `stretch_and_patch_slip` takes it from the same point (held to a free
+        // frame, the ball's point is on the body of cart and frame, and is evaluated when asked).
+        let slip = match &motion.phase {
+            CompliantPhase::Slide(slide) => Some(slide.patch_slip(setup, &point).0),
+            CompliantPhase::HeldOnFrame(_) => None,
+            CompliantPhase::Grip(_)
+            | CompliantPhase::ChainGrip(_)
+            | CompliantPhase::HeldChainGrip(_)
+            | CompliantPhase::HeldRingGrip(_) => Some(0.0),
+        };
+        if let Some(slip) = slip {
+            motion.end.keep(t, point.e, slip);
+        }
+        let full = match &motion.phase {
+            CompliantPhase::Slide(CompliantSlide {
                 rigid: Rigid::Chain(chain),
                 ..
             }) => chain.full(setup, t),
-            CompliantMotion::Slide(CompliantSlide {
+            CompliantPhase::Slide(CompliantSlide {
                 rigid: Rigid::Frame(motion, x0),
                 ..
             }) => {
@@ -1284,10 +1405,10 @@ impl Contact for CompliantBall {
             }
             // The single cart on the wall, gripped as a chain of one mass: that mass is the contact
             // point's cart, which the point already holds (no second propagation of the grip).
-            CompliantMotion::ChainGrip(grip) if !self.single_on_wall() => grip.full(setup, t),
-            CompliantMotion::HeldChainGrip(grip) => grip.full(setup, t),
-            CompliantMotion::HeldOnFrame(held) => held.full(t),
-            CompliantMotion::HeldRingGrip(grip) => grip.full(setup, t),
+            CompliantPhase::ChainGrip(grip) if !self.single_on_wall() => grip.full(setup, t),
+            CompliantPhase::HeldChainGrip(grip) => grip.full(setup, t),
+            CompliantPhase::HeldOnFrame(held) => held.full(t),
+            CompliantPhase::HeldRingGrip(grip) => grip.full(setup, t),
             _ => ChainState::from_contact(&point.state),
         };
         CompliantState {
@@ -1344,5 +1465,58 @@ impl Contact for CompliantBall {
             }
             Cause::SlipZero | Cause::Start => (Ball::Grip, cart),
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::registry::Motion;
+    use super::super::solve::solve;
+    use super::*;
+
+    /// The patch a phase kept where the driver took its end state is the patch evaluated there afresh,
+    /// bit for bit, and it is kept (but held to a free frame): every phase, slides and grips, on the
+    /// single cart and a chain, on the wall and on a free frame, with and without string friction.
+    #[test]
+    fn the_patch_kept_at_a_phase_end_is_the_patch_evaluated_there() {
+        let mut kinds = [false; 2];
+        for (angle, damping, chain, cart_friction, frame_mass) in [
+            (30.0, 0.3, 1.0, 0.0, 0.0),
+            (30.0, 0.0, 1.0, 0.0, 0.0),
+            (80.0, 1.5, 1.0, 0.0, 0.0),
+            (60.0, 0.3, 1.0, 30.0, 0.0),
+            (45.0, 0.3, 4.0, 0.0, 0.0),
+            (45.0, 0.3, 4.0, 30.0, 0.0),
+            (30.0, 0.3, 1.0, 0.0, 0.188),
+            (30.0, 0.3, 1.0, 30.0, 0.188),
+            (45.0, 0.3, 4.0, 30.0, 0.188),
+        ] {
+            let params = Params {
+                angle_deg: angle,
+                ball_stiffness: 1e5,
+                ball_damping: damping,
+                chain,
+                cart_friction,
+                frame_mass,
+                ..Params::default()
+            };
+            let bounce = solve(&params).expect("solvable");
+            for phase in &bounce.phases {
+                let Motion::Compliant(motion) = &phase.motion else {
+                    panic!("a compliant phase");
+                };
+                let fresh = CompliantMotion::from(motion.phase.clone());
+                let kept = motion.stretch_and_patch_slip(&bounce.setup, phase.end);
+                let evaluated = fresh.stretch_and_patch_slip(&bounce.setup, phase.end);
+                let what = format!("{params:?} phase at {}", phase.start);
+                assert_eq!(kept.0.to_bits(), evaluated.0.to_bits(), "{what}");
+                assert_eq!(kept.1.to_bits(), evaluated.1.to_bits(), "{what}");
+                let held = matches!(motion.phase, CompliantPhase::HeldOnFrame(_));
+                assert_eq!(motion.end.at(phase.end).is_some(), !held, "{what}");
+                assert!(fresh.end.at(phase.end).is_none());
+                kinds[usize::from(phase.kind == super::super::phase::PhaseKind::Grip)] = true;
+            }
+        }
+        assert_eq!(kinds, [true, true], "slides and grips");
     }
 }
