@@ -8,18 +8,17 @@ use super::{C64, CANCELLATION, FORCE_RECONSTRUCTION, GripModes, Mode, RECONSTRUC
 /// Room for a grip's state: the ball's stretch and the masses' displacements, then their rates.
 const STATE: usize = 2 * MAX + 2;
 
-/// The weighted coefficients of a state in the modes, by their orthogonality, and the state they
-/// rebuild (its first `z.len()` entries; no allocation but the coefficients').
-fn project(g: &GripModes, list: &[Mode], z: &[f64]) -> (Vec<C64>, [f64; STATE]) {
+/// The weighted coefficients of a state in the modes, by their orthogonality, written into `c` (one a
+/// mode), and the state they rebuild (its first `z.len()` entries; no allocation).
+fn project(g: &GripModes, list: &[Mode], z: &[f64], c: &mut [C64]) -> [f64; STATE] {
     let n = g.n;
     let e = z[0] - (0..n).map(|j| g.phi1[j] * z[j + 1]).sum::<f64>();
     let mut rebuilt = [0.0; STATE];
     // The masses' displacements and rates, and their rebuilt copies, as slices of n (no index checks
     // in the loops over the masses).
     let (masses, rates) = (&z[1..=n], &z[n + 2..2 * n + 2]);
-    let c = list
-        .iter()
-        .map(|mode| {
+    for (mode, slot) in list.iter().zip(c) {
+        *slot = {
             let q = &mode.q[..n];
             // w_iᵀ [[C, D], [D, 0]] z = c_b e_i e + φᵀ D y' + s φᵀ D y.
             let mut dy = mode.u * (g.m_eff * z[n + 1]);
@@ -38,9 +37,9 @@ fn project(g: &GripModes, list: &[Mode], z: &[f64]) -> (Vec<C64>, [f64; STATE]) 
                 *v += (rate * q).re;
             }
             c
-        })
-        .collect();
-    (c, rebuilt)
+        };
+    }
+    rebuilt
 }
 
 /// The weighted coefficients of z0 in the modes, if they reproduce it (and its force: a stiff dashpot
@@ -50,12 +49,14 @@ pub(super) fn coefficients(g: &GripModes, list: &[Mode], z0: &[f64]) -> Option<V
     let n = g.n;
     let size = g.energy_norm(z0);
     let len = z0.len();
-    let (mut c, rebuilt) = project(g, list, z0);
+    let mut c = vec![C64::new(0.0, 0.0); list.len()];
+    let rebuilt = project(g, list, z0, &mut c);
     let mut residual = [0.0; STATE];
     for i in 0..len {
         residual[i] = z0[i] - rebuilt[i];
     }
-    let (correction, rebuilt_residual) = project(g, list, &residual[..len]);
+    let mut correction = [C64::new(0.0, 0.0); 2 * MAX + 2];
+    let rebuilt_residual = project(g, list, &residual[..len], &mut correction);
     for (ci, di) in c.iter_mut().zip(&correction) {
         *ci += di;
     }

@@ -175,14 +175,15 @@ impl ChainGrip {
             }
             growths
         };
-        let first = self.force_bounds_with(setup, sizes, &growths_at(0.0));
+        let initial = growths_at(0.0);
+        let first = self.force_bounds_with(setup, sizes, &initial);
         let size = first.1;
         let mut stages = Vec::with_capacity(11);
         stages.push(stage_from(t0, first));
         // Each cut's bound on |F''| estimated first with a decaying mode's shrinking over a stage,
         // e^{Re s stage}, taken once (within 1e-12 of the bound); only a cut the estimate does not
         // clearly refuse is bounded exactly, with an exponential a mode.
-        let mut estimate = growths_at(0.0);
+        let mut estimate = initial;
         let mut shrink = [1.0; MODES];
         for (s, m) in shrink.iter_mut().zip(sizes) {
             if m.re <= 0.0 {
