@@ -840,6 +840,14 @@ impl Motion {
 
     /// The whole chain at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
+        self.contact_and_full(setup, t).1
+    }
+
+    /// [`Motion::contact`] and [`Motion::full`] at `t`, the modal coordinates taken once for both (the
+    /// held ring's search reads both at every evaluation): the contact is the one `contact` gives, bit
+    /// for bit (the same rows from the same sums or modal coordinates).
+    #[inline(always)]
+    pub fn contact_and_full(&self, setup: &Setup, t: f64) -> (Contact, ChainState) {
         let modes = self.modes();
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
@@ -860,8 +868,8 @@ impl Motion {
             let frame = if self.is_held() { 0 } else { self.start.frame };
             let (main, framed) = Sums::from_modal(modes, frame, (&q, &dq));
             self.moving_contact(modes, setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
-        }
-        .state;
+        };
+        let state = &contact.state;
         let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
         modes.expand_both((&q, &dq), (&mut x, &mut v));
         if self.is_held() && self.start.frame > 0 {
@@ -872,21 +880,22 @@ impl Motion {
                 x[i] = rest_line(&self.chain, &self.start, i) + x[i - 1];
                 v[i] = v[i - 1];
             }
-            (x[0], v[0]) = (contact.x, 0.0);
+            (x[0], v[0]) = (state.x, 0.0);
         } else if let Some(Written::Wall(_)) = self.sums() {
-            (x[0], v[0]) = (contact.x, contact.v);
+            (x[0], v[0]) = (state.x, state.v);
         } else if let Some(([x1, v1, ..], [xf, _, vf])) = searched {
             let frame = self.start.frame;
             (x[0], v[0], x[frame], v[frame]) = (x1, v1, xf, vf);
         }
-        ChainState {
+        let full = ChainState {
             t,
-            vx: contact.vx,
-            omega: contact.omega,
+            vx: state.vx,
+            omega: state.omega,
             x,
             v,
             frame: self.start.frame,
-        }
+        };
+        (contact, full)
     }
 
     /// A bound on |q_j'| over the rest of the contact, per mode, for a sliding phase: the smaller of the
