@@ -117,8 +117,9 @@ pub const MARGINS_FOURTH: Mask = 0b11;
 struct Sums<const R: usize, S> {
     main: Rows<R, S>,
     /// S4 = Σ Φ_1j Ω_j⁴ q_j and its rate ([`Sums::fourth_weights`]), written only for a phase searched
-    /// by Taylor bounds (`has_fourth`).
-    fourth: Rows<2, [Share<2>; MAX]>,
+    /// by Taylor bounds (`has_fourth`; on the heap, empty until then, so that the phases that never
+    /// write them keep their storage's size).
+    fourth: Rows<2, Vec<Share<2>>>,
     has_fourth: bool,
     /// The modes left out of the combinations.
     odd: [usize; MAX],
@@ -290,7 +291,7 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
     fn empty(n: usize) -> Sums<R, S> {
         Sums {
             main: Rows::new(n),
-            fourth: Rows::new(n),
+            fourth: Rows::new(0),
             has_fourth: false,
             odd: [0; MAX],
             odd_n: 0,
