@@ -6,7 +6,7 @@
 //! sliding, every mode is an oscillator forced through its share Φ_1j of the friction on the first mass;
 //! gripping, the ball's effective mass m_eff rides on the first mass and the modes of that heavier chain
 //! swing freely. Transitions follow the paper's rules (grip when |F_s| <= mu N at zero slip, else the
-//! friction reverses; a broken grip slides the way F_s pulled), located by [`first_rise`] on the exact
+//! friction reverses; a broken grip slides the way F_s pulled), located by [`super::events`] on the exact
 //! expressions with curvature bounds from the modal amplitudes. A compliant ball on the chain is its own
 //! model, [`super::compliant`] (its grip is one damped modal system of ball and chain).
 //!
@@ -18,19 +18,21 @@
 //! between the first mass and the frame, and a first mass held to the frame makes one body with it, the
 //! links behind forming a ring (`ring.rs`).
 
+#[cfg(test)]
+mod bounds;
 pub mod modes;
 pub mod motion;
 pub mod ring;
 pub mod ring_coordinates;
+mod search;
 mod spare;
 mod string;
 
 use std::cell::RefCell;
 use std::sync::{Arc, OnceLock};
 
-use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
+use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::first_rise;
 use super::memo::{Slot, reuse};
 use super::params::Params;
 use super::quadrature::integrate;
@@ -428,7 +430,12 @@ impl Contact for ChainOfMasses {
             Ball::Slide(dir) => dir,
             Ball::Grip => 0.0,
         };
-        ChainMotion::new(&self.chain, setup, state, dir, cart)
+        if self.string {
+            ChainMotion::new(&self.chain, setup, state, dir, cart)
+        } else {
+            // Searched by Taylor bounds (`search.rs`).
+            ChainMotion::searched(&self.chain, setup, state, dir, cart)
+        }
     }
 
     fn first_event(
@@ -443,41 +450,12 @@ impl Contact for ChainOfMasses {
             let event = string::first_event(self, setup, motion, state, (ball, cart), cause);
             return Found { event, last: None };
         }
-        let (t0, end) = (state.t, setup.duration);
         let event = match ball {
             Ball::Slide(dir) => {
-                // A slip that starts on its zero is measured from its start value.
-                let slip_offset = if matches!(cause, Cause::SlipZero | Cause::GripBreak(_)) {
-                    setup.slip(&motion.probe(setup, t0).state)
-                } else {
-                    0.0
-                };
-                let f = |t: f64| {
-                    let c = motion.probe(setup, t);
-                    let rate = -c.friction / setup.m_eff - c.accel;
-                    [(-dir * (setup.slip(&c.state) - slip_offset), -dir * rate)]
-                };
-                let (curvature, terms) = motion.slip_curvature(setup);
-                let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + terms;
-                let step = setup.event_step(self.chain.slide.fastest);
-                first_rise(f, t0, end, step, [curvature], [ROUNDING * speeds])
-                    .map(|(t, _)| (t, Cause::SlipZero))
+                let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs();
+                search::slide(setup, motion, (state.t, dir, cause), speeds)
             }
-            Ball::Grip => {
-                let f = |t: f64| {
-                    let c = motion.probe(setup, t);
-                    setup.grip_margins(t, c.friction, c.friction_rate)
-                };
-                let (curvature, terms) = motion.margin_curvature(setup);
-                let noise = ROUNDING * terms;
-                // The margins' own rate, sqrt(|F_s''| bound / its terms), not the fastest mode's.
-                let step =
-                    setup.event_step((curvature / terms).sqrt().min(self.chain.grip().fastest));
-                first_rise(f, t0, end, step, [curvature; 2], [noise; 2]).map(|(t, branch)| {
-                    let sign = if branch == 0 { 1.0 } else { -1.0 };
-                    (t, Cause::GripBreak(sign))
-                })
-            }
+            Ball::Grip => search::grip(setup, motion, state.t),
         };
         Found { event, last: None }
     }

@@ -71,6 +71,35 @@ enum Written<'a> {
     Frame(&'a Sums<7, Vec<Share<7>>>),
 }
 
+impl Written<'_> {
+    /// True when the sums hold S4 and its rate.
+    fn has_fourth(&self) -> bool {
+        match self {
+            Written::Wall(sums) => sums.has_fourth,
+            Written::Frame(sums) => sums.has_fourth,
+        }
+    }
+}
+
+/// Which rows of a phase's sums (`Sums`) an evaluation sums, a bit a row (row r: bit r), consecutive
+/// rows: of the main rows X_1, V_1, S = Σ Φ_1j Ω_j² q_j and S', on a free frame followed by the
+/// frame's X_f, X_N and V_f; or of S4 = Σ Φ_1j Ω_j⁴ q_j and S4'. Each row is summed on its own, so a
+/// row has the same bits whichever others are summed with it.
+pub type Mask = u8;
+
+/// The main rows of [`Motion::contact`] on the wall: X_1, V_1, S and S'.
+const CONTACT: Mask = 0b1111;
+/// The free frame's three rows.
+const FRAME: Mask = 0b111 << 4;
+/// The main rows the slide's slip and its first three derivatives read: V_1, S and S' ...
+pub const SLIP: Mask = 0b1110;
+/// ... and of S4 and its rate: S4.
+pub const SLIP_FOURTH: Mask = 0b01;
+/// The main rows the grip's margins and their first three derivatives read: S and S' ...
+pub const MARGINS: Mask = 0b1100;
+/// ... and of S4 and its rate: both.
+pub const MARGINS_FOURTH: Mask = 0b11;
+
 /// The sums [`Motion::moving_contact`] needs over the modes (rows of Φ, or Φ_1j Ω_j², against q or q'),
 /// taken for a phase as fixed combinations of sin Ω_j τ, cos Ω_j τ, sin w t and cos w t. A free mode is
 /// q = X cos Ωτ + (V/Ω) sin Ωτ, q' = V cos Ωτ - Ω X sin Ωτ; a detuned one adds its particular solution
@@ -81,10 +110,17 @@ enum Written<'a> {
 /// is written in the same combinations with τ and 1 in place of sin Ωτ and cos Ωτ. For a moving first
 /// mass (held, the phase sums the modal coordinates of [`Motion::modal`]): on the wall the `R` = 4
 /// rows X_1, V_1, Σ Φ_1j Ω_j² q_j and its rate ([`Sums::main_weights`]), on a free frame those and the
-/// frame's three, X_f, X_N and V_f ([`Sums::frame_weights`]).
+/// frame's three, X_f, X_N and V_f ([`Sums::frame_weights`]); apart from them, for the event search's
+/// higher derivatives only, Σ Φ_1j Ω_j⁴ q_j and its rate. An evaluation sums the rows its [`Mask`]s
+/// name.
 #[derive(Clone, Debug)]
 struct Sums<const R: usize, S> {
     main: Rows<R, S>,
+    /// S4 = Σ Φ_1j Ω_j⁴ q_j and its rate ([`Sums::fourth_weights`]), written only for a phase searched
+    /// by Taylor bounds (`has_fourth`; on the heap, empty until then, so that the phases that never
+    /// write them keep their storage's size).
+    fourth: Rows<2, Vec<Share<2>>>,
+    has_fourth: bool,
     /// The modes left out of the combinations.
     odd: [usize; MAX],
     odd_n: usize,
@@ -184,27 +220,35 @@ impl<const R: usize, S: Shares<R>> Rows<R, S> {
         }
     }
 
-    /// The first `need` rows given sin and cos of the modes' angles and (sin w t, cos w t) (sliding
+    /// The rows `mask` names given sin and cos of the modes' angles and (sin w t, cos w t) (sliding
     /// only); the others are left 0. Each row is summed on its own, so a row has the same bits
-    /// however many are summed.
+    /// whichever others are summed.
     #[inline(always)]
-    fn at(
+    fn at<const MASK: Mask>(
         &self,
         n: usize,
         (sin, cos): (&[f64], &[f64]),
         wt: Option<(f64, f64)>,
-        need: usize,
     ) -> [f64; R] {
         let mut rows = [0.0; R];
+        let Some((from, to)) = span::<R>(MASK) else {
+            return rows;
+        };
         let shares = self.shares.as_ref()[..n].iter();
         for ((cos_share, sin_share), (&c, &s)) in shares.zip(cos.iter().zip(sin)) {
-            let terms = rows[..need].iter_mut().zip(cos_share).zip(sin_share);
+            let terms = rows[from..to]
+                .iter_mut()
+                .zip(&cos_share[from..to])
+                .zip(&sin_share[from..to]);
             for ((row, a), b) in terms {
                 *row += a * c + b * s;
             }
         }
         if let Some((sin_wt, cos_wt)) = wt {
-            let terms = rows[..need].iter_mut().zip(&self.sin_wt).zip(&self.cos_wt);
+            let terms = rows[from..to]
+                .iter_mut()
+                .zip(&self.sin_wt[from..to])
+                .zip(&self.cos_wt[from..to]);
             for ((row, a), b) in terms {
                 *row += a * sin_wt + b * cos_wt;
             }
@@ -213,10 +257,31 @@ impl<const R: usize, S: Shares<R>> Rows<R, S> {
     }
 }
 
-/// Adds `weights` times a mode's coordinate and rate `(q, dq)` to `rows`.
+/// The rows a [`Mask`] names, from and to (past the last), of `R`; `None` for none. A mask names
+/// consecutive rows.
+#[inline(always)]
+const fn span<const R: usize>(mask: Mask) -> Option<(usize, usize)> {
+    if mask == 0 {
+        return None;
+    }
+    let from = mask.trailing_zeros() as usize;
+    let to = (Mask::BITS - mask.leading_zeros()) as usize;
+    debug_assert!(mask >> from == (1 << (to - from)) - 1);
+    Some((from, if to < R { to } else { R }))
+}
+
+/// Adds `weights` times a mode's coordinate and rate `(q, dq)` to the rows of `rows` that `MASK`
+/// names.
 #[inline]
-fn add<const R: usize>(rows: &mut [f64; R], weights: [(f64, bool); R], (q, dq): (f64, f64)) {
-    for (row, (weight, rate)) in rows.iter_mut().zip(weights) {
+fn add<const R: usize, const MASK: Mask>(
+    rows: &mut [f64; R],
+    weights: [(f64, bool); R],
+    (q, dq): (f64, f64),
+) {
+    let Some((from, to)) = span::<R>(MASK) else {
+        return;
+    };
+    for (row, &(weight, rate)) in rows[from..to].iter_mut().zip(&weights[from..to]) {
         *row += weight * if rate { dq } else { q };
     }
 }
@@ -226,6 +291,8 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
     fn empty(n: usize) -> Sums<R, S> {
         Sums {
             main: Rows::new(n),
+            fourth: Rows::new(0),
+            has_fourth: false,
             odd: [0; MAX],
             odd_n: 0,
             rigid: None,
@@ -233,18 +300,22 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
     }
 
     /// The sums for modes `modes` from q0, q0' with the responses `response`, each row weighing mode
-    /// j by `weights(j)`, written over these.
+    /// j by `weights(j)`, written over these; S4 and its rate too if `fourth`.
     fn write(
         &mut self,
         modes: &Modes,
         w: f64,
         (q0, dq0): (&[f64; MAX], &[f64; MAX]),
         response: &[Response; MAX],
-        (sin_wt0, cos_wt0): (f64, f64),
+        ((sin_wt0, cos_wt0), fourth): ((f64, f64), bool),
         weights: impl Fn(usize) -> [(f64, bool); R],
     ) {
         let sums = self;
         sums.main.reset(modes.n);
+        sums.has_fourth = fourth;
+        if fourth {
+            sums.fourth.reset(modes.n);
+        }
         sums.odd_n = 0;
         sums.rigid = None;
         for j in 0..modes.n {
@@ -257,6 +328,9 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
                     sums.odd[sums.odd_n] = j;
                     sums.odd_n += 1;
                     sums.main.clear(j);
+                    if fourth {
+                        sums.fourth.clear(j);
+                    }
                     continue;
                 }
             };
@@ -284,6 +358,9 @@ impl<const R: usize, S: Shares<R>> Sums<R, S> {
                 w,
             };
             sums.main.fill(j, weights(j), swing);
+            if fourth {
+                sums.fourth.fill(j, Sums::fourth_weights(modes, j), swing);
+            }
         }
     }
 }
@@ -294,6 +371,14 @@ impl Sums<4, [Share<4>; MAX]> {
     fn main_weights(modes: &Modes, j: usize) -> [(f64, bool); 4] {
         let (phi, stiff) = (modes.shape[0][j], modes.first_stiff[j]);
         [(phi, false), (phi, true), (stiff, false), (stiff, true)]
+    }
+
+    /// S4's and its rate's weights on mode j, Φ_1j Ω_j⁴.
+    #[inline]
+    fn fourth_weights(modes: &Modes, j: usize) -> [(f64, bool); 2] {
+        let omega = modes.omega[j];
+        let fourth = modes.first_stiff[j] * omega * omega;
+        [(fourth, false), (fourth, true)]
     }
 
     /// The frame's rows' weights on mode j.
@@ -321,17 +406,33 @@ impl Sums<4, [Share<4>; MAX]> {
     ) -> ([f64; 4], [f64; 3]) {
         let (mut main, mut framed) = ([0.0; 4], [0.0; 3]);
         for j in 0..modes.n {
-            add(&mut main, Sums::main_weights(modes, j), (q[j], dq[j]));
+            add::<4, CONTACT>(&mut main, Sums::main_weights(modes, j), (q[j], dq[j]));
             if frame > 0 {
-                add(
-                    &mut framed,
-                    Sums::frame_weights(modes, frame, j),
-                    (q[j], dq[j]),
-                );
+                let weights = Sums::frame_weights(modes, frame, j);
+                add::<3, 0b111>(&mut framed, weights, (q[j], dq[j]));
             }
         }
         (main, framed)
     }
+}
+
+/// Rows of [`Sums`] at one time: the main four (X_1, V_1, S, S'), the frame's three (X_f, X_N,
+/// V_f; 0 on the wall), S4 and S4', and sin(w τ), cos(w τ).
+struct Summed {
+    main: [f64; 4],
+    framed: [f64; 3],
+    fourth: [f64; 2],
+    w_tau: (f64, f64),
+}
+
+/// What the event search reads at one time ([`Motion::probe`]): the contact, S' = Σ Φ_1j Ω_j² q_j',
+/// S4 = Σ Φ_1j Ω_j⁴ q_j and its rate, and cos w t (sliding; 1 gripping).
+#[derive(Clone, Copy, Debug)]
+pub struct Probe {
+    pub contact: Contact,
+    pub stiff_rate: f64,
+    pub fourth: [f64; 2],
+    pub cos_wt: f64,
 }
 
 /// The state of the ball and the first mass at one time, with the friction and the first mass's
@@ -359,6 +460,18 @@ impl Motion {
         dir: f64,
         cart: Cart,
     ) -> Motion {
+        Motion::with(chain, setup, start, (dir, cart), false)
+    }
+
+    /// [`Motion::new`]; with `fourth`, a moving first mass's sums also hold S4 and its rate, for
+    /// [`Motion::probe`].
+    pub fn with(
+        chain: Arc<Chain>,
+        setup: &Setup,
+        start: ChainState,
+        (dir, cart): (f64, Cart),
+        fourth: bool,
+    ) -> Motion {
         let mut motion = Motion {
             chain,
             dir,
@@ -373,29 +486,31 @@ impl Motion {
             v1_start: 0.0,
             store: Store::default(),
         };
-        motion.write(setup, dir, cart);
+        motion.write(setup, dir, cart, fourth);
         motion
     }
 
     /// [`Motion::new`] written over this phase's storage (see `spare.rs`): every field the new phase
-    /// reads is written, the sums' storage kept.
+    /// reads is written, the sums' storage kept. With `fourth`, a moving first mass's sums also hold
+    /// S4 and its rate, for [`Motion::probe`].
     pub fn rebuild(
         &mut self,
         chain: &Arc<Chain>,
         setup: &Setup,
         start: &ChainState,
-        dir: f64,
-        cart: Cart,
+        (dir, cart): (f64, Cart),
+        fourth: bool,
     ) {
         if !Arc::ptr_eq(&self.chain, chain) {
             self.chain = Arc::clone(chain);
         }
         self.start = *start;
-        self.write(setup, dir, cart);
+        self.write(setup, dir, cart, fourth);
     }
 
-    /// Writes the phase from `self.start` with `dir` and `cart` ([`Motion::new`]) over this one.
-    fn write(&mut self, setup: &Setup, dir: f64, cart: Cart) {
+    /// Writes the phase from `self.start` with `dir` and `cart` ([`Motion::new`]) over this one,
+    /// the sums with S4 and its rate if `fourth`.
+    fn write(&mut self, setup: &Setup, dir: f64, cart: Cart, fourth: bool) {
         (self.sin_wt0, self.cos_wt0) = sin_cos(setup.w * self.start.t);
         (self.dir, self.cart, self.push) = (dir, cart, cart.friction(setup));
         let chain = &*self.chain;
@@ -455,12 +570,12 @@ impl Motion {
             0 => {
                 let weights = |j| Sums::main_weights(modes, j);
                 let sums = self.store.wall.get_or_insert_with(|| Sums::empty(n));
-                sums.write(modes, w, (q0, dq0), response, start_wt, weights);
+                sums.write(modes, w, (q0, dq0), response, (start_wt, fourth), weights);
             }
             frame => {
                 let weights = |j| Sums::framed_weights(modes, frame, j);
                 let sums = self.store.frame.get_or_insert_with(|| Sums::empty(n));
-                sums.write(modes, w, (q0, dq0), response, start_wt, weights);
+                sums.write(modes, w, (q0, dq0), response, (start_wt, fourth), weights);
             }
         }
     }
@@ -624,17 +739,15 @@ impl Motion {
         w_tau
     }
 
-    /// The rows of [`Sums`] at `t` through the phase's combinations `sums`, with sin(w τ) and
-    /// cos(w τ), for the phase's `modes`. Only the first `need` rows are summed over the
-    /// combinations (the others are 0 but for the modes left out).
+    /// The rows of [`Sums`] that `mask` names at `t` through the phase's combinations `sums`, with
+    /// sin(w τ) and cos(w τ), for the phase's `modes` (the others are left 0).
     #[inline(always)]
-    fn rows<const R: usize, S: Shares<R>>(
+    fn rows<const R: usize, S: Shares<R>, const MASK: Mask, const FOURTH: Mask>(
         &self,
         (modes, sums): (&Modes, &Sums<R, S>),
         weights: impl Fn(usize) -> [(f64, bool); R],
         (setup, t): (&Setup, f64),
-        need: usize,
-    ) -> ([f64; R], (f64, f64)) {
+    ) -> ([f64; R], [f64; 2], (f64, f64)) {
         let tau = t - self.start.t;
         let w = setup.w;
         let n = modes.n;
@@ -650,35 +763,61 @@ impl Motion {
                 self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau,
             )
         });
-        let mut rows = sums.main.at(n, (&sin, &cos), wt, need);
+        let mut rows = sums.main.at::<MASK>(n, (&sin, &cos), wt);
+        let mut fourth = sums.fourth.at::<FOURTH>(n, (&sin, &cos), wt);
         for &j in &sums.odd[..sums.odd_n] {
             let motion = self.mode_at(modes, w, (j, tau), (sin[j], cos[j]), w_tau);
-            add(&mut rows, weights(j), motion);
+            add::<R, MASK>(&mut rows, weights(j), motion);
+            if FOURTH != 0 {
+                add::<2, FOURTH>(&mut fourth, Sums::fourth_weights(modes, j), motion);
+            }
         }
         if self.push != 0.0 {
             for j in 0..n {
                 let motion = self.pushed(modes, (j, tau), (sin[j], cos[j]));
-                add(&mut rows, weights(j), motion);
+                add::<R, MASK>(&mut rows, weights(j), motion);
+                if FOURTH != 0 {
+                    add::<2, FOURTH>(&mut fourth, Sums::fourth_weights(modes, j), motion);
+                }
             }
         }
-        (rows, w_tau)
+        (rows, fourth, w_tau)
     }
 
-    /// The main and the frame's rows of [`Sums`] at `t` through the phase's combinations `sums`, with
-    /// sin(w τ) and cos(w τ); the frame's rows only if `all`.
+    /// The rows of the phase's [`Sums`] (`written`) that `MASK` (of the main and the frame's) and
+    /// `FOURTH` (of S4 and its rate) name at `t`, for the phase's `modes`, with sin(w τ) and cos(w τ).
     #[inline(always)]
-    fn frame_rows(
+    fn summed<const MASK: Mask, const FOURTH: Mask>(
         &self,
-        (modes, sums): (&Modes, &Sums<7, Vec<Share<7>>>),
+        (modes, written): (&Modes, Written<'_>),
         setup: &Setup,
         t: f64,
-        all: bool,
-    ) -> ([f64; 4], [f64; 3], (f64, f64)) {
-        let frame = self.start.frame;
-        let weights = |j| Sums::framed_weights(modes, frame, j);
-        let need = if all { 7 } else { 4 };
-        let ([a, b, c, d, e, f, g], w_tau) = self.rows((modes, sums), weights, (setup, t), need);
-        ([a, b, c, d], [e, f, g], w_tau)
+    ) -> Summed {
+        match written {
+            Written::Wall(sums) => {
+                let weights = |j| Sums::main_weights(modes, j);
+                let (main, fourth, w_tau) =
+                    self.rows::<4, _, MASK, FOURTH>((modes, sums), weights, (setup, t));
+                Summed {
+                    main,
+                    framed: [0.0; 3],
+                    fourth,
+                    w_tau,
+                }
+            }
+            Written::Frame(sums) => {
+                let frame = self.start.frame;
+                let weights = |j| Sums::framed_weights(modes, frame, j);
+                let ([a, b, c, d, e, f, g], fourth, w_tau) =
+                    self.rows::<7, _, MASK, FOURTH>((modes, sums), weights, (setup, t));
+                Summed {
+                    main: [a, b, c, d],
+                    framed: [e, f, g],
+                    fourth,
+                    w_tau,
+                }
+            }
+        }
     }
 
     /// The ball's impulse ∫ F dt since t0 and the friction F at t0 + τ while it slides, Eqs. (1), (2):
@@ -696,43 +835,50 @@ impl Motion {
     /// the event functions it made the chain with string friction 3% slower.)
     #[inline(never)]
     pub fn contact(&self, setup: &Setup, t: f64) -> Contact {
-        self.contact_of(setup, t, true)
-    }
-
-    /// [`Motion::contact`] for the event search without string friction, which reads the ball, the
-    /// first mass's velocity and acceleration and the friction: on a free frame the frame's rows are
-    /// not summed (the displacement relative to it and its motion are wrong); the rest has the bits
-    /// `contact` gives. (One body for its callers, as `contact` is.)
-    #[inline(never)]
-    pub fn probe(&self, setup: &Setup, t: f64) -> Contact {
-        self.contact_of(setup, t, false)
-    }
-
-    /// [`Motion::contact`], with the frame's rows summed only if `all`.
-    #[inline(always)]
-    fn contact_of(&self, setup: &Setup, t: f64, all: bool) -> Contact {
         let frame = self.start.frame;
         if self.is_held() && frame == 0 {
             return self.held_contact(setup, t);
         }
         let modes = self.modes();
-        match self.sums() {
-            Some(Written::Wall(sums)) => {
-                let weights = |j| Sums::main_weights(modes, j);
-                let (rows, w_tau) = self.rows((modes, sums), weights, (setup, t), 4);
-                return self.moving_contact(modes, setup, t, (&rows, &[0.0; 3]), w_tau);
-            }
-            Some(Written::Frame(sums)) => {
-                let (main, framed, w_tau) = self.frame_rows((modes, sums), setup, t, all);
-                return self.moving_contact(modes, setup, t, (&main, &framed), w_tau);
-            }
-            None => {}
+        if let Some(written) = self.sums() {
+            let r = self.summed::<{ CONTACT | FRAME }, 0>((modes, written), setup, t);
+            return self.moving_contact(modes, setup, t, (&r.main, &r.framed), r.w_tau);
         }
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
         let moving_frame = if self.is_held() { 0 } else { frame };
         let (main, framed) = Sums::from_modal(modes, moving_frame, (&q, &dq));
         self.moving_contact(modes, setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
+    }
+
+    /// For the event search of a first mass moving without string friction (the phase has its sums):
+    /// [`Motion::contact`] from the main rows `MASK` names ([`SLIP`] or [`MARGINS`]; a row left out
+    /// reads 0, so the contact holds only what they give), with what the event's higher derivatives
+    /// read ([`Probe`], S4 and its rate as `FOURTH` names them, [`SLIP_FOURTH`] or
+    /// [`MARGINS_FOURTH`]; 0 where it does not). Its bits are `contact`'s where it reads the same rows; the frame's rows are
+    /// not summed. (One body for its callers, as `contact` is.)
+    #[inline(never)]
+    pub fn probe<const MASK: Mask, const FOURTH: Mask>(&self, setup: &Setup, t: f64) -> Probe {
+        let modes = self.modes();
+        let Some(written) = self.sums().filter(Written::has_fourth) else {
+            // Not reached (a first mass is held only by string friction, and the phases searched so
+            // are built with S4); the NaNs prove nothing.
+            return Probe {
+                contact: self.contact(setup, t),
+                stiff_rate: f64::NAN,
+                fourth: [f64::NAN; 2],
+                cos_wt: f64::NAN,
+            };
+        };
+        let r = self.summed::<MASK, FOURTH>((modes, written), setup, t);
+        let contact = self.moving_contact(modes, setup, t, (&r.main, &r.framed), r.w_tau);
+        let (sin_w_tau, cos_w_tau) = r.w_tau;
+        Probe {
+            contact,
+            stiff_rate: r.main[3],
+            fourth: r.fourth,
+            cos_wt: self.cos_wt0 * cos_w_tau - self.sin_wt0 * sin_w_tau,
+        }
     }
 
     /// [`Motion::contact`] of a moving first mass given the phase's `modes`, the rows of [`Sums`] at
@@ -840,6 +986,14 @@ impl Motion {
 
     /// The whole chain at `t`.
     pub fn full(&self, setup: &Setup, t: f64) -> ChainState {
+        self.contact_and_full(setup, t).1
+    }
+
+    /// [`Motion::contact`] and [`Motion::full`] at `t`, the modal coordinates taken once for both (the
+    /// held ring's search reads both at every evaluation): the contact is the one `contact` gives, bit
+    /// for bit (the same rows from the same sums or modal coordinates).
+    #[inline(always)]
+    pub fn contact_and_full(&self, setup: &Setup, t: f64) -> (Contact, ChainState) {
         let modes = self.modes();
         let (mut q, mut dq) = ([0.0; MAX], [0.0; MAX]);
         let (sin_w_tau, cos_w_tau) = self.modal(setup, t, &mut q, &mut dq);
@@ -848,20 +1002,18 @@ impl Motion {
         let mut searched = None;
         let contact = if self.is_held() && self.start.frame == 0 {
             self.held_contact(setup, t)
-        } else if let Some(Written::Wall(sums)) = self.sums() {
-            let weights = |j| Sums::main_weights(modes, j);
-            let (rows, w_tau) = self.rows((modes, sums), weights, (setup, t), 4);
-            self.moving_contact(modes, setup, t, (&rows, &[0.0; 3]), w_tau)
-        } else if let Some(Written::Frame(sums)) = self.sums() {
-            let (main, framed, w_tau) = self.frame_rows((modes, sums), setup, t, true);
-            searched = Some((main, framed));
-            self.moving_contact(modes, setup, t, (&main, &framed), w_tau)
+        } else if let Some(written) = self.sums() {
+            let r = self.summed::<{ CONTACT | FRAME }, 0>((modes, written), setup, t);
+            if let Written::Frame(_) = written {
+                searched = Some((r.main, r.framed));
+            }
+            self.moving_contact(modes, setup, t, (&r.main, &r.framed), r.w_tau)
         } else {
             let frame = if self.is_held() { 0 } else { self.start.frame };
             let (main, framed) = Sums::from_modal(modes, frame, (&q, &dq));
             self.moving_contact(modes, setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
-        }
-        .state;
+        };
+        let state = &contact.state;
         let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
         modes.expand_both((&q, &dq), (&mut x, &mut v));
         if self.is_held() && self.start.frame > 0 {
@@ -872,21 +1024,22 @@ impl Motion {
                 x[i] = rest_line(&self.chain, &self.start, i) + x[i - 1];
                 v[i] = v[i - 1];
             }
-            (x[0], v[0]) = (contact.x, 0.0);
+            (x[0], v[0]) = (state.x, 0.0);
         } else if let Some(Written::Wall(_)) = self.sums() {
-            (x[0], v[0]) = (contact.x, contact.v);
+            (x[0], v[0]) = (state.x, state.v);
         } else if let Some(([x1, v1, ..], [xf, _, vf])) = searched {
             let frame = self.start.frame;
             (x[0], v[0], x[frame], v[frame]) = (x1, v1, xf, vf);
         }
-        ChainState {
+        let full = ChainState {
             t,
-            vx: contact.vx,
-            omega: contact.omega,
+            vx: state.vx,
+            omega: state.omega,
             x,
             v,
             frame: self.start.frame,
-        }
+        };
+        (contact, full)
     }
 
     /// A bound on |q_j'| over the rest of the contact, per mode, for a sliding phase: the smaller of the
@@ -946,36 +1099,130 @@ impl Motion {
     ///
     /// slip'' = -F' (1/m_eff + 1/m_1) + Σ Φ_1j Ω_j² q_j', with |F'| <= mu N0 w.
     pub fn slip_curvature(&self, setup: &Setup) -> (f64, f64) {
+        let [curvature, terms, _] = self.slip_bounds_of::<false>(setup);
+        (curvature, terms)
+    }
+
+    /// [`Motion::slip_curvature`]'s bound and terms, and a bound on |slip''''|, for a slide of a moving
+    /// first mass. slip'''' = -F''' (1/m_eff + 1/m_1) + Σ Φ_1j Ω_j² q_j''' with |F'''| <= mu N0 w³
+    /// and q_j''' = -Ω_j² q_j' + Φ_1j F' (the string friction is constant), so |slip''''| <=
+    /// mu N0 w³ (1/m_eff + 1/m_1) + Σ |Φ_1j| Ω_j² (Ω_j² |q_j'| + |Φ_1j| mu N0 w), with the same bound
+    /// on |q_j'| as the curvature's.
+    pub fn slip_bounds(&self, setup: &Setup) -> [f64; 3] {
+        self.slip_bounds_of::<true>(setup)
+    }
+
+    /// [`Motion::slip_bounds`], the fourth derivative's bound only `WITH_FOURTH` (else 0).
+    #[inline(always)]
+    fn slip_bounds_of<const WITH_FOURTH: bool>(&self, setup: &Setup) -> [f64; 3] {
         let modes = self.modes();
         let bounds = self.speed_bounds(setup);
-        let mut curvature =
-            setup.peak_friction() * setup.w * (1.0 / setup.m_eff + 1.0 / modes.mass[0]);
+        let (force, w) = (setup.peak_friction(), setup.w);
+        let inverse = 1.0 / setup.m_eff + 1.0 / modes.mass[0];
+        let mut curvature = force * w * inverse;
+        let mut fourth = force * w.powi(3) * inverse;
         let mut terms = 0.0;
         for (j, bound) in bounds.iter().enumerate().take(modes.n) {
-            curvature += modes.first_stiff[j].abs() * bound;
-            terms += modes.shape[0][j].abs() * bound;
+            let (stiff, phi, omega) = (
+                modes.first_stiff[j].abs(),
+                modes.shape[0][j].abs(),
+                modes.omega[j],
+            );
+            curvature += stiff * bound;
+            terms += phi * bound;
+            if WITH_FOURTH {
+                fourth += stiff * (omega * omega * bound + phi * force * w);
+            }
         }
-        (curvature, terms)
+        [curvature, terms, if WITH_FOURTH { fourth } else { 0.0 }]
     }
 
     /// The grip's bound on the second derivative of its margins ±F_s - mu N, and the size of the terms
     /// of F_s. Each mode swings about its equilibrium with sqrt(q'² + Ω² (q - q_e)²) = E_j fixed, so
     /// |F_s''| = m_eff |Σ Φ_1j Ω_j⁴ (q_j - q_e)| <= m_eff Σ |Φ_1j| Ω_j³ E_j; mu N'' is at most mu N0 w².
     pub fn margin_curvature(&self, setup: &Setup) -> (f64, f64) {
+        let [curvature, terms, _] = self.margin_bounds_of::<false>(setup);
+        (curvature, terms)
+    }
+
+    /// [`Motion::margin_curvature`]'s bound and terms, and a bound on the fourth derivative of the
+    /// margins: F_s'''' = m_eff Σ Φ_1j Ω_j⁶ (q_j - q_e), so |F_s''''| <= m_eff Σ |Φ_1j| Ω_j⁵ E_j, and
+    /// |mu N''''| <= mu N0 w⁴.
+    pub fn margin_bounds(&self, setup: &Setup) -> [f64; 3] {
+        self.margin_bounds_of::<true>(setup)
+    }
+
+    /// [`Motion::margin_bounds`], the fourth derivative's bound only `WITH_FOURTH` (else 0).
+    #[inline(always)]
+    fn margin_bounds_of<const WITH_FOURTH: bool>(&self, setup: &Setup) -> [f64; 3] {
         let modes = self.modes();
         let mut curvature = setup.peak_friction() * setup.w * setup.w;
+        let mut fourth = curvature * setup.w * setup.w;
         let mut terms = setup.peak_friction();
         for j in 0..modes.n {
             let omega = modes.omega[j];
             let reach = setup.m_eff * modes.shape[0][j].abs() * omega * self.grip_swing(setup, j);
             curvature += reach * omega * omega;
+            if WITH_FOURTH {
+                fourth += reach * omega.powi(4);
+            }
             terms += reach;
         }
         if self.push != 0.0 {
             // The string friction's share of F_s, m_eff push/m_1, and the equilibria's Σ Φ_1j Ω_j² q_e.
             terms += 2.0 * setup.m_eff * (self.push / modes.mass[0]).abs();
         }
-        (curvature, terms)
+        [curvature, terms, if WITH_FOURTH { fourth } else { 0.0 }]
+    }
+
+    /// The constant forcing of S'' = Σ Φ_1j Ω_j² q_j'' = drive - S4: each mode obeys
+    /// q_j'' = Φ_1j F + s_j push - Ω_j² q_j (F the ball's friction while it slides, s_j the string
+    /// friction's share, `Motion::push_shape`), so drive = F Σ Φ_1j² Ω_j² + push Σ Φ_1j Ω_j² s_j:
+    /// the two sums, the second times push, for a phase of a moving first mass.
+    pub fn drives(&self) -> [f64; 2] {
+        let modes = self.modes();
+        let (mut friction, mut push) = (0.0, 0.0);
+        for j in 0..modes.n {
+            friction += modes.first_stiff[j] * modes.shape[0][j];
+            if self.push != 0.0 {
+                push += modes.first_stiff[j] * self.push_shape(j);
+            }
+        }
+        [friction, push * self.push]
+    }
+
+    /// slip'' and slip''' of a slide of a moving first mass at a probe `p` ([`Motion::probe`] with
+    /// [`SLIP`]), given its [`Motion::drives`]: with slip' = -F/m_eff - V_1' and
+    /// V_1' = (F + push)/m_1 - S, slip'' = S' - F' (1/m_eff + 1/m_1) and
+    /// slip''' = w² F (1/m_eff + 1/m_1) + drive - S4 (F = dir mu N0 sin w t, F'' = -w² F).
+    pub fn slip_higher(
+        &self,
+        setup: &Setup,
+        p: &Probe,
+        [on_friction, on_push]: [f64; 2],
+    ) -> (f64, f64) {
+        let inverse = 1.0 / setup.m_eff + 1.0 / self.modes().mass[0];
+        let friction = p.contact.friction;
+        let friction_rate = self.dir * setup.peak_friction() * setup.w * p.cos_wt;
+        let drive = on_friction * friction + on_push;
+        (
+            p.stiff_rate - inverse * friction_rate,
+            inverse * setup.w * setup.w * friction - p.fourth[0] + drive,
+        )
+    }
+
+    /// F_s and its first three derivatives at a probe `p` of a grip of a moving first mass
+    /// ([`Motion::probe`] with [`MARGINS`]), given its [`Motion::drives`]: F_s = m_eff (S - push/m_1)
+    /// (Eq. (5) on the chain), F_s' = m_eff S', F_s'' = m_eff (drive - S4), F_s''' = -m_eff S4'.
+    pub fn grip_force(&self, setup: &Setup, p: &Probe, [_, on_push]: [f64; 2]) -> [f64; 4] {
+        let m_eff = setup.m_eff;
+        let [fourth, fourth_rate] = p.fourth;
+        [
+            p.contact.friction,
+            p.contact.friction_rate,
+            m_eff * (on_push - fourth),
+            -(m_eff * fourth_rate),
+        ]
     }
 
     /// A bound on |V_1''| over the phase of a moving first mass, and the size of the terms of V_1.

@@ -52,13 +52,13 @@ pub fn first_event(
         Ball::Grip => 0.0,
     };
     let push = |t: f64| {
-        let c = motion.contact(setup, t);
+        let (c, full) = motion.contact_and_full(setup, t);
         let f_rate = if dir == 0.0 {
             c.friction_rate
         } else {
             dir * setup.friction_limit_rate(t)
         };
-        let (push, rate) = held_push(chain, (c.friction, f_rate), c.accel, &motion.full(setup, t));
+        let (push, rate) = held_push(chain, (c.friction, f_rate), c.accel, &full);
         (c, push, rate)
     };
     let (push_curvature, push_terms) = push_bounds(motion, setup);

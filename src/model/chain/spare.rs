@@ -38,6 +38,28 @@ impl ChainMotion {
         dir: f64,
         cart: Cart,
     ) -> ChainMotion {
+        ChainMotion::build(chain, setup, start, (dir, cart), false)
+    }
+
+    /// [`ChainMotion::new`] for a phase searched by Taylor bounds: its sums also hold S4 and its rate
+    /// ([`Motion::probe`]).
+    pub fn searched(
+        chain: &Arc<Chain>,
+        setup: &Setup,
+        start: &ChainState,
+        dir: f64,
+        cart: Cart,
+    ) -> ChainMotion {
+        ChainMotion::build(chain, setup, start, (dir, cart), true)
+    }
+
+    fn build(
+        chain: &Arc<Chain>,
+        setup: &Setup,
+        start: &ChainState,
+        (dir, cart): (f64, Cart),
+        fourth: bool,
+    ) -> ChainMotion {
         let spare = SPARE
             .try_with(|spare| spare.try_borrow_mut().ok().and_then(|mut s| s.pop()))
             .ok()
@@ -45,15 +67,15 @@ impl ChainMotion {
         if let Some(mut storage) = spare
             && let Some(motion) = Arc::get_mut(&mut storage)
         {
-            motion.rebuild(chain, setup, start, dir, cart);
+            motion.rebuild(chain, setup, start, (dir, cart), fourth);
             return ChainMotion(storage);
         }
-        ChainMotion(Arc::new(Motion::new(
+        ChainMotion(Arc::new(Motion::with(
             chain.clone(),
             setup,
             *start,
-            dir,
-            cart,
+            (dir, cart),
+            fourth,
         )))
     }
 }
@@ -141,7 +163,7 @@ mod tests {
                     let s = start(k + round);
                     let fresh = Motion::new(chain.clone(), &setup, s, dir, cart);
                     let motion = Arc::get_mut(&mut storage).expect("one owner");
-                    motion.rebuild(&chain, &setup, &s, dir, cart);
+                    motion.rebuild(&chain, &setup, &s, (dir, cart), false);
                     for step in 0..5 {
                         let t = s.t + (setup.duration - s.t) * step as f64 / 4.0;
                         let what = format!("frame {frame_mass} round {round} phase {k} t {t}");
