@@ -9,7 +9,7 @@
 //! carries, (f'''(t + h) - f'''(t - h)) / 2h with h = 1e-5 of the search's coarse step (pi over the
 //! fastest angular frequency present): its truncation error is (hΩ)²/6 ≈ 2e-10 of the bound, covered by
 //! a relative room of 1e-6, and its rounding is at most a few ulps of the largest |f'''| over h, covered
-//! by 1e3 ulps of it over h. The differences stay 2h inside the phase, where N = max(sin w t, 0) is
+//! by 1e3 ulps of it over h. The differences stay 2h inside the phase (h is at most an eighth of it), where N = max(sin w t, 0) is
 //! smooth. Halving a bound that is reached fails the test (`fails_when_halved`).
 
 use std::cell::{Cell, RefCell};
@@ -60,15 +60,18 @@ pub fn sample<const K: usize>(
     };
     let scale = SCALE.get();
     let bounds = bounds.map(|b| b.map(|x| x * scale));
-    let h = 1e-5 * step;
+    // A phase shorter than 8h takes a smaller h, so that t ± h stays inside it.
+    let h = (1e-5 * step).min((end - t0) / 8.0);
     let n = ((16.0 * (end - t0) / step).ceil() as usize).clamp(256, 8192);
     let mut third_scale = [0.0f64; K];
     let mut samples = Vec::with_capacity(n + 1);
     for i in 0..=n {
         let t = t0 + 2.0 * h + (end - t0 - 4.0 * h) * i as f64 / n as f64;
-        let (at, before, after) = (f(t), f(t - h), f(t + h));
+        // Divided by the times' own difference: on a phase a few ulps of t long, 2h is not it.
+        let (low, high) = (t - h, t + h);
+        let (at, before, after) = (f(t), f(low), f(high));
         let second = at.map(|b| b[2]);
-        let fourth = std::array::from_fn(|k| (after[k][3] - before[k][3]) / (2.0 * h));
+        let fourth = std::array::from_fn(|k| (after[k][3] - before[k][3]) / (high - low));
         for k in 0..K {
             third_scale[k] = third_scale[k].max(at[k][3].abs());
         }
