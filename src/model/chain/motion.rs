@@ -1074,3 +1074,26 @@ fn turn(
 fn rest_line(chain: &Chain, start: &ChainState, i: usize) -> f64 {
     start.x[0] * (chain.n - i) as f64 / chain.n as f64
 }
+
+impl Motion {
+    /// The rigid ball's slip v_x - r ω - V_1 on a first mass sliding on the wall without string
+    /// friction, its rate -F/m_eff - V_1', and sin(w τ), cos(w τ) (τ = t - t0), from the phase's
+    /// sums without the rate of Σ Φ_1j Ω_j² q_j, which the slip does not read: the bits
+    /// [`Motion::contact`] gives them, for an event search that needs only the slip. `None` gripping,
+    /// held, on a free frame or with string friction.
+    #[inline(never)]
+    pub fn slip_by_sums(&self, setup: &Setup, t: f64) -> Option<(f64, f64, (f64, f64))> {
+        let Some(Written::Wall(sums)) = self.sums() else {
+            return None;
+        };
+        if self.is_grip() || self.push != 0.0 {
+            return None;
+        }
+        let modes = self.modes();
+        let weights = |j| Sums::main_weights(modes, j);
+        let (rows, w_tau) = self.rows((modes, sums), weights, (setup, t), 3);
+        let c = self.moving_contact(modes, setup, t, (&rows, &[0.0; 3]), w_tau);
+        let rate = -c.friction / setup.m_eff - c.accel;
+        Some((setup.slip(&c.state), rate, w_tau))
+    }
+}
