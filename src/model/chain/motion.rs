@@ -99,6 +99,8 @@ pub const SLIP_FOURTH: Mask = 0b01;
 pub const MARGINS: Mask = 0b1100;
 /// ... and of S4 and its rate: both.
 pub const MARGINS_FOURTH: Mask = 0b11;
+/// The main rows the slide's slip and its rate read: V_1 and S.
+const SLIP_RATE: Mask = 0b0110;
 
 /// The sums [`Motion::moving_contact`] needs over the modes (rows of Φ, or Φ_1j Ω_j², against q or q'),
 /// taken for a phase as fixed combinations of sin Ω_j τ, cos Ω_j τ, sin w t and cos w t. A free mode is
@@ -1320,4 +1322,25 @@ fn turn(
 /// the springs behind a still first mass are at rest.
 fn rest_line(chain: &Chain, start: &ChainState, i: usize) -> f64 {
     start.x[0] * (chain.n - i) as f64 / chain.n as f64
+}
+
+impl Motion {
+    /// The rigid ball's slip v_x - r ω - V_1 on a first mass sliding on the wall without string
+    /// friction, its rate -F/m_eff - V_1', and sin(w τ), cos(w τ) (τ = t - t0), from the phase's
+    /// sums without the rate of Σ Φ_1j Ω_j² q_j, which the slip does not read: the bits
+    /// [`Motion::contact`] gives them, for an event search that needs only the slip. `None` gripping,
+    /// held, on a free frame or with string friction.
+    #[inline(never)]
+    pub fn slip_by_sums(&self, setup: &Setup, t: f64) -> Option<(f64, f64, (f64, f64))> {
+        let written = self.sums().filter(|w| matches!(w, Written::Wall(_)))?;
+        if self.is_grip() || self.push != 0.0 {
+            return None;
+        }
+        let modes = self.modes();
+        let r = self.summed::<SLIP_RATE, 0>((modes, written), setup, t);
+        let c = self.moving_contact(modes, setup, t, (&r.main, &r.framed), r.w_tau);
+        let w_tau = r.w_tau;
+        let rate = -c.friction / setup.m_eff - c.accel;
+        Some((setup.slip(&c.state), rate, w_tau))
+    }
 }

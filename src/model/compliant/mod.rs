@@ -1086,7 +1086,7 @@ impl Contact for CompliantBall {
                 // A detuned, damped slide on the single cart without string friction searches the
                 // patch's slip written once for the phase: the rigid slip by the cart's sums, e' by
                 // the stretch's, one `sin_cos2` and one `exp` an evaluation. Its point is computed
-                // only where the search ends; other slides evaluate theirs.
+                // only where the search ends; slides but these two evaluate theirs.
                 let sums = match &slide.rigid {
                     Rigid::Cart(rigid) if setup.cart_friction == 0.0 => rigid
                         .slip_sums(setup)
@@ -1094,13 +1094,28 @@ impl Contact for CompliantBall {
                         .map(|(sums, rates)| (rigid, sums, rates)),
                     _ => None,
                 };
+                // So does one on a chain sliding on the wall without string friction: the rigid
+                // slip from the chain's sums (its rows but the last), e' by the stretch's at the
+                // chain's sin and cos of w τ, one `exp` more an evaluation.
+                let chain_sums = match &slide.rigid {
+                    Rigid::Chain(motion) if setup.cart_friction == 0.0 => {
+                        slide.stretch.rates(w).and_then(|rates| {
+                            let at_start = motion.slip_by_sums(setup, t0)?;
+                            Some((&**motion, at_start, rates))
+                        })
+                    }
+                    _ => None,
+                };
                 // The patch's slip at the start, and the point there where the search evaluates
                 // points.
-                let (start_slip, start) = match &sums {
-                    Some((rigid, _, rates)) => {
+                let (start_slip, start) = match (&sums, &chain_sums) {
+                    (Some((rigid, _, rates)), _) => {
                         (setup.slip(&rigid.start) - rates.at(t0, (0.0, 1.0)).0, None)
                     }
-                    None => {
+                    (None, Some((_, (slip, _, w_tau), rates))) => {
+                        (slip - rates.at(t0, *w_tau).0, None)
+                    }
+                    (None, None) => {
                         let p = slide.at(setup, t0);
                         (slide.patch_slip(setup, &p).0, Some(p))
                     }
@@ -1129,6 +1144,23 @@ impl Contact for CompliantBall {
                         let (value, rate, _, _) = sums.event(angles, constants);
                         let (de, dde) = rates.at(t, angles.0);
                         [(value + dir * de, rate + dir * dde)]
+                    }
+                });
+                // The chain's: at t0, the start's slip above (the same sums, not evaluated again).
+                let by_chain = chain_sums.map(|(motion, (_, rate, w_tau), rates)| {
+                    let at_start = (
+                        -dir * (start_slip - offset),
+                        -dir * (rate - rates.at(t0, w_tau).1),
+                    );
+                    move |t: f64| {
+                        if t == t0 {
+                            return [at_start];
+                        }
+                        let (slip, rate, w_tau) = motion
+                            .slip_by_sums(setup, t)
+                            .expect("the phase's sums gave the slip at t0");
+                        let (de, dde) = rates.at(t, w_tau);
+                        [(-dir * ((slip - de) - offset), -dir * (rate - dde))]
                     }
                 });
                 // The patch's slip against `dir`, with the point it was measured at (the search's
@@ -1204,6 +1236,8 @@ impl Contact for CompliantBall {
                 let search = |from: f64, to: f64, step: f64, curvature: f64| {
                     if let Some(by_sums) = &by_sums {
                         first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
+                    } else if let Some(by_chain) = &by_chain {
+                        first_rise_from_tangent(by_chain, from, to, step, [curvature], [noise])
                     } else if setup.cart_friction == 0.0 {
                         let slip_only = |t: f64| [slip(t).1];
                         first_rise_from_tangent(slip_only, from, to, step, [curvature], [noise])
@@ -1518,5 +1552,70 @@ mod tests {
             }
         }
         assert_eq!(kinds, [true, true], "slides and grips");
+    }
+
+    /// The slip a chain's slide searches by its sums is the one its full evaluation gives: the rigid
+    /// slip v_x - r omega - V_1 and its rate bit for bit, the patch's (less e' and its rate from the
+    /// stretch's sums at the chain's angle w τ) to rounding, over random slides on chains of 1 to 12
+    /// masses sliding either way, the first mass moving either way, light to heavy damping.
+    #[test]
+    fn a_chains_slip_by_sums_is_its_slip_evaluated() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut uniform = move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for case in 0..40 {
+            let params = Params {
+                chain: (1.0 + 12.0 * uniform()).floor(),
+                stiffness: 10f64.powf(1.0 + 4.0 * uniform()),
+                ball_stiffness: 10f64.powf(4.0 + 2.0 * uniform()),
+                ball_damping: 0.05 + 2.0 * uniform(),
+                ..Params::default()
+            };
+            let setup = Setup::new(&params);
+            let chain = Chain::shared(&params, &setup);
+            let dir = if uniform() < 0.5 { 1.0 } else { -1.0 };
+            let cart = Cart::Moving(if uniform() < 0.5 { 1 } else { -1 });
+            let mut start = ChainState::from_contact(&setup.initial(params.spin));
+            start.t = 0.8 * setup.duration * uniform();
+            for i in 0..chain.n {
+                start.x[i] = 1e-4 * (2.0 * uniform() - 1.0);
+                start.v[i] = 2.0 * uniform() - 1.0;
+            }
+            let motion = ChainMotion::new(chain.clone(), &setup, start, dir, cart);
+            let spring = BallSpring::new(&params, &setup);
+            let stretch = Stretch::new(&spring, &setup, dir, start.t, 1e-4 * uniform());
+            let rates = stretch.rates(setup.w).expect("damped");
+            let slide = CompliantSlide {
+                rigid: Rigid::Chain(Arc::new(motion)),
+                stretch,
+            };
+            let Rigid::Chain(motion) = &slide.rigid else {
+                unreachable!("built as a chain's slide")
+            };
+            let w = setup.w;
+            let scale =
+                (start.vx.abs() + setup.r * start.omega.abs() + slide.slip_bounds(&setup).1)
+                    + stretch.speed(w) * (1.0 + stretch.lambda() / w);
+            for k in 0..=12 {
+                let t = start.t + (setup.duration - start.t) * (f64::from(k) + uniform()) / 13.0;
+                let what = format!("case {case} {params:?} t {t}");
+                let p = slide.at(&setup, t);
+                let (slip, rate, w_tau) = motion.slip_by_sums(&setup, t).expect("written");
+                assert_eq!(slip.to_bits(), setup.slip(&p.state).to_bits(), "{what}");
+                assert_eq!(rate.to_bits(), p.slip_rate.to_bits(), "{what}");
+                let (de, dde) = rates.at(t, w_tau);
+                let (patch, patch_rate) = slide.patch_slip(&setup, &p);
+                assert!((slip - de - patch).abs() <= 1e-13 * scale, "{what}");
+                let rate_scale = scale * (stretch.lambda() + w + chain.slide.fastest);
+                assert!(
+                    (rate - dde - patch_rate).abs() <= 1e-13 * rate_scale,
+                    "{what}"
+                );
+            }
+        }
     }
 }
