@@ -1094,13 +1094,24 @@ impl Contact for CompliantBall {
                         .map(|(sums, rates)| (rigid, sums, rates)),
                     _ => None,
                 };
+                // On a free frame, the same by the frame's sums.
+                let frame_sums = match &slide.rigid {
+                    Rigid::Frame(motion, _) if setup.cart_friction == 0.0 => motion
+                        .slide_sums(setup)
+                        .zip(slide.stretch.rates(w))
+                        .map(|(sums, rates)| (&motion.start.s, sums, rates)),
+                    _ => None,
+                };
                 // The patch's slip at the start, and the point there where the search evaluates
                 // points.
-                let (start_slip, start) = match &sums {
-                    Some((rigid, _, rates)) => {
+                let (start_slip, start) = match (&sums, &frame_sums) {
+                    (Some((rigid, _, rates)), _) => {
                         (setup.slip(&rigid.start) - rates.at(t0, (0.0, 1.0)).0, None)
                     }
-                    None => {
+                    (_, Some((start, _, rates))) => {
+                        (setup.slip(start) - rates.at(t0, (0.0, 1.0)).0, None)
+                    }
+                    _ => {
                         let p = slide.at(setup, t0);
                         (slide.patch_slip(setup, &p).0, Some(p))
                     }
@@ -1128,6 +1139,22 @@ impl Contact for CompliantBall {
                         let angles = rigid.angles(setup, t);
                         let (value, rate, _, _) = sums.event(angles, constants);
                         let (de, dde) = rates.at(t, angles.0);
+                        [(value + dir * de, rate + dir * dde)]
+                    }
+                });
+                let by_frame_sums = frame_sums.map(|(_, sums, rates)| {
+                    let constants = sums.constants(offset);
+                    let ((_, rate), _) = sums.at(setup, t0, constants);
+                    let at_start = (
+                        -dir * (start_slip - offset),
+                        rate + dir * rates.at(t0, (0.0, 1.0)).1,
+                    );
+                    move |t: f64| {
+                        if t == t0 {
+                            return [at_start];
+                        }
+                        let ((value, rate), angle) = sums.at(setup, t, constants);
+                        let (de, dde) = rates.at(t, angle);
                         [(value + dir * de, rate + dir * dde)]
                     }
                 });
@@ -1203,6 +1230,8 @@ impl Contact for CompliantBall {
                 // Without string friction the cart has no event: the slip alone is searched.
                 let search = |from: f64, to: f64, step: f64, curvature: f64| {
                     if let Some(by_sums) = &by_sums {
+                        first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
+                    } else if let Some(by_sums) = &by_frame_sums {
                         first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
                     } else if setup.cart_friction == 0.0 {
                         let slip_only = |t: f64| [slip(t).1];
