@@ -24,7 +24,7 @@ pub struct Sliding {
     pub frame: (f64, f64),
 }
 
-/// A detuned slide's slip on the free frame written once for the phase ([`SlipSums`]), as the compliant
+/// A detuned slide's slip on the free frame written once for the phase (`sums.rs`), as the compliant
 /// ball's event search reads it: that search adds its stretch's rates, which need sin and cos of w τ,
 /// the angle the slip's sums share with them, so that an evaluation is one `sin_cos2` and a dozen
 /// products, and the state is computed only where the search ends.
@@ -36,7 +36,7 @@ pub struct SlideSums<'a> {
 
 impl SlideSums<'_> {
     /// The event's value at the phase's start and its constant term, for the event -dir (slip - offset)
-    /// measured from `offset` ([`SlipSums::constants`]).
+    /// measured from `offset`.
     pub fn constants(&self, offset: f64) -> (f64, f64) {
         self.sums.constants(offset)
     }
