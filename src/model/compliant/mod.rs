@@ -1086,7 +1086,8 @@ impl Contact for CompliantBall {
                 // A detuned, damped slide on the single cart without string friction searches the
                 // patch's slip written once for the phase: the rigid slip by the cart's sums, e' by
                 // the stretch's, one `sin_cos2` and one `exp` an evaluation. Its point is computed
-                // only where the search ends; slides but these two evaluate theirs.
+                // only where the search ends (so on a chain and on a free frame, below); other slides
+                // evaluate theirs.
                 let sums = match &slide.rigid {
                     Rigid::Cart(rigid) if setup.cart_friction == 0.0 => rigid
                         .slip_sums(setup)
@@ -1106,16 +1107,27 @@ impl Contact for CompliantBall {
                     }
                     _ => None,
                 };
+                // On a free frame, the same by the frame's sums.
+                let frame_sums = match &slide.rigid {
+                    Rigid::Frame(motion, _) if setup.cart_friction == 0.0 => motion
+                        .slide_sums(setup)
+                        .zip(slide.stretch.rates(w))
+                        .map(|(sums, rates)| (&motion.start.s, sums, rates)),
+                    _ => None,
+                };
                 // The patch's slip at the start, and the point there where the search evaluates
                 // points.
-                let (start_slip, start) = match (&sums, &chain_sums) {
-                    (Some((rigid, _, rates)), _) => {
+                let (start_slip, start) = match (&sums, &chain_sums, &frame_sums) {
+                    (Some((rigid, _, rates)), _, _) => {
                         (setup.slip(&rigid.start) - rates.at(t0, (0.0, 1.0)).0, None)
                     }
-                    (None, Some((_, (slip, _, w_tau), rates))) => {
+                    (None, Some((_, (slip, _, w_tau), rates)), _) => {
                         (slip - rates.at(t0, *w_tau).0, None)
                     }
-                    (None, None) => {
+                    (None, None, Some((start, _, rates))) => {
+                        (setup.slip(start) - rates.at(t0, (0.0, 1.0)).0, None)
+                    }
+                    (None, None, None) => {
                         let p = slide.at(setup, t0);
                         (slide.patch_slip(setup, &p).0, Some(p))
                     }
@@ -1161,6 +1173,22 @@ impl Contact for CompliantBall {
                             .expect("the phase's sums gave the slip at t0");
                         let (de, dde) = rates.at(t, w_tau);
                         [(-dir * ((slip - de) - offset), -dir * (rate - dde))]
+                    }
+                });
+                let by_frame_sums = frame_sums.map(|(_, sums, rates)| {
+                    let constants = sums.constants(offset);
+                    let ((_, rate), _) = sums.at(setup, t0, constants);
+                    let at_start = (
+                        -dir * (start_slip - offset),
+                        rate + dir * rates.at(t0, (0.0, 1.0)).1,
+                    );
+                    move |t: f64| {
+                        if t == t0 {
+                            return [at_start];
+                        }
+                        let ((value, rate), angle) = sums.at(setup, t, constants);
+                        let (de, dde) = rates.at(t, angle);
+                        [(value + dir * de, rate + dir * dde)]
                     }
                 });
                 // The patch's slip against `dir`, with the point it was measured at (the search's
@@ -1238,6 +1266,8 @@ impl Contact for CompliantBall {
                         first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
                     } else if let Some(by_chain) = &by_chain {
                         first_rise_from_tangent(by_chain, from, to, step, [curvature], [noise])
+                    } else if let Some(by_sums) = &by_frame_sums {
+                        first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
                     } else if setup.cart_friction == 0.0 {
                         let slip_only = |t: f64| [slip(t).1];
                         first_rise_from_tangent(slip_only, from, to, step, [curvature], [noise])

@@ -44,7 +44,7 @@ use super::recent::Recent;
 use super::setup::{Setup, State};
 use super::transition::{self, Touched};
 use super::trig::{sin_cos, sin_cos2};
-pub use sliding::Sliding;
+pub use sliding::{SlideSums, Sliding};
 use sums::{Angles, SlipSums, force_sums};
 
 /// The ball and the cart (`x` the spring's stretch y, `v` the cart's velocity), and the frame's velocity.
@@ -591,13 +591,14 @@ impl Contact for FramedCart {
                 let noise = ROUNDING * speeds;
                 let found = if string {
                     first_rise(f, t0, end, step, [curvature, stop_curvature], [noise; 2])
-                } else if let Some(sums) = SlipSums::new(motion, setup, slip_offset) {
+                } else if let Some(sums) = SlipSums::new(motion, setup) {
+                    let constants = sums.constants(slip_offset);
                     // The slip alone, by its sums; the state is computed only where the search ends.
                     let probes = Recent::new(t0, (t0, motion.angles(setup, t0)));
                     let slip = |t: f64| {
                         let angles = motion.angles(setup, t);
                         probes.record(t, (t, angles));
-                        [sums.event(angles)]
+                        [sums.event(angles, constants)]
                     };
                     let found = first_rise(slip, t0, end, step, [curvature], [noise]);
                     let (t, angles) = probes.at(found.map_or(end, |(t, _)| t));

@@ -7,6 +7,7 @@
 use super::super::contact::Cart;
 use super::super::setup::{Setup, State};
 use super::super::trig::sin_cos;
+use super::sums::SlipSums;
 use super::{FrameMotion, FrameState, FramedCart};
 
 /// One instant of a slide on the free frame, as the compliant ball reads it.
@@ -23,7 +24,40 @@ pub struct Sliding {
     pub frame: (f64, f64),
 }
 
+/// A detuned slide's slip on the free frame written once for the phase (`sums.rs`), as the compliant
+/// ball's event search reads it: that search adds its stretch's rates, which need sin and cos of w τ,
+/// the angle the slip's sums share with them, so that an evaluation is one `sin_cos2` and a dozen
+/// products, and the state is computed only where the search ends.
+#[derive(Clone, Copy, Debug)]
+pub struct SlideSums<'a> {
+    motion: &'a FrameMotion,
+    sums: SlipSums,
+}
+
+impl SlideSums<'_> {
+    /// The event's value at the phase's start and its constant term, for the event -dir (slip - offset)
+    /// measured from `offset`.
+    pub fn constants(&self, offset: f64) -> (f64, f64) {
+        self.sums.constants(offset)
+    }
+
+    /// The event -dir (slip - offset) and its rate at `t`, given [`SlideSums::constants`], with sin and
+    /// cos of w τ there.
+    #[inline(always)]
+    pub fn at(&self, setup: &Setup, t: f64, constants: (f64, f64)) -> ((f64, f64), (f64, f64)) {
+        let angles = self.motion.angles(setup, t);
+        let (value, rate, _, _) = self.sums.event(angles, constants);
+        ((value, rate), angles.1)
+    }
+}
+
 impl FrameMotion {
+    /// The slip's sums of a slide whose cart moves on a spring without string friction and whose
+    /// response is detuned (else `None`).
+    pub fn slide_sums(&self, setup: &Setup) -> Option<SlideSums<'_>> {
+        SlipSums::new(self, setup).map(|sums| SlideSums { motion: self, sums })
+    }
+
     /// A slide (`dir` ±1) of the ball on `frame`'s cart from `start`, the cart moving relative to the
     /// frame in direction `cart` (which only string friction heeds).
     pub fn slide(setup: &Setup, frame: &FramedCart, start: FrameState, dir: f64, cart: i8) -> Self {
@@ -87,5 +121,59 @@ impl FrameMotion {
             self.dir * setup.peak_friction() * (tau * self.cos_wt0 - rise / w) / w
         };
         x0 + (self.cart * (s0.x - y) + self.p0 * tau + pushed) / body
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::super::contact::{Ball, Contact};
+    use super::super::super::params::Params;
+    use super::*;
+
+    /// The slip's sums as the compliant ball's search reads them give the event the full state gives,
+    /// -dir (slip - offset) and its rate, to rounding, with sin and cos of w τ as computed alone: from
+    /// first contact and from a quarter of the contact, on frames of 188 g and 20 g.
+    #[test]
+    fn the_slide_s_sums_give_the_full_state_s_slip() {
+        for frame in [0.188, 0.02] {
+            let params = Params {
+                frame_mass: frame,
+                ..Params::default()
+            };
+            let setup = Setup::new(&params);
+            let model = FramedCart::new(&params, &setup, frame).unwrap();
+            let (start, mode) = model.start(&setup);
+            let Ball::Slide(dir) = mode.0 else {
+                panic!("Fig. 3(c) starts sliding")
+            };
+            let first = model.motion(&setup, &start, mode);
+            let later = first.moving_at(&setup, 0.25 * setup.duration).0.state;
+            let again = model.motion(&setup, &later, mode);
+            let speeds = setup.vx1.abs() + setup.r * start.s.omega.abs();
+            for (motion, from) in [(first, start), (again, later)] {
+                let t0 = from.s.t;
+                let sums = motion.slide_sums(&setup).expect("a detuned slide");
+                for offset in [0.0, 0.25 * setup.slip(&from.s)] {
+                    let constants = sums.constants(offset);
+                    for i in 0..=40 {
+                        let t = t0 + (setup.duration - t0) * f64::from(i) / 40.0;
+                        let ((value, rate), angle) = sums.at(&setup, t, constants);
+                        let p = motion.sliding_at(&setup, t);
+                        let exact = -dir * (setup.slip(&p.state) - offset);
+                        let exact_rate = dir * (p.friction / setup.m_eff + p.accel);
+                        assert!(
+                            (value - exact).abs() <= 1e-13 * speeds,
+                            "{value} {exact} at {t}"
+                        );
+                        assert!(
+                            (rate - exact_rate).abs() <= 1e-12 * speeds / setup.duration,
+                            "{rate} {exact_rate} at {t}"
+                        );
+                        let (s, c) = sin_cos(setup.w * (t - t0));
+                        assert!((angle.0 - s).abs() <= 1e-15 && (angle.1 - c).abs() <= 1e-15);
+                    }
+                }
+            }
+        }
     }
 }

@@ -25,18 +25,21 @@ pub type Angles = ((f64, f64), (f64, f64));
 /// P = dir (F0 R - (M_t/B) A w²), B' = dir (M_t/B) b, Q = dir (M_t/B) a Ω.
 #[derive(Clone, Copy, Debug)]
 pub struct SlipSums {
-    /// The event at the phase's start, exactly dir (offset - slip0), so that rounding cannot fake a
-    /// crossing there when the offset is the start's slip.
-    start: f64,
-    /// Its constant term, dir (offset - u0' + P0/B) + dir F0 R cos(w t0)/w.
-    constant: f64,
+    dir: f64,
+    /// The slip at the phase's start, from its state.
+    slip0: f64,
+    /// The contact point's speed u0' and the momentum's share P0/B at the start.
+    contact: f64,
+    momentum: f64,
+    /// dir F0 R cos(w t0)/w.
+    impulse0: f64,
     terms: SlipTerms,
 }
 
 impl SlipSums {
-    /// The sums of `motion`, a slide with the event measured from `offset`, where its cart moves on a
-    /// spring without string friction and its response is detuned (else `None`).
-    pub fn new(motion: &FrameMotion, setup: &Setup, offset: f64) -> Option<Self> {
+    /// The sums of `motion`, a slide whose cart moves on a spring without string friction and whose
+    /// response is detuned (else `None`).
+    pub fn new(motion: &FrameMotion, setup: &Setup) -> Option<Self> {
         let amplitude = motion.amplitude?;
         let (w, omega, dir) = (setup.w, motion.omega, motion.dir);
         if motion.held || motion.string != 0.0 || omega == 0.0 || dir == 0.0 {
@@ -51,11 +54,12 @@ impl SlipSums {
         let ball = dir * (force_amplitude * inverse - share * amplitude * w * w);
         let free_cos = dir * share * (dy0 - amplitude * w * motion.cos_wt0);
         let free_sin = dir * share * (y0 - amplitude * motion.sin_wt0) * omega;
-        let contact = s0.vx - setup.r * s0.omega;
         Some(SlipSums {
-            start: dir * (offset - setup.slip(s0)),
-            constant: dir * (offset - contact + motion.p0 / body)
-                + dir * force_amplitude * inverse * motion.cos_wt0 / w,
+            dir,
+            slip0: setup.slip(s0),
+            contact: s0.vx - setup.r * s0.omega,
+            momentum: motion.p0 / body,
+            impulse0: dir * force_amplitude * inverse * motion.cos_wt0 / w,
             terms: SlipTerms::new(
                 (motion.sin_wt0, motion.cos_wt0),
                 (w, omega),
@@ -64,11 +68,26 @@ impl SlipSums {
         })
     }
 
-    /// The event -dir (slip - offset) and its first three derivatives, given the slide's `Angles`.
+    /// The event's value at the phase's start, exactly dir (offset - slip0), so that rounding cannot
+    /// fake a crossing there when the offset is the start's slip, and its constant term,
+    /// dir (offset - u0' + P0/B) + dir F0 R cos(w t0)/w, for the event measured from `offset`.
+    pub fn constants(&self, offset: f64) -> (f64, f64) {
+        let dir = self.dir;
+        (
+            dir * (offset - self.slip0),
+            dir * (offset - self.contact + self.momentum) + self.impulse0,
+        )
+    }
+
+    /// The event -dir (slip - offset) and its first three derivatives, given the slide's `Angles`
+    /// and [`SlipSums::constants`].
     #[inline(always)]
-    pub fn event(&self, ((s, c), (sin_w_tau, cos_w_tau)): Angles) -> (f64, f64, f64, f64) {
-        self.terms
-            .event((sin_w_tau, cos_w_tau), (s, c), (self.start, self.constant))
+    pub fn event(
+        &self,
+        ((s, c), (sin_w_tau, cos_w_tau)): Angles,
+        constants: (f64, f64),
+    ) -> (f64, f64, f64, f64) {
+        self.terms.event((sin_w_tau, cos_w_tau), (s, c), constants)
     }
 }
 
@@ -173,10 +192,11 @@ mod tests {
             for (motion, from) in [(first, start), (again, later)] {
                 let t0 = from.s.t;
                 let offset = 0.25 * setup.slip(&from.s);
-                let sums = SlipSums::new(&motion, &setup, offset).expect("a detuned slide");
+                let sums = SlipSums::new(&motion, &setup).expect("a detuned slide");
+                let constants = sums.constants(offset);
                 // At the start, exactly dir (offset - slip0).
                 assert_eq!(
-                    sums.event(motion.angles(&setup, t0)).0,
+                    sums.event(motion.angles(&setup, t0), constants).0,
                     dir * (offset - setup.slip(&from.s))
                 );
                 let exact = |t: f64| {
@@ -188,7 +208,7 @@ mod tests {
                 let bound = motion.slip_curvature(&setup, motion.stretch_speed(&setup));
                 for i in 0..=50 {
                     let t = t0 + (setup.duration - t0) * f64::from(i) / 50.0;
-                    let second = sums.event(motion.angles(&setup, t)).2;
+                    let second = sums.event(motion.angles(&setup, t), constants).2;
                     assert!(second.abs() <= bound * (1.0 + 1e-12), "{second} {bound}");
                 }
                 let speeds = setup.vx1.abs() + setup.r * start.s.omega.abs();
@@ -196,7 +216,7 @@ mod tests {
                 agree(
                     &setup,
                     t0,
-                    |t| sums.event(motion.angles(&setup, t)),
+                    |t| sums.event(motion.angles(&setup, t), constants),
                     exact,
                     scale,
                 );
