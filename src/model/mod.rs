@@ -6,6 +6,8 @@
 //! [`Bounce`] (results only).
 
 pub mod bounce;
+#[cfg(test)]
+mod bound_samples;
 pub mod budget;
 pub mod cart;
 pub mod chain;

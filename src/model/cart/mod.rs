@@ -550,7 +550,12 @@ fn searched<const K: usize>(
     noise: [f64; K],
 ) -> Option<(f64, usize)> {
     #[cfg(test)]
-    let sampled = bounds::sample(regime.name, &f, t0, end, step, bounds);
+    let sampled = super::bound_samples::sample(
+        || regime.name.to_string(),
+        &|t| f(t).map(|(value, rate, second, third)| [value, rate, second, third]),
+        (t0, end, step),
+        bounds,
+    );
     #[cfg(not(test))]
     let _ = regime.name;
     let found = if regime.predicted {
@@ -559,7 +564,7 @@ fn searched<const K: usize>(
         first_rise_within(f, t0, end, step, bounds, noise)
     };
     #[cfg(test)]
-    bounds::check(sampled, found.map_or(end, |(t, _)| t));
+    super::bound_samples::check(sampled, found.map_or(end, |(t, _)| t));
     found
 }
 

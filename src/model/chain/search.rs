@@ -127,9 +127,15 @@ fn searched<const K: usize>(
     noise: [f64; K],
 ) -> Option<(f64, usize)> {
     #[cfg(test)]
-    let sampled = super::bounds::sample(
-        regime,
-        motion,
+    let sampled = crate::model::bound_samples::sample(
+        || {
+            let place = if motion.start.frame > 0 {
+                "on a frame"
+            } else {
+                "on the wall"
+            };
+            format!("{regime} {place}")
+        },
         &|t| f(t).map(|b| b.0),
         (t0, end, step),
         bounds,
@@ -138,6 +144,6 @@ fn searched<const K: usize>(
     let _ = (regime, motion);
     let found = first_rise_within(f, t0, end, step, bounds, noise);
     #[cfg(test)]
-    super::bounds::check(sampled, found.map_or(end, |(t, _)| t));
+    crate::model::bound_samples::check(sampled, found.map_or(end, |(t, _)| t));
     found
 }
