@@ -19,6 +19,7 @@ use std::collections::BTreeMap;
 use proptest::prelude::*;
 
 use super::params::Params;
+use super::setup::Setup;
 use super::solve::solve;
 
 thread_local! {
@@ -164,4 +165,50 @@ pub fn run(params: impl Strategy<Value = Params>, cases: u32) -> BTreeMap<String
     let checked = checked();
     eprintln!("phases checked by regime: {checked:?}");
     checked
+}
+
+/// A random rigid ball, throw and contact, as the property tests draw them (tests/physics/properties.rs),
+/// on the default cart: 5 g to 0.5 kg, grazing to normal incidence at 0.5 to 50 m/s with spin either
+/// way, mu from 1e-9 to 1.2, contacts of 0.5 to 20 ms, any e_y.
+pub fn rigid_ball() -> impl Strategy<Value = Params> {
+    let ball = (0.005f64..0.5, 0.005f64..0.12, 0.2f64..1.0);
+    let throw = (
+        prop_oneof![0.5f64..=90.0, Just(90.0)],
+        0.5f64..50.0,
+        -500.0f64..500.0,
+    );
+    let contact = (
+        prop_oneof![0.0f64..1.2, (-9.0f64..0.0).prop_map(|e| 10f64.powf(e))],
+        0.5e-3f64..20e-3,
+        0.0f64..=1.0,
+    );
+    (ball, throw, contact).prop_map(|(ball, throw, contact)| {
+        let ((mass, radius, alpha), (angle_deg, speed, spin)) = (ball, throw);
+        let (mu, duration, ey) = contact;
+        Params {
+            angle_deg,
+            speed,
+            spin,
+            mu,
+            duration,
+            ey,
+            mass,
+            radius,
+            alpha,
+            ball_stiffness: 0.0,
+            ball_damping: 0.0,
+            ..Params::default()
+        }
+    })
+}
+
+/// Uniform in the logarithm between `lo` and `hi`.
+pub fn log_uniform(lo: f64, hi: f64) -> impl Strategy<Value = f64> {
+    (lo.ln()..=hi.ln()).prop_map(f64::exp)
+}
+
+/// `p` with string friction `share` of its ball's peak friction mu N0.
+pub fn with_string_friction(p: Params, share: f64) -> Params {
+    let cart_friction = share * Setup::new(&p).peak_friction();
+    Params { cart_friction, ..p }
 }

@@ -9,56 +9,33 @@
 //! (`fails_when_halved`). At first contact the slide carries the rate from inside the contact (F' = mu N0
 //! w at t = 0, tested below), as the Taylor polynomials from an interval's ends need.
 
-use crate::model::params::Params;
-use crate::model::setup::Setup;
 use proptest::prelude::*;
 
-use crate::model::bound_samples::{cases, checked, run, violations};
+use crate::model::params::Params;
+use crate::model::setup::Setup;
+
+use crate::model::bound_samples::{
+    cases, checked, log_uniform, rigid_ball, run, violations, with_string_friction,
+};
 
 /// Random valid single-cart bounces, as the property tests draw them (tests/physics/properties.rs):
 /// light and heavy carts, no spring, string friction in half the cases, tiny and large mu, spin either
 /// way; no chain, no compliant ball.
 fn params() -> impl Strategy<Value = Params> {
-    let ball = (0.005f64..0.5, 0.005f64..0.12, 0.2f64..1.0);
-    let throw = (
-        prop_oneof![0.5f64..=90.0, Just(90.0)],
-        0.5f64..50.0,
-        -500.0f64..500.0,
-    );
-    let contact = (
-        prop_oneof![0.0f64..1.2, (-9.0f64..0.0).prop_map(|e| 10f64.powf(e))],
-        0.5e-3f64..20e-3,
-        0.0f64..=1.0,
-    );
-    let log = |lo: f64, hi: f64| (lo.ln()..=hi.ln()).prop_map(f64::exp);
     let string = prop_oneof![Just(0.0), 0.0f64..2.0];
     let cart = (
-        log(1e-5, 1e6),
-        prop_oneof![Just(0.0), log(1.0, 1e6)],
+        log_uniform(1e-5, 1e6),
+        prop_oneof![Just(0.0), log_uniform(1.0, 1e6)],
         string,
     );
-    (ball, throw, contact, cart).prop_map(|(ball, throw, contact, cart)| {
-        let ((mass, radius, alpha), (angle_deg, speed, spin)) = (ball, throw);
-        let ((mu, duration, ey), (cart_mass, stiffness, string)) = (contact, cart);
+    (rigid_ball(), cart).prop_map(|(ball, (cart_mass, stiffness, string))| {
         let p = Params {
-            angle_deg,
-            speed,
-            spin,
-            mu,
-            duration,
-            ey,
-            mass,
-            radius,
-            alpha,
             cart_mass,
             stiffness,
             chain: 1.0,
-            ball_stiffness: 0.0,
-            ball_damping: 0.0,
-            ..Params::default()
+            ..ball
         };
-        let cart_friction = string * Setup::new(&p).peak_friction();
-        Params { cart_friction, ..p }
+        with_string_friction(p, string)
     })
 }
 

@@ -9,55 +9,37 @@
 //! central difference of the f''' it carries). Halving a bound that is reached fails the test
 //! (`fails_when_halved`).
 
-use crate::model::params::Params;
-use crate::model::setup::Setup;
 use proptest::prelude::*;
 
-use crate::model::bound_samples::{cases, run, violations};
+use crate::model::params::Params;
+
+use crate::model::bound_samples::{
+    cases, log_uniform, rigid_ball, run, violations, with_string_friction,
+};
 
 /// Random valid chain bounces: 2 to 12 masses, light and heavy, stiff and soft, on the wall or on a
 /// free frame from a tenth of the chain's mass to a thousand times it, string friction in a third of
 /// the cases, tiny and large mu, spin either way; a rigid ball.
 fn params() -> impl Strategy<Value = Params> {
-    let ball = (0.005f64..0.5, 0.005f64..0.12, 0.2f64..1.0);
-    let throw = (
-        prop_oneof![0.5f64..=90.0, Just(90.0)],
-        0.5f64..50.0,
-        -500.0f64..500.0,
-    );
-    let contact = (
-        prop_oneof![0.0f64..1.2, (-9.0f64..0.0).prop_map(|e| 10f64.powf(e))],
-        0.5e-3f64..20e-3,
-        0.0f64..=1.0,
-    );
-    let log = |lo: f64, hi: f64| (lo.ln()..=hi.ln()).prop_map(f64::exp);
     let string = prop_oneof![Just(0.0), Just(0.0), 0.0f64..2.0];
-    let frame = prop_oneof![Just(0.0), log(0.1, 1000.0)];
-    let chain = (2u32..=12, log(1e-4, 10.0), log(10.0, 1e6), frame, string);
-    (ball, throw, contact, chain).prop_map(|(ball, throw, contact, chain)| {
-        let ((mass, radius, alpha), (angle_deg, speed, spin)) = (ball, throw);
-        let (mu, duration, ey) = contact;
+    let frame = prop_oneof![Just(0.0), log_uniform(0.1, 1000.0)];
+    let chain = (
+        2u32..=12,
+        log_uniform(1e-4, 10.0),
+        log_uniform(10.0, 1e6),
+        frame,
+        string,
+    );
+    (rigid_ball(), chain).prop_map(|(ball, chain)| {
         let (links, cart_mass, stiffness, frame, string) = chain;
         let p = Params {
-            angle_deg,
-            speed,
-            spin,
-            mu,
-            duration,
-            ey,
-            mass,
-            radius,
-            alpha,
             cart_mass,
             stiffness,
             chain: f64::from(links),
             frame_mass: frame * cart_mass,
-            ball_stiffness: 0.0,
-            ball_damping: 0.0,
-            ..Params::default()
+            ..ball
         };
-        let cart_friction = string * Setup::new(&p).peak_friction();
-        Params { cart_friction, ..p }
+        with_string_friction(p, string)
     })
 }
 
