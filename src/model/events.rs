@@ -296,9 +296,10 @@ enum Start {
 }
 
 /// The search; with `TAYLOR`, proofs that the parabolas fail are tried by the Taylor polynomials
-/// (only [`first_rise_within`]'s and [`first_rise_predicted`]'s, so that the other searches carry no
+/// (only [`first_rise_within`]'s, [`first_rise_predicted`]'s and
+/// [`first_rise_predicted_from_tangent`]'s, so that the other searches carry no
 /// test for it); with `PREDICT`, crossings are refined from their [`predicted`] place (only
-/// [`first_rise_predicted`]'s).
+/// [`first_rise_predicted`]'s and [`first_rise_predicted_from_tangent`]'s).
 fn search<B: Branch, const K: usize, const TAYLOR: bool, const PREDICT: bool>(
     f: impl Event<B, K>,
     t0: f64,
@@ -678,11 +679,14 @@ fn refine<B: Branch, const K: usize, const PREDICT: bool>(
     (last, below)
 }
 
-/// [`first_rise_from_tangent`] with [`first_rise_within`]'s Taylor polynomials: for a compliant ball's
-/// grip whose margins carry f'' and f''' ([`Branch::higher`]) and a bound `fourth` on each one's fourth
-/// derivative. It only proves more intervals empty, with fewer evaluations: every crossing it finds is
-/// [`first_rise_from_tangent`]'s.
-pub fn first_rise_within_from_tangent<B: Branch, const K: usize>(
+/// [`first_rise_from_tangent`] with [`first_rise_predicted`]'s Taylor polynomials and predicted
+/// crossings: for a compliant ball's grip whose margins carry f'' and f''' ([`Branch::higher`], the
+/// modes' sums, as exact as f and f') and a bound `fourth` on each one's fourth derivative. The
+/// polynomials only prove more intervals empty, with fewer evaluations; each crossing is refined from
+/// the one predicted from f, f', f'' and f''' at both ends of its interval, one evaluation fewer a
+/// crossing: the same root as [`first_rise_from_tangent`]'s by another path, so it may differ in its
+/// last bits.
+pub fn first_rise_predicted_from_tangent<B: Branch, const K: usize>(
     f: impl Event<B, K>,
     t0: f64,
     t1: f64,
@@ -691,7 +695,7 @@ pub fn first_rise_within_from_tangent<B: Branch, const K: usize>(
     noise: [f64; K],
 ) -> Option<(f64, usize)> {
     let bounds = Bounds { curvature, fourth };
-    search::<B, K, true, false>(f, t0, t1, step, bounds, noise, Start::Tangent)
+    search::<B, K, true, true>(f, t0, t1, step, bounds, noise, Start::Tangent)
 }
 
 #[cfg(test)]

@@ -9,7 +9,7 @@ use nalgebra::DVector;
 use std::cell::Cell;
 
 use super::super::super::contact::ROUNDING;
-use super::super::super::events::{Branch, first_rise_within_from_tangent};
+use super::super::super::events::{Branch, first_rise_predicted_from_tangent};
 use super::super::super::trig::{exp as fast_exp, sin_cos};
 use super::{C64, ChainGrip, NEGLIGIBLE};
 
@@ -41,8 +41,9 @@ impl Stage {
 
 /// A margin of the grip's event ([`ChainGrip::margins`]): its value and rate, and where the modes give
 /// them, its second and third derivatives, for the Taylor polynomials of
-/// [`super::super::super::events::first_rise_within_from_tangent`] and the crossing's refinement by the
-/// cubic Taylor model (the (f, f', f'', f''') branch's step; Newton's without them).
+/// [`super::super::super::events::first_rise_predicted_from_tangent`], the crossing predicted from
+/// them at both ends of its interval, and its refinement by the cubic Taylor model (the (f, f', f'',
+/// f''') branch's step; Newton's from the secant point without them).
 #[derive(Clone, Copy, Debug)]
 pub struct Margin {
     value: f64,
@@ -100,7 +101,8 @@ impl ChainGrip {
     /// The first time in the rest of the contact at which a margin ([`ChainGrip::margins`]) rises
     /// through zero, and which (0: F_s reaches +mu N, 1: -mu N), searched stage by stage
     /// ([`ChainGrip::search_stages`]) with each stage's bounds on |f''| and |f''''| (mu N adds
-    /// mu N0 w² and mu N0 w⁴) and the Taylor polynomials where the margins carry f'' and f'''. The
+    /// mu N0 w² and mu N0 w⁴) and the Taylor polynomials where the margins carry f'' and f''', each
+    /// crossing refined from the one predicted from them at its interval's ends. The
     /// search evaluates the force alone; the state where it ends is evaluated once by the caller, to the
     /// same bits. A stage's start, its predecessor's end, is not evaluated again.
     pub fn first_break(&self, setup: &Setup) -> Option<(f64, usize)> {
@@ -129,7 +131,7 @@ impl ChainGrip {
             let fourth = [stage.fourth + margin_curvature * w * w; 2];
             let bounds = [curvature, fourth];
             let (from, to, step) = (stage.from, stage.to, stage.step);
-            first_rise_within_from_tangent(f, from, to, step, bounds, [noise; 2])
+            first_rise_predicted_from_tangent(f, from, to, step, bounds, [noise; 2])
         })
     }
 
