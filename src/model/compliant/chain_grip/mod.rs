@@ -761,6 +761,16 @@ fn share_sums<const FROM: usize, const K: usize>(
     tau: f64,
 ) -> [f64; K] {
     let mut sums = [0.0; K];
+    if tau == 0.0 {
+        // At the grip's start every e^{s_i τ} is 1: the sums of the shares' real parts, to the same
+        // bits, without the modes' sines, cosines and exponentials (the search's first evaluation).
+        for share in shares {
+            for (sum, a) in sums.iter_mut().zip(&share.re[FROM..]) {
+                *sum += a;
+            }
+        }
+        return sums;
+    }
     for (modes, shares) in list.chunks(CHUNK).zip(shares.chunks(CHUNK)) {
         let count = modes.len();
         let mut angle = [0.0; CHUNK];
