@@ -23,6 +23,13 @@ impl Lcg {
         lo * (hi / lo).powf(self.unit())
     }
 }
+/// The first `n` masses of `start` moving: each displaced within 0.5 mm and at a speed within 0.5 m/s.
+fn set_moving(start: &mut ChainState, n: usize, rng: &mut Lcg) {
+    for i in 0..n {
+        start.x[i] = 1e-3 * (rng.unit() - 0.5);
+        start.v[i] = rng.unit() - 0.5;
+    }
+}
 
 fn random(rng: &mut Lcg) -> Params {
     Params {
@@ -56,12 +63,8 @@ fn the_modes_reproduce_the_matrix_exponential() {
     for case in 0..300 {
         let p = random(&mut rng);
         let (g, setup) = grip_modes(&p);
-        // A start state with everything moving.
         let mut start = ChainState::from_contact(&setup.initial(100.0));
-        for i in 0..g.n {
-            start.x[i] = 1e-3 * (rng.unit() - 0.5);
-            start.v[i] = rng.unit() - 0.5;
-        }
+        set_moving(&mut start, g.n, &mut rng);
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         if grip.coefficients.is_none() {
             continue;
@@ -142,10 +145,7 @@ fn the_exponential_fallback_agrees_with_the_modes() {
         let (g, setup) = grip_modes(&p);
         let mut start = ChainState::from_contact(&setup.initial(50.0));
         start.t = 1e-3;
-        for i in 0..g.n {
-            start.x[i] = 1e-3 * (rng.unit() - 0.5);
-            start.v[i] = rng.unit() - 0.5;
-        }
+        set_moving(&mut start, g.n, &mut rng);
         let modal = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         let fallback = ChainGrip {
             coefficients: None,
@@ -192,10 +192,7 @@ fn a_pushed_grip_solves_the_forced_system() {
         let (g, setup) = grip_modes(&p);
         let mut start = ChainState::from_contact(&setup.initial(50.0));
         start.t = 1e-3;
-        for i in 0..g.n {
-            start.x[i] = 1e-3 * (rng.unit() - 0.5);
-            start.v[i] = rng.unit() - 0.5;
-        }
+        set_moving(&mut start, g.n, &mut rng);
         let push = if rng.unit() < 0.5 { -20.0 } else { 20.0 } * rng.unit();
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, push);
         let fallback = ChainGrip {
@@ -292,10 +289,7 @@ fn a_ring_grip_solves_its_mirror_modes_apart() {
         let mut start = ChainState::from_contact(&setup.initial(50.0));
         start.t = 1e-3;
         start.frame = masses - 1;
-        for i in 0..masses {
-            start.x[i] = 1e-3 * (rng.unit() - 0.5);
-            start.v[i] = rng.unit() - 0.5;
-        }
+        set_moving(&mut start, masses, &mut rng);
         let push = 20.0 * (rng.unit() - 0.5);
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, push);
         assert!(
@@ -405,10 +399,7 @@ fn the_grip_bounds_its_fourth_derivative() {
         let (g, setup) = grip_modes(&p);
         let mut start = ChainState::from_contact(&setup.initial(50.0));
         start.t = 1e-3 * rng.unit();
-        for i in 0..g.n {
-            start.x[i] = 1e-3 * (rng.unit() - 0.5);
-            start.v[i] = rng.unit() - 0.5;
-        }
+        set_moving(&mut start, g.n, &mut rng);
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         if grip.shares.is_none() {
             continue;
