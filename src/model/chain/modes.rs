@@ -313,14 +313,25 @@ impl Modes {
         (q, dq): (&[f64; MAX], &[f64; MAX]),
         (x, v): (&mut [f64; MAX], &mut [f64; MAX]),
     ) {
+        self.expand_rows((q, dq), (x, v), 0..self.n);
+    }
+
+    /// [`Modes::expand_both`] for the masses `rows` only (the others' entries are left as they are),
+    /// each the same sum, bit for bit.
+    #[inline]
+    pub fn expand_rows(
+        &self,
+        (q, dq): (&[f64; MAX], &[f64; MAX]),
+        (x, v): (&mut [f64; MAX], &mut [f64; MAX]),
+        rows: std::ops::Range<usize>,
+    ) {
         let n = self.n;
-        for ((row, xi), vi) in self
-            .shape
+        let rows = rows.start..rows.end.min(n);
+        let masses = self.shape[rows.clone()]
             .iter()
-            .zip(x.iter_mut())
-            .zip(v.iter_mut())
-            .take(n)
-        {
+            .zip(&mut x[rows.clone()])
+            .zip(&mut v[rows]);
+        for ((row, xi), vi) in masses {
             // From -0.0, as `Iterator::sum` starts.
             let (mut sx, mut sv) = (-0.0, -0.0);
             for ((phi, qj), dqj) in row[..n].iter().zip(q).zip(dq) {

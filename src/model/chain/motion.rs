@@ -1050,9 +1050,17 @@ impl Motion {
             self.moving_contact(modes, setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
         };
         let state = &contact.state;
+        let frame = self.start.frame;
         let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
-        modes.expand_both((&q, &dq), (&mut x, &mut v));
-        if self.is_held() && self.start.frame > 0 {
+        // Where the sums give the first mass (and the frame), its row (and the frame's) of Φ q is
+        // not summed only to be written over.
+        let rows = match (self.sums(), searched) {
+            (Some(Written::Wall(_)), _) => 1..modes.n,
+            (_, Some(_)) => 1..frame,
+            _ => 0..modes.n,
+        };
+        modes.expand_rows((&q, &dq), (&mut x, &mut v), rows);
+        if self.is_held() && frame > 0 {
             (x, v) = ring_coordinates::place(&self.chain, &self.start, &x, &v);
         } else if self.is_held() {
             // Behind the held mass: its rest line plus the swing.
@@ -1064,7 +1072,6 @@ impl Motion {
         } else if let Some(Written::Wall(_)) = self.sums() {
             (x[0], v[0]) = (state.x, state.v);
         } else if let Some(([x1, v1, ..], [xf, _, vf])) = searched {
-            let frame = self.start.frame;
             (x[0], v[0], x[frame], v[frame]) = (x1, v1, xf, vf);
         }
         let full = ChainState {
@@ -1073,7 +1080,7 @@ impl Motion {
             omega: state.omega,
             x,
             v,
-            frame: self.start.frame,
+            frame,
         };
         (contact, full)
     }
