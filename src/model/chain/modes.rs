@@ -313,14 +313,25 @@ impl Modes {
         (q, dq): (&[f64; MAX], &[f64; MAX]),
         (x, v): (&mut [f64; MAX], &mut [f64; MAX]),
     ) {
+        self.expand_rows((q, dq), (x, v), 0..self.n);
+    }
+
+    /// [`Modes::expand_both`] for the masses `rows` only (the others' entries are left as they are),
+    /// each the same sum, bit for bit.
+    #[inline]
+    pub fn expand_rows(
+        &self,
+        (q, dq): (&[f64; MAX], &[f64; MAX]),
+        (x, v): (&mut [f64; MAX], &mut [f64; MAX]),
+        rows: std::ops::Range<usize>,
+    ) {
         let n = self.n;
-        for ((row, xi), vi) in self
-            .shape
+        let rows = rows.start..rows.end.min(n);
+        let masses = self.shape[rows.clone()]
             .iter()
-            .zip(x.iter_mut())
-            .zip(v.iter_mut())
-            .take(n)
-        {
+            .zip(&mut x[rows.clone()])
+            .zip(&mut v[rows]);
+        for ((row, xi), vi) in masses {
             // From -0.0, as `Iterator::sum` starts.
             let (mut sx, mut sv) = (-0.0, -0.0);
             for ((phi, qj), dqj) in row[..n].iter().zip(q).zip(dq) {
@@ -468,7 +479,7 @@ mod tests {
     }
 
     #[test]
-    fn projecting_and_expanding_both_are_each_alone_bit_for_bit() {
+    fn projecting_and_expanding_both_or_some_rows_are_each_alone_bit_for_bit() {
         let all = [
             Modes::new(8, 0.01 / 8.0, 8.0 * 15000.0, 0.03),
             Modes::framed(4, 0.0025, 60000.0, 0.0, 0.188),
@@ -490,6 +501,15 @@ mod tests {
             assert_eq!(bits(&dq), bits(&modes.project(&v)), "n {n}");
             assert_eq!(bits(&y), bits(&modes.expand(&q)), "n {n}");
             assert_eq!(bits(&u), bits(&modes.expand(&dq)), "n {n}");
+            // A range of masses alone: the same bits there, the rest untouched.
+            let (mut z, mut w) = ([7.0; MAX], [7.0; MAX]);
+            modes.expand_rows((&q, &dq), (&mut z, &mut w), 1..n - 1);
+            for i in 0..MAX {
+                let inside = (1..n - 1).contains(&i);
+                let (want_x, want_v) = if inside { (y[i], u[i]) } else { (7.0, 7.0) };
+                assert_eq!(z[i].to_bits(), want_x.to_bits(), "n {n} x {i}");
+                assert_eq!(w[i].to_bits(), want_v.to_bits(), "n {n} v {i}");
+            }
         }
     }
 

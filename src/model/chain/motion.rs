@@ -659,23 +659,39 @@ impl Motion {
     /// `cos` by [`sin_cos_each`] (to about 2 ulp, for [`Motion::rows`]); sin(w τ), cos(w τ) ((0, 1)
     /// gripping). The rigid translation on a free frame turns through no angle: it is left out of
     /// the batch (whose every angle goes to the same method, so that leaving out a zero changes no
-    /// other's bits) and given its exact (0, 1).
+    /// other's bits: the batch's last angle takes its lane) and given `rigid`, its exact (0, 1), or
+    /// (τ, 1) where the sums write its X + V τ in their place.
     #[inline(always)]
     fn angles_each(
         &self,
-        modes: &Modes,
-        w: f64,
-        tau: f64,
+        (modes, w, tau): (&Modes, f64, f64),
         (sin, cos): (&mut [f64; MAX + 1], &mut [f64; MAX + 1]),
+        rigid: (f64, f64),
     ) -> (f64, f64) {
         let n = modes.n;
+        let count = if self.is_grip() { n } else { n + 1 };
+        if tau == 0.0 {
+            // The phase's start (the search's first probe): every angle is 0, whose sin and cos
+            // `sin_cos_each` gives exactly, (0, 1), as `rigid` is there.
+            sin[..count].fill(0.0);
+            cos[..count].fill(1.0);
+            return (0.0, 1.0);
+        }
         let mut angle = [0.0; MAX + 1];
         for (a, omega) in angle.iter_mut().zip(&modes.omega[..n]) {
             *a = omega * tau;
         }
         angle[n] = w * tau;
-        let count = if self.is_grip() { n } else { n + 1 };
-        sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]);
+        match modes.rigid {
+            Some(r) if r < count => {
+                let last = count - 1;
+                angle[r] = angle[last];
+                sin_cos_each(&angle[..last], &mut sin[..last], &mut cos[..last]);
+                (sin[last], cos[last]) = (sin[r], cos[r]);
+                (sin[r], cos[r]) = rigid;
+            }
+            _ => sin_cos_each(&angle[..count], &mut sin[..count], &mut cos[..count]),
+        }
         if self.is_grip() {
             (0.0, 1.0)
         } else {
@@ -754,10 +770,12 @@ impl Motion {
         let w = setup.w;
         let n = modes.n;
         let (mut sin, mut cos) = ([0.0; MAX + 1], [0.0; MAX + 1]);
-        let w_tau = self.angles_each(modes, w, tau, (&mut sin, &mut cos));
-        if let Some(r) = sums.rigid {
-            (sin[r], cos[r]) = (tau, 1.0);
-        }
+        let rigid = if sums.rigid.is_some() {
+            (tau, 1.0)
+        } else {
+            (0.0, 1.0)
+        };
+        let w_tau = self.angles_each((modes, w, tau), (&mut sin, &mut cos), rigid);
         let wt = (!self.is_grip()).then(|| {
             let (sin_w_tau, cos_w_tau) = w_tau;
             (
@@ -858,7 +876,7 @@ impl Motion {
     /// reads 0, so the contact holds only what they give), with what the event's higher derivatives
     /// read ([`Probe`], S4 and its rate as `FOURTH` names them, [`SLIP_FOURTH`] or
     /// [`MARGINS_FOURTH`]; 0 where it does not). Its bits are `contact`'s where it reads the same rows; the frame's rows are
-    /// not summed. (One body for its callers, as `contact` is.)
+    /// not summed, nor the frame's motion taken from them. (One body for its callers, as `contact` is.)
     #[inline(never)]
     pub fn probe<const MASK: Mask, const FOURTH: Mask>(&self, setup: &Setup, t: f64) -> Probe {
         let modes = self.modes();
@@ -873,7 +891,8 @@ impl Motion {
             };
         };
         let r = self.summed::<MASK, FOURTH>((modes, written), setup, t);
-        let contact = self.moving_contact(modes, setup, t, (&r.main, &r.framed), r.w_tau);
+        let rows = (&r.main, &r.framed);
+        let contact = self.moving_contact_of::<false>(modes, setup, t, rows, r.w_tau);
         let (sin_w_tau, cos_w_tau) = r.w_tau;
         Probe {
             contact,
@@ -891,13 +910,28 @@ impl Motion {
         modes: &Modes,
         setup: &Setup,
         t: f64,
+        rows: (&[f64; 4], &[f64; 3]),
+        w_tau: (f64, f64),
+    ) -> Contact {
+        self.moving_contact_of::<true>(modes, setup, t, rows, w_tau)
+    }
+
+    /// [`Motion::moving_contact`]; without `FRAME_ROWS` (the event search's probes, which sum none of
+    /// the frame's rows) the first mass's displacement is X_1 itself and the frame's motion is left
+    /// 0 on a free frame, every other field the same.
+    #[inline]
+    fn moving_contact_of<const FRAME_ROWS: bool>(
+        &self,
+        modes: &Modes,
+        setup: &Setup,
+        t: f64,
         (main, framed): (&[f64; 4], &[f64; 3]),
         (sin_w_tau, cos_w_tau): (f64, f64),
     ) -> Contact {
         let frame = self.start.frame;
         let ([mut x, v, stiff, stiff_rate], [xf, last, vf]) = (*main, *framed);
         let mut frame_motion = (0.0, 0.0);
-        if frame > 0 && !self.is_held() {
+        if FRAME_ROWS && frame > 0 && !self.is_held() {
             // The first mass's displacement is reported relative to the free frame.
             x -= xf;
             // The frame feels the last link's spring and the string friction's reaction -push.
@@ -1016,9 +1050,17 @@ impl Motion {
             self.moving_contact(modes, setup, t, (&main, &framed), (sin_w_tau, cos_w_tau))
         };
         let state = &contact.state;
+        let frame = self.start.frame;
         let (mut x, mut v) = ([0.0; MAX], [0.0; MAX]);
-        modes.expand_both((&q, &dq), (&mut x, &mut v));
-        if self.is_held() && self.start.frame > 0 {
+        // Where the sums give the first mass (and the frame), its row (and the frame's) of Φ q is
+        // not summed only to be written over.
+        let rows = match (self.sums(), searched) {
+            (Some(Written::Wall(_)), _) => 1..modes.n,
+            (_, Some(_)) => 1..frame,
+            _ => 0..modes.n,
+        };
+        modes.expand_rows((&q, &dq), (&mut x, &mut v), rows);
+        if self.is_held() && frame > 0 {
             (x, v) = ring_coordinates::place(&self.chain, &self.start, &x, &v);
         } else if self.is_held() {
             // Behind the held mass: its rest line plus the swing.
@@ -1030,7 +1072,6 @@ impl Motion {
         } else if let Some(Written::Wall(_)) = self.sums() {
             (x[0], v[0]) = (state.x, state.v);
         } else if let Some(([x1, v1, ..], [xf, _, vf])) = searched {
-            let frame = self.start.frame;
             (x[0], v[0], x[frame], v[frame]) = (x1, v1, xf, vf);
         }
         let full = ChainState {
@@ -1039,7 +1080,7 @@ impl Motion {
             omega: state.omega,
             x,
             v,
-            frame: self.start.frame,
+            frame,
         };
         (contact, full)
     }
