@@ -105,12 +105,19 @@ impl ChainGrip {
     /// crossing refined from the one predicted from them at its interval's ends. The
     /// search evaluates the force alone; the state where it ends is evaluated once by the caller, to the
     /// same bits. A stage's start, its predecessor's end, is not evaluated again.
+    ///
+    /// A grip entered where a slide's patch stopped starts with a margin on its zero (F = ±mu N). The
+    /// search would check that margin at the end of a short window only and then prove the rest of its
+    /// first coarse interval, in three evaluations; searched instead as the interval's two halves, the
+    /// Taylor polynomials from the start (its F'' and F''' are the shares' sums, without a sine) and
+    /// from the middle prove the first half, and the second is proved as any other: two evaluations,
+    /// and the same points from there on.
     pub fn first_break(&self, setup: &Setup) -> Option<(f64, usize)> {
         let (w, peak) = (setup.w, setup.peak_friction());
         let margin_curvature = peak * w * w;
         let (stages, size) = self.search_stages(setup);
         let noise = ROUNDING * (peak + size);
-        // The evaluation at the current stage's end, which the next stage starts from.
+        // The evaluation at the end of the current search, which the next one starts from.
         let end = Cell::new(f64::NAN);
         let kept = Cell::new(None::<(f64, [Margin; 2])>);
         let f = |t: f64| {
@@ -125,13 +132,27 @@ impl ChainGrip {
             }
             margins
         };
-        stages.into_iter().find_map(|stage| {
-            end.set(stage.to);
+        // The start, kept for the first search (a margin on its zero as the search tells one).
+        end.set(self.start.t);
+        let at_zero = f(self.start.t).iter().any(|m| m.value >= -noise);
+        stages.into_iter().enumerate().find_map(|(k, stage)| {
             let curvature = [stage.curvature + margin_curvature; 2];
             let fourth = [stage.fourth + margin_curvature * w * w; 2];
             let bounds = [curvature, fourth];
             let (from, to, step) = (stage.from, stage.to, stage.step);
-            first_rise_predicted_from_tangent(f, from, to, step, bounds, [noise; 2])
+            let search = |from: f64, to: f64| {
+                end.set(to);
+                first_rise_predicted_from_tangent(&f, from, to, step, bounds, [noise; 2])
+            };
+            if k == 0 && at_zero {
+                // The first coarse interval as the search takes it, in halves, then the rest.
+                let first = (from + step).min(to);
+                let middle = from + 0.5 * (first - from);
+                return search(from, middle)
+                    .or_else(|| search(middle, first))
+                    .or_else(|| search(first, to));
+            }
+            search(from, to)
         })
     }
 
