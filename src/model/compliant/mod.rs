@@ -1384,9 +1384,11 @@ impl Contact for CompliantBall {
                     (t, cause)
                 })
             }
-            CompliantPhase::ChainGrip(grip) => grip
-                .first_break(setup)
-                .map(|(t, branch)| (t, grip_break(branch))),
+            // The state at the break comes with it, summed from the search's last exponentials.
+            CompliantPhase::ChainGrip(grip) => grip.first_break(setup).map(|(t, branch, point)| {
+                recent.record(t, Some(point));
+                (t, grip_break(branch))
+            }),
             CompliantPhase::Grip(grip) => {
                 let margin_curvature = peak * w * w;
                 let (curvature, size) = grip.force_bounds(setup);
