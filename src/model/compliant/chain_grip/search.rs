@@ -153,7 +153,7 @@ impl ChainGrip {
             let (from, to, step) = (stage.from, stage.to, stage.step);
             let search = |from: f64, to: f64| {
                 end.set(to);
-                first_rise_predicted_from_tangent(&f, from, to, step, bounds, [noise; 2])
+                first_rise_predicted_from_tangent(f, from, to, step, bounds, [noise; 2])
             };
             if k == 0 && at_zero {
                 // The first coarse interval as the search takes it, in halves, then the rest.
