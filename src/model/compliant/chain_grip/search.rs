@@ -125,7 +125,7 @@ impl ChainGrip {
     pub fn first_break(&self, setup: &Setup) -> Option<(f64, usize, Point)> {
         let (w, peak) = (setup.w, setup.peak_friction());
         let margin_curvature = peak * w * w;
-        let (stages, size) = self.search_stages(setup);
+        let (mut stages, size) = self.search_stages(setup);
         let noise = ROUNDING * (peak + size);
         // The evaluation at the end of the current search, which the next one starts from.
         let end = Cell::new(f64::NAN);
@@ -145,25 +145,23 @@ impl ChainGrip {
         };
         // The start, kept for the first search (a margin on its zero as the search tells one).
         end.set(self.start.t);
-        let at_zero = f(self.start.t).iter().any(|m| m.value >= -noise);
-        let (t, branch) = stages.into_iter().enumerate().find_map(|(k, stage)| {
+        if f(self.start.t).iter().any(|m| m.value >= -noise) {
+            // The first coarse interval as the search takes it, in halves, then the rest: three
+            // searches with the first stage's bounds and step.
+            let stage = stages[0];
+            let first = (stage.from + stage.step).min(stage.to);
+            let middle = stage.from + 0.5 * (first - stage.from);
+            stages[0].to = middle;
+            let part = |from, to| Stage { from, to, ..stage };
+            stages.splice(1..1, [part(middle, first), part(first, stage.to)]);
+        }
+        let (t, branch) = stages.into_iter().find_map(|stage| {
+            end.set(stage.to);
             let curvature = [stage.curvature + margin_curvature; 2];
             let fourth = [stage.fourth + margin_curvature * w * w; 2];
             let bounds = [curvature, fourth];
             let (from, to, step) = (stage.from, stage.to, stage.step);
-            let search = |from: f64, to: f64| {
-                end.set(to);
-                first_rise_predicted_from_tangent(f, from, to, step, bounds, [noise; 2])
-            };
-            if k == 0 && at_zero {
-                // The first coarse interval as the search takes it, in halves, then the rest.
-                let first = (from + step).min(to);
-                let middle = from + 0.5 * (first - from);
-                return search(from, middle)
-                    .or_else(|| search(middle, first))
-                    .or_else(|| search(first, to));
-            }
-            search(from, to)
+            first_rise_predicted_from_tangent(f, from, to, step, bounds, [noise; 2])
         })?;
         let point = self.at_turns(setup, t, &turns.borrow());
         Some((t, branch, point.unwrap_or_else(|| self.at(setup, t))))
