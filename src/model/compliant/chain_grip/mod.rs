@@ -592,7 +592,7 @@ impl ChainGrip {
     }
 
     /// The point at `t` from the shares' first 8 sums there (F'' and F''' are the search's): on the
-    /// wall, without a push or still modes.
+    /// wall, without a push or still modes, as [`ChainGrip::at`] takes it from them.
     #[inline]
     fn shared_point(&self, setup: &Setup, t: f64, sums: [f64; 8]) -> Point {
         let [u, du, e, de, dde, a1, f, df] = sums;
@@ -622,14 +622,18 @@ impl ChainGrip {
         let g = &self.modes;
         let tau = t - self.start.t;
         let n = g.n;
-        if let (Some(list), Some(_), Some(shares)) = (&g.modes, &self.coefficients, &self.shares) {
-            return self.shared_point(setup, t, share_sums::<0, 8>(list, shares, tau, None));
-        }
         // The contact quantities alone need only one exponential per mode.
         let framed = g.translation.is_some();
         // On a free frame also r'' and X_f - Y with its two rates (otherwise 0).
         let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf)) =
             match (&g.modes, &self.coefficients) {
+                (Some(list), Some(_)) if let Some(shares) = &self.shares => {
+                    // The first 8 sums (F'' and F''' are the search's; as `shared_point`'s).
+                    let [u, du, e, de, dde, a1, f, df] =
+                        share_sums::<0, 8>(list, shares, tau, None);
+                    let none = (0.0, 0.0, 0.0);
+                    (du, f, df, e, de, dde, u - e, du - de, a1, 0.0, none)
+                }
                 (Some(list), Some(c)) => {
                     let zero = C64::new(0.0, 0.0);
                     let (mut u, mut du, mut f, mut df, mut e, mut de, mut dde, mut a1) =
