@@ -7,8 +7,7 @@
 
 use std::sync::Arc;
 
-use super::super::chain::motion::Motion as ChainMotion;
-use super::super::chain::{Chain, ChainState};
+use super::super::chain::{Chain, ChainMotion, ChainState};
 use super::super::contact::Cart;
 use super::super::setup::Setup;
 use super::{Compliance, CompliantGrip, Point};
@@ -19,7 +18,7 @@ pub struct HeldChainGrip {
     /// The ball's stretch on the held mass.
     pub ball: CompliantGrip,
     /// The masses behind it.
-    pub chain: Arc<ChainMotion>,
+    pub chain: ChainMotion,
 }
 
 impl HeldChainGrip {
@@ -32,7 +31,7 @@ impl HeldChainGrip {
     ) -> Self {
         HeldChainGrip {
             ball: CompliantGrip::new(compliance, start.contact(), e, setup, Cart::Stuck),
-            chain: Arc::new(ChainMotion::new(chain, setup, start, 0.0, Cart::Stuck)),
+            chain: ChainMotion::new(&chain, setup, &start, 0.0, Cart::Stuck),
         }
     }
 

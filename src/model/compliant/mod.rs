@@ -8,7 +8,7 @@
 //!
 //! - Slide: the patch slides on the cart and F = dir mu N(t). The ball and the cart move exactly as for
 //!   a rigid ball ([`Slide`], the single cart moving on a free frame by [`FrameMotion`], or the chain's
-//!   [`ChainMotion`]); the stretch follows c_b e' + k_b e = F(t)
+//!   [`ChainMotion`], built over a finished phase's storage); the stretch follows c_b e' + k_b e = F(t)
 //!   (e = F/k_b without damping), solved in closed form ([`Stretch`]). The patch slips at
 //!   p' - V = (v_x - r omega - V) - e'; the slide ends when that slip reaches zero, and the patch then
 //!   always grips (a reversed slide would need the opposite force, which the continuous stretch and the
@@ -73,8 +73,7 @@ pub use stretch::Stretch;
 use std::cell::RefCell;
 
 use super::cart::Slide;
-use super::chain::motion::Motion as ChainMotion;
-use super::chain::{Chain, ChainState, ring};
+use super::chain::{Chain, ChainMotion, ChainState, ring};
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
 use super::events::first_rise_from_tangent;
@@ -111,7 +110,7 @@ impl BallSpring {
 #[derive(Clone, Debug)]
 pub enum Rigid {
     Cart(Slide),
-    Chain(Arc<ChainMotion>),
+    Chain(ChainMotion),
     /// The single cart on a free frame, moving relative to it: the rigid ball's [`FrameMotion`], with
     /// the frame's displacement at the start (for the whole state).
     Frame(Box<FrameMotion>, f64),
@@ -980,30 +979,29 @@ impl Contact for CompliantBall {
         }
         let phase = match ball {
             Ball::Slide(dir) => {
-                let rigid =
-                    match (&self.support, &self.framed, cart) {
-                        // The single cart moving on a free frame slides as the rigid ball's.
-                        (_, Some(framed), Cart::Moving(d)) => {
-                            let index = state.full.frame;
-                            let start = FrameState {
-                                s: state.contact,
-                                vf: state.full.v[index],
-                            };
-                            let motion = FrameMotion::slide(setup, framed, start, dir, d);
-                            Rigid::Frame(Box::new(motion), state.full.x[index])
-                        }
-                        (Support::Cart(_), ..) => {
-                            Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
-                        }
-                        // The single cart on the wall, a chain of one mass for its grips: it slides as
-                        // the rigid ball's cart, the same closed form in fewer operations.
-                        (Support::Chain { .. }, ..) if self.single_on_wall() => {
-                            Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
-                        }
-                        (Support::Chain { chain, .. }, ..) => Rigid::Chain(Arc::new(
-                            ChainMotion::new(chain.clone(), setup, state.full, dir, cart),
-                        )),
-                    };
+                let rigid = match (&self.support, &self.framed, cart) {
+                    // The single cart moving on a free frame slides as the rigid ball's.
+                    (_, Some(framed), Cart::Moving(d)) => {
+                        let index = state.full.frame;
+                        let start = FrameState {
+                            s: state.contact,
+                            vf: state.full.v[index],
+                        };
+                        let motion = FrameMotion::slide(setup, framed, start, dir, d);
+                        Rigid::Frame(Box::new(motion), state.full.x[index])
+                    }
+                    (Support::Cart(_), ..) => {
+                        Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
+                    }
+                    // The single cart on the wall, a chain of one mass for its grips: it slides as
+                    // the rigid ball's cart, the same closed form in fewer operations.
+                    (Support::Chain { .. }, ..) if self.single_on_wall() => {
+                        Rigid::Cart(Slide::new(setup, state.contact, dir, cart))
+                    }
+                    (Support::Chain { chain, .. }, ..) => {
+                        Rigid::Chain(ChainMotion::new(chain, setup, &state.full, dir, cart))
+                    }
+                };
                 CompliantPhase::Slide(CompliantSlide {
                     rigid,
                     stretch: Stretch::new(&self.spring, setup, dir, t0, state.e),
@@ -1386,9 +1384,11 @@ impl Contact for CompliantBall {
                     (t, cause)
                 })
             }
-            CompliantPhase::ChainGrip(grip) => grip
-                .first_break(setup)
-                .map(|(t, branch)| (t, grip_break(branch))),
+            // The state at the break comes with it, summed from the search's last exponentials.
+            CompliantPhase::ChainGrip(grip) => grip.first_break(setup).map(|(t, branch, point)| {
+                recent.record(t, Some(point));
+                (t, grip_break(branch))
+            }),
             CompliantPhase::Grip(grip) => {
                 let margin_curvature = peak * w * w;
                 let (curvature, size) = grip.force_bounds(setup);
@@ -1615,12 +1615,12 @@ mod tests {
                 start.x[i] = 1e-4 * (2.0 * uniform() - 1.0);
                 start.v[i] = 2.0 * uniform() - 1.0;
             }
-            let motion = ChainMotion::new(chain.clone(), &setup, start, dir, cart);
+            let motion = ChainMotion::new(&chain, &setup, &start, dir, cart);
             let spring = BallSpring::new(&params, &setup);
             let stretch = Stretch::new(&spring, &setup, dir, start.t, 1e-4 * uniform());
             let rates = stretch.rates(setup.w).expect("damped");
             let slide = CompliantSlide {
-                rigid: Rigid::Chain(Arc::new(motion)),
+                rigid: Rigid::Chain(motion),
                 stretch,
             };
             let Rigid::Chain(motion) = &slide.rigid else {

@@ -551,16 +551,68 @@ impl ChainGrip {
     /// `None` otherwise), for the event search's Taylor polynomials.
     #[inline]
     pub fn force_with_higher(&self, setup: &Setup, t: f64) -> ([f64; 2], Option<(f64, f64)>) {
+        self.force_keeping(setup, t, None)
+    }
+
+    /// [`ChainGrip::force_with_higher`], keeping the modes' e^{s_i τ} in `keep` where it sums the
+    /// shares (so that the state at `t` needs no sine or exponential more: [`ChainGrip::at_turns`]).
+    #[inline(always)]
+    fn force_keeping(
+        &self,
+        setup: &Setup,
+        t: f64,
+        keep: Option<&mut Turns>,
+    ) -> ([f64; 2], Option<(f64, f64)>) {
         match (&self.modes.modes, &self.coefficients, &self.shares) {
             (Some(list), Some(_), Some(shares)) => {
                 let tau = t - self.start.t;
-                let [f, df, ddf, dddf] = share_sums::<6, 4>(list, shares, tau);
+                let [f, df, ddf, dddf] = match keep {
+                    Some(keep) => {
+                        keep.t = t;
+                        share_sums::<6, 4>(list, shares, tau, Some(&mut keep.values))
+                    }
+                    None => share_sums::<6, 4>(list, shares, tau, None),
+                };
                 ([f, df], Some((ddf, dddf)))
             }
             _ => {
                 let p = self.at(setup, t);
                 ([p.friction, p.friction_rate], None)
             }
+        }
+    }
+
+    /// The state at `t` where [`ChainGrip::force_keeping`] kept the modes' e^{s_i τ} there: the
+    /// shares' first 8 sums from them, the same bits as [`ChainGrip::at`]'s (`None` where they were
+    /// kept at another time, or where the grip does not sum shares).
+    pub(super) fn at_turns(&self, setup: &Setup, t: f64, turns: &Turns) -> Option<Point> {
+        let shares = self.shares.as_ref()?;
+        (turns.t == t && t != self.start.t)
+            .then(|| self.shared_point(setup, t, turned_sums::<0, 8>(&turns.values, shares)))
+    }
+
+    /// The point at `t` from the shares' first 8 sums there (F'' and F''' are the search's): on the
+    /// wall, without a push or still modes, as [`ChainGrip::at`] takes it from them.
+    #[inline]
+    fn shared_point(&self, setup: &Setup, t: f64, sums: [f64; 8]) -> Point {
+        let [u, du, e, de, dde, a1, f, df] = sums;
+        let (vx, omega) = self.ball(setup, du);
+        Point {
+            state: State {
+                t,
+                vx,
+                omega,
+                x: u - e,
+                v: du - de,
+            },
+            friction: f,
+            friction_rate: df,
+            e,
+            de,
+            dde,
+            slip_rate: 0.0,
+            accel: a1,
+            frame: (0.0, 0.0),
         }
     }
 
@@ -576,8 +628,9 @@ impl ChainGrip {
         let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf)) =
             match (&g.modes, &self.coefficients) {
                 (Some(list), Some(_)) if let Some(shares) = &self.shares => {
-                    // The first 8 sums (F'' and F''' are the search's).
-                    let [u, du, e, de, dde, a1, f, df] = share_sums::<0, 8>(list, shares, tau);
+                    // The first 8 sums (F'' and F''' are the search's; as `shared_point`'s).
+                    let [u, du, e, de, dde, a1, f, df] =
+                        share_sums::<0, 8>(list, shares, tau, None);
                     let none = (0.0, 0.0, 0.0);
                     (du, f, df, e, de, dde, u - e, du - de, a1, 0.0, none)
                 }
@@ -752,13 +805,34 @@ impl ChainGrip {
     }
 }
 
+/// Room for the grip's modes, one per root pair or real root.
+const MODES: usize = 2 * MAX + 2;
+
+/// Each mode's e^{s_i τ} (real and imaginary parts) at `t`, as the event search last took them.
+pub(super) struct Turns {
+    t: f64,
+    values: [(f64, f64); MODES],
+}
+
+impl Turns {
+    /// None taken yet.
+    pub(super) fn new() -> Turns {
+        Turns {
+            t: f64::NAN,
+            values: [(0.0, 0.0); MODES],
+        }
+    }
+}
+
 /// `K` of the contact's sums ([`SUMS`]) from number `FROM` at `tau`, Re Σ_i e^{s_i τ} (c_i X_i):
-/// e^{s_i τ} of every mode, CHUNK at a time, the sines and cosines together, e^{Re s_i τ} inlined.
+/// e^{s_i τ} of every mode, CHUNK at a time, the sines and cosines together, e^{Re s_i τ} inlined;
+/// each kept in `keep`, if given, where τ is not 0.
 #[inline(always)]
 fn share_sums<const FROM: usize, const K: usize>(
     list: &[Mode],
     shares: &[Shares],
     tau: f64,
+    mut keep: Option<&mut [(f64, f64); MODES]>,
 ) -> [f64; K] {
     let mut sums = [0.0; K];
     if tau == 0.0 {
@@ -771,7 +845,7 @@ fn share_sums<const FROM: usize, const K: usize>(
         }
         return sums;
     }
-    for (modes, shares) in list.chunks(CHUNK).zip(shares.chunks(CHUNK)) {
+    for (chunk, (modes, shares)) in list.chunks(CHUNK).zip(shares.chunks(CHUNK)).enumerate() {
         let count = modes.len();
         let mut angle = [0.0; CHUNK];
         for (a, mode) in angle.iter_mut().zip(modes) {
@@ -782,10 +856,30 @@ fn share_sums<const FROM: usize, const K: usize>(
         for (i, (mode, share)) in modes.iter().zip(shares).enumerate() {
             let size = fast_exp(mode.s.re * tau);
             let (re, im) = (size * cos[i], size * sin[i]);
+            if let Some(keep) = keep.as_deref_mut() {
+                keep[chunk * CHUNK + i] = (re, im);
+            }
             let (real, imaginary) = (&share.re[FROM..], &share.im[FROM..]);
             for ((sum, a), b) in sums.iter_mut().zip(real).zip(imaginary) {
                 *sum += re * a - im * b;
             }
+        }
+    }
+    sums
+}
+
+/// [`share_sums`] from the modes' e^{s_i τ} it kept (τ not 0): the same products in the same order,
+/// so the same bits.
+#[inline]
+fn turned_sums<const FROM: usize, const K: usize>(
+    turns: &[(f64, f64); MODES],
+    shares: &[Shares],
+) -> [f64; K] {
+    let mut sums = [0.0; K];
+    for (&(re, im), share) in turns.iter().zip(shares) {
+        let (real, imaginary) = (&share.re[FROM..], &share.im[FROM..]);
+        for ((sum, a), b) in sums.iter_mut().zip(real).zip(imaginary) {
+            *sum += re * a - im * b;
         }
     }
     sums

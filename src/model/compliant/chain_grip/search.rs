@@ -1,20 +1,18 @@
 //! Where the event search looks for the grip's break, and the bounds on |F''| it needs: in stages, a
 //! strongly damped mode bounding |F''| only until it has died out.
 
-use super::super::super::chain::modes::MAX;
 use super::super::super::setup::Setup;
 use super::super::stretch::SETTLED;
 use nalgebra::DVector;
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 
 use super::super::super::contact::ROUNDING;
 use super::super::super::events::{Branch, first_rise_predicted_from_tangent};
 use super::super::super::trig::{exp as fast_exp, sin_cos};
-use super::{C64, ChainGrip, NEGLIGIBLE};
+use super::super::Point;
+use super::{C64, ChainGrip, MODES, NEGLIGIBLE, Turns};
 
-/// Room for the grip's modes, one per root pair or real root.
-const MODES: usize = 2 * MAX + 2;
 /// An estimated bound this far above half the stage's refuses a cut without the exact bound (the
 /// estimate is within 1e-12 of it, so the exact bound would refuse it too).
 const SCREEN: f64 = 1e-9;
@@ -78,7 +76,18 @@ impl ChainGrip {
     /// second and third derivatives where the modes give F'' and F'''.
     #[inline]
     pub fn margins(&self, setup: &Setup, t: f64) -> [Margin; 2] {
-        let ([force, rate], higher) = self.force_with_higher(setup, t);
+        self.margins_keeping(setup, t, None)
+    }
+
+    /// [`ChainGrip::margins`], keeping the modes' e^{s_i τ} in `keep` where the grip sums its shares.
+    #[inline(always)]
+    pub(super) fn margins_keeping(
+        &self,
+        setup: &Setup,
+        t: f64,
+        keep: Option<&mut Turns>,
+    ) -> [Margin; 2] {
+        let ([force, rate], higher) = self.force_keeping(setup, t, keep);
         let normal = sin_cos(setup.w * t);
         match higher {
             Some((second, third)) => setup
@@ -103,36 +112,59 @@ impl ChainGrip {
     /// ([`ChainGrip::search_stages`]) with each stage's bounds on |f''| and |f''''| (mu N adds
     /// mu N0 w² and mu N0 w⁴) and the Taylor polynomials where the margins carry f'' and f''', each
     /// crossing refined from the one predicted from them at its interval's ends. The
-    /// search evaluates the force alone; the state where it ends is evaluated once by the caller, to the
-    /// same bits. A stage's start, its predecessor's end, is not evaluated again.
-    pub fn first_break(&self, setup: &Setup) -> Option<(f64, usize)> {
+    /// search evaluates the force alone, keeping each evaluation's e^{s_i τ}; the state where it ends
+    /// (with the time and the branch) is summed from those it kept there, to the same bits as
+    /// [`ChainGrip::at`]'s. A stage's start, its predecessor's end, is not evaluated again.
+    ///
+    /// A grip entered where a slide's patch stopped starts with a margin on its zero (F = ±mu N). The
+    /// search would check that margin at the end of a short window only and then prove the rest of its
+    /// first coarse interval, in three evaluations; searched instead as the interval's two halves, the
+    /// Taylor polynomials from the start (its F'' and F''' are the shares' sums, without a sine) and
+    /// from the middle prove the first half, and the second is proved as any other: two evaluations,
+    /// and the same points from there on.
+    pub fn first_break(&self, setup: &Setup) -> Option<(f64, usize, Point)> {
         let (w, peak) = (setup.w, setup.peak_friction());
         let margin_curvature = peak * w * w;
-        let (stages, size) = self.search_stages(setup);
+        let (mut stages, size) = self.search_stages(setup);
         let noise = ROUNDING * (peak + size);
-        // The evaluation at the current stage's end, which the next stage starts from.
+        // The evaluation at the end of the current search, which the next one starts from.
         let end = Cell::new(f64::NAN);
         let kept = Cell::new(None::<(f64, [Margin; 2])>);
+        let turns = RefCell::new(Turns::new());
         let f = |t: f64| {
             if let Some((at, margins)) = kept.get()
                 && at == t
             {
                 return margins;
             }
-            let margins = self.margins(setup, t);
+            let margins = self.margins_keeping(setup, t, Some(&mut turns.borrow_mut()));
             if t == end.get() {
                 kept.set(Some((t, margins)));
             }
             margins
         };
-        stages.into_iter().find_map(|stage| {
+        // The start, kept for the first search (a margin on its zero as the search tells one).
+        end.set(self.start.t);
+        if f(self.start.t).iter().any(|m| m.value >= -noise) {
+            // The first coarse interval as the search takes it, in halves, then the rest: three
+            // searches with the first stage's bounds and step.
+            let stage = stages[0];
+            let first = (stage.from + stage.step).min(stage.to);
+            let middle = stage.from + 0.5 * (first - stage.from);
+            stages[0].to = middle;
+            let part = |from, to| Stage { from, to, ..stage };
+            stages.splice(1..1, [part(middle, first), part(first, stage.to)]);
+        }
+        let (t, branch) = stages.into_iter().find_map(|stage| {
             end.set(stage.to);
             let curvature = [stage.curvature + margin_curvature; 2];
             let fourth = [stage.fourth + margin_curvature * w * w; 2];
             let bounds = [curvature, fourth];
             let (from, to, step) = (stage.from, stage.to, stage.step);
             first_rise_predicted_from_tangent(f, from, to, step, bounds, [noise; 2])
-        })
+        })?;
+        let point = self.at_turns(setup, t, &turns.borrow());
+        Some((t, branch, point.unwrap_or_else(|| self.at(setup, t))))
     }
 
     /// The stages of the event search over the rest of the contact, and the size of the terms F is

@@ -367,6 +367,31 @@ fn fourth_violation(grip: &ChainGrip, setup: &Setup, scale: f64) -> (f64, f64) {
                 [force.to_bits(), rate.to_bits()],
                 [point.friction.to_bits(), point.friction_rate.to_bits()]
             );
+            // So is the state summed from the exponentials the search kept there.
+            let mut turns = Turns::new();
+            grip.margins_keeping(setup, t, Some(&mut turns));
+            let kept = grip.at_turns(setup, t, &turns).expect("kept at t");
+            let bits = |p: &Point| {
+                let s = p.state;
+                [
+                    s.t,
+                    s.vx,
+                    s.omega,
+                    s.x,
+                    s.v,
+                    p.friction,
+                    p.friction_rate,
+                    p.e,
+                    p.de,
+                    p.dde,
+                    p.slip_rate,
+                    p.accel,
+                    p.frame.0,
+                    p.frame.1,
+                ]
+                .map(f64::to_bits)
+            };
+            assert_eq!(bits(&kept), bits(&point));
             let rate_difference = (after.friction_rate - before.friction_rate) / (2.0 * h);
             let (second_before, third_before) = higher(t - h);
             let (second_after, third_after) = higher(t + h);
@@ -384,7 +409,8 @@ fn fourth_violation(grip: &ChainGrip, setup: &Setup, scale: f64) -> (f64, f64) {
 }
 
 /// The wall grip's F'' and F''' (its margins' Taylor polynomials) are the derivatives of its F' (and its
-/// F and F' those of its state, bit for bit), and
+/// F and F' those of its state, bit for bit, as is the state summed from the exponentials the search
+/// kept), and
 /// each search stage's bound on |F''''| holds over the stage, on random chains and balls; half the bound
 /// fails somewhere, so the check can fail.
 #[test]
