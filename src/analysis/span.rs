@@ -65,52 +65,32 @@ impl Span {
     /// short decimal is that decimal (0.3, not 0.30000000000000004). For a whole-number parameter a
     /// value within rounding of a whole number is that number (a geometric 1, 2, 4, 8, 16 is exact).
     pub fn at(&self, i: usize, n: usize) -> f64 {
-        if i == 0 {
-            return self.from;
-        }
-        if i + 1 >= n {
-            return self.to;
-        }
-        let (value, error) = if self.log {
-            self.geometric(i, n)
-        } else {
-            self.linear(i, n)
-        };
-        let value =
-            short_decimal(value, error).clamp(self.from.min(self.to), self.from.max(self.to));
-        if self.spec.integer {
-            nearly_whole(value).unwrap_or(value)
-        } else {
-            value
-        }
+        self.steps(n).at(i)
     }
 
-    /// The `i`-th of `n` evenly spaced values as one weighted sum over one division,
-    /// (from (n-1-i) + to i) / (n-1), so whole ends give correctly rounded values; the ends are scaled
-    /// by a power of two (exactly) where the sum could overflow. With a bound on its rounding error.
-    fn linear(&self, i: usize, n: usize) -> (f64, f64) {
-        let intervals = (n - 1) as f64;
-        let (weight_from, weight_to) = ((n - 1 - i) as f64, i as f64);
+    /// The `n` values of [`Span::at`], with what they share worked out once (a sweep asks for each).
+    pub fn steps(&self, n: usize) -> Steps {
+        let intervals = n.saturating_sub(1) as f64;
         let big = self.from.abs().max(self.to.abs());
         let scale = if big >= f64::MAX / intervals / 2.0 {
             OVERFLOW_SCALE
         } else {
             1.0
         };
-        let (from, to) = (self.from * scale, self.to * scale);
-        let value = (from * weight_from + to * weight_to) / intervals / scale;
-        // Each end's own rounding and that of the two products, the sum and the quotient, on the
-        // size of the terms (larger than the value where the ends' signs differ).
-        let terms = (from.abs() * weight_from + to.abs() * weight_to) / intervals / scale;
-        (value, 2.0 * f64::EPSILON * terms)
-    }
-
-    /// The `i`-th of `n` geometrically spaced values, with a bound on its rounding error (exp carries
-    /// the logarithm's absolute error as a relative one).
-    fn geometric(&self, i: usize, n: usize) -> (f64, f64) {
-        let value = self.from_unit(i as f64 / (n - 1) as f64);
-        let logs = self.from.ln().abs().max(self.to.ln().abs());
-        (value, 2.0 * f64::EPSILON * (1.0 + logs) * value.abs())
+        let (from_ln, to_ln) = if self.log {
+            (self.from.ln(), self.to.ln())
+        } else {
+            (0.0, 0.0)
+        };
+        Steps {
+            span: *self,
+            n,
+            intervals,
+            scale,
+            scaled: (self.from * scale, self.to * scale),
+            ln: (from_ln, to_ln),
+            logs: from_ln.abs().max(to_ln.abs()),
+        }
     }
 
     /// Checks that `n` values of a whole-number parameter all land on whole numbers (always true of
@@ -159,7 +139,8 @@ impl Span {
         if !self.spec.integer {
             return None;
         }
-        (0..n).map(|i| self.at(i, n)).find(|v| v.fract() != 0.0)
+        let steps = self.steps(n);
+        (0..n).map(|i| steps.at(i)).find(|v| v.fract() != 0.0)
     }
 
     /// The counts of values from 2 up to one per whole number that all land on whole numbers.
@@ -215,7 +196,7 @@ impl Span {
     /// inside the span.
     pub fn from_unit(&self, u: f64) -> f64 {
         if self.log {
-            (self.from.ln() * (1.0 - u) + self.to.ln() * u).exp()
+            between_logs(self.from.ln(), self.to.ln(), u)
         } else {
             // Each end weighted, never their difference: nothing overflows.
             self.from * (1.0 - u) + self.to * u
@@ -225,7 +206,8 @@ impl Span {
 
     /// `n` values from `from` to `to`, ends included.
     pub fn values(&self, n: usize) -> Vec<f64> {
-        (0..n).map(|i| self.at(i, n)).collect()
+        let steps = self.steps(n);
+        (0..n).map(|i| steps.at(i)).collect()
     }
 
     /// The CSV column of the varied value: the parameter's key and base unit, e.g. `angle_deg`,
@@ -287,6 +269,76 @@ impl Span {
 
 /// Scales the ends of a linear span whose weighted sum could overflow: 2^-32, exact.
 const OVERFLOW_SCALE: f64 = 1.0 / 4_294_967_296.0;
+
+/// The `n` values of a span ([`Span::steps`]): the ends' scale, scaled ends and logarithms, taken once.
+#[derive(Clone, Copy, Debug)]
+pub struct Steps {
+    span: Span,
+    n: usize,
+    /// n - 1.
+    intervals: f64,
+    /// 1, or `OVERFLOW_SCALE` where the weighted sum of the ends could overflow.
+    scale: f64,
+    /// The ends times `scale`.
+    scaled: (f64, f64),
+    /// The ends' logarithms (a geometric span's; 0 otherwise).
+    ln: (f64, f64),
+    /// The larger of the logarithms' sizes.
+    logs: f64,
+}
+
+impl Steps {
+    /// The `i`-th value ([`Span::at`]).
+    pub fn at(&self, i: usize) -> f64 {
+        let span = &self.span;
+        if i == 0 {
+            return span.from;
+        }
+        if i + 1 >= self.n {
+            return span.to;
+        }
+        let (value, error) = if span.log {
+            self.geometric(i)
+        } else {
+            self.linear(i)
+        };
+        let value =
+            short_decimal(value, error).clamp(span.from.min(span.to), span.from.max(span.to));
+        if span.spec.integer {
+            nearly_whole(value).unwrap_or(value)
+        } else {
+            value
+        }
+    }
+
+    /// The `i`-th evenly spaced value as one weighted sum over one division,
+    /// (from (n-1-i) + to i) / (n-1), so whole ends give correctly rounded values; the ends are scaled
+    /// by a power of two (exactly) where the sum could overflow. With a bound on its rounding error.
+    fn linear(&self, i: usize) -> (f64, f64) {
+        let (weight_from, weight_to) = ((self.n - 1 - i) as f64, i as f64);
+        let ((from, to), intervals, scale) = (self.scaled, self.intervals, self.scale);
+        let value = (from * weight_from + to * weight_to) / intervals / scale;
+        // Each end's own rounding and that of the two products, the sum and the quotient, on the
+        // size of the terms (larger than the value where the ends' signs differ).
+        let terms = (from.abs() * weight_from + to.abs() * weight_to) / intervals / scale;
+        (value, 2.0 * f64::EPSILON * terms)
+    }
+
+    /// The `i`-th geometrically spaced value, with a bound on its rounding error (exp carries the
+    /// logarithm's absolute error as a relative one).
+    fn geometric(&self, i: usize) -> (f64, f64) {
+        let span = &self.span;
+        let value = between_logs(self.ln.0, self.ln.1, i as f64 / self.intervals)
+            .clamp(span.from.min(span.to), span.from.max(span.to));
+        (value, 2.0 * f64::EPSILON * (1.0 + self.logs) * value.abs())
+    }
+}
+
+/// The value whose logarithm lies the fraction `u` of the way from `from_ln` to `to_ln`.
+#[inline]
+fn between_logs(from_ln: f64, to_ln: f64, u: f64) -> f64 {
+    (from_ln * (1.0 - u) + to_ln * u).exp()
+}
 
 /// The decimal of at most 12 significant digits nearest `value`, when it lies within `error` of it;
 /// otherwise `value`. Removes the noise of rounding (10.000000000000002 is 10) without moving a value

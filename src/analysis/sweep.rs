@@ -70,9 +70,10 @@ fn rows(
     range: std::ops::Range<usize>,
     options: &SolveOptions,
 ) -> Result<Vec<Row>, AnalysisError> {
+    let values = span.steps(steps);
     range
         .into_par_iter()
-        .map(|i| row(base, span, span.at(i, steps), options))
+        .map(|i| row(base, span, values.at(i), options))
         .collect()
 }
 
@@ -173,9 +174,10 @@ pub fn write(
             }
             let mut text = Vec::with_capacity((last - first) * LINE);
             let mut varied = span.varied(base, options);
+            let values = span.steps(steps);
             let mut scratch = [0; LINE_BYTES];
             for i in first..last {
-                let value = span.at(i, steps);
+                let value = values.at(i);
                 bounce_csv_line(
                     &mut text,
                     &mut scratch,

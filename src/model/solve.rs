@@ -57,7 +57,14 @@ pub fn solve_in<'a>(
     let solved = match slot.as_mut() {
         Some(bounce) => {
             bounce.params = *params;
-            resolve(options, whole_check, &mut Incidence::default(), bounce)
+            let cost = Cost::of(&bounce.params);
+            resolve(
+                options,
+                cost,
+                whole_check,
+                &mut Incidence::default(),
+                bounce,
+            )
         }
         None => solve_with(params, options).map(|bounce| *slot = Some(bounce)),
     };
@@ -78,7 +85,7 @@ fn bounce_of(
     solve: impl FnOnce(&mut Option<Setup>, &mut Vec<Phase>) -> Result<State, SolveError>,
 ) -> Result<Bounce, SolveError> {
     let (mut setup, mut phases) = (None, Vec::with_capacity(8));
-    let last = bounded(params, options, whole_check, || {
+    let last = bounded(params, options, Cost::of(params), whole_check, || {
         solve(&mut setup, &mut phases)
     })?;
     let setup = setup.expect("a solved bounce has its constants");
@@ -88,9 +95,11 @@ fn bounce_of(
 }
 
 /// [`solve_with`] of the bounce's own parameters (set before) over `bounce`, in place (its constants
-/// written where the last bounce's were, its phases over theirs), checked by `check`, at `incidence`.
+/// written where the last bounce's were, its phases over theirs), checked by `check`, at `incidence`;
+/// `cost` is theirs.
 fn resolve(
     options: &SolveOptions,
+    cost: Cost,
     check: impl FnOnce(&Params) -> Result<(), SolveError>,
     incidence: &mut Incidence,
     bounce: &mut Bounce,
@@ -107,7 +116,7 @@ fn resolve(
         *place = built;
         place
     };
-    *final_state = bounded(params, options, check, || {
+    *final_state = bounded(params, options, cost, check, || {
         solve_model(params, options, incidence, phases, put)
     })?;
     bounce.refinish();
@@ -131,6 +140,8 @@ pub struct Varied<'a> {
     options: SolveOptions<'a>,
     /// The direction of incidence, while the angle stays.
     incidence: Incidence,
+    /// The solves' cost, taken once unless the chain's length is what varies.
+    cost: Option<Cost>,
     /// The last bounce, whose parameters are `base`'s but for the varied value.
     slot: Option<Bounce>,
 }
@@ -151,6 +162,7 @@ impl<'a> Varied<'a> {
             relaxation_checked,
             options: *options,
             incidence: Incidence::default(),
+            cost: (id != ParamId::Chain).then(|| Cost::of(base)),
             slot: None,
         }
     }
@@ -159,6 +171,7 @@ impl<'a> Varied<'a> {
     pub fn solve(&mut self, value: f64) -> Result<&Bounce, SolveError> {
         let (id, options, incidence) = (self.id, &self.options, &mut self.incidence);
         let relaxation_checked = self.relaxation_checked;
+        let cost = |params: &Params| self.cost.unwrap_or_else(|| Cost::of(params));
         let solved = match self.slot.as_mut() {
             // The last bounce's parameters differ from these in the varied value alone.
             Some(bounce) if self.others_checked => {
@@ -172,11 +185,17 @@ impl<'a> Varied<'a> {
                     }
                     Ok(solvable::relaxation(params)?)
                 };
-                resolve(options, check, incidence, bounce)
+                resolve(options, cost(&bounce.params), check, incidence, bounce)
             }
             Some(bounce) => {
                 bounce.params.set(id, value);
-                resolve(options, whole_check, incidence, bounce)
+                resolve(
+                    options,
+                    cost(&bounce.params),
+                    whole_check,
+                    incidence,
+                    bounce,
+                )
             }
             None => {
                 self.base.set(id, value);
@@ -214,17 +233,39 @@ fn whole_check(params: &Params) -> Result<(), SolveError> {
     Ok(solvable::check(params)?)
 }
 
+/// What a solve's evaluations cost and how many it may spend ([`weight`], [`budget`]): they depend on
+/// the chain's length alone, so a sweep of anything else takes them once.
+#[derive(Clone, Copy)]
+struct Cost {
+    weight: u64,
+    budget: u64,
+    /// The evaluations allowed without shared work: `u64::MAX / weight`.
+    unshared: u64,
+}
+
+impl Cost {
+    fn of(params: &Params) -> Cost {
+        let weight = weight(params);
+        Cost {
+            weight,
+            budget: budget(params),
+            unshared: u64::MAX / weight,
+        }
+    }
+}
+
 /// Runs `solve` for `params` bounded: refused up front when `check` refuses them (a parameter outside
-/// what can be solved), within its work budget and the caller's shared work. Counted in the shared
-/// work's tally unless nested in another solve.
+/// what can be solved), within its work budget (`cost`, theirs) and the caller's shared work. Counted
+/// in the shared work's tally unless nested in another solve.
 fn bounded<T>(
     params: &Params,
     options: &SolveOptions,
+    cost: Cost,
     check: impl FnOnce(&Params) -> Result<(), SolveError>,
     solve: impl FnOnce() -> Result<T, SolveError>,
 ) -> Result<T, SolveError> {
     let outermost = !events::metering();
-    let solved = checked(params, options, check, solve);
+    let solved = checked(params, options, cost, check, solve);
     if let (true, Some(work)) = (outermost, options.work) {
         work.count();
     }
@@ -234,21 +275,25 @@ fn bounded<T>(
 fn checked<T>(
     params: &Params,
     options: &SolveOptions,
+    Cost {
+        weight,
+        budget,
+        unshared,
+    }: Cost,
     check: impl FnOnce(&Params) -> Result<(), SolveError>,
     solve: impl FnOnce() -> Result<T, SolveError>,
 ) -> Result<T, SolveError> {
     check(params)?;
-    let weight = weight(params);
-    let allowed = options.work.map_or(u64::MAX, |work| work.left()) / weight;
+    let allowed = options.work.map_or(unshared, |work| work.left() / weight);
     if allowed == 0 {
         return Err(SolveError::CommandBudget);
     }
-    let solved = events::metered(budget(params).min(allowed), solve);
+    let solved = events::metered(budget.min(allowed), solve);
     if let Some(work) = options.work {
         work.spend(events::spent().saturating_mul(weight));
     }
     solved.map_err(|stall| match stall {
-        Stall::Budget { .. } if allowed < budget(params) => SolveError::CommandBudget,
+        Stall::Budget { .. } if allowed < budget => SolveError::CommandBudget,
         stall => SolveError::Stalled {
             stall,
             hint: advice(params),
@@ -318,7 +363,9 @@ fn solve_model<'s>(
 pub fn solve_chain(params: &Params) -> Result<Bounce, SolveError> {
     let options = SolveOptions::default();
     if params.model().compliant() {
-        return bounded(params, &options, whole_check, || solve(params));
+        return bounded(params, &options, Cost::of(params), whole_check, || {
+            solve(params)
+        });
     }
     bounce_of(params, &options, |setup, phases| {
         let setup = &*setup.insert(Setup::new(params));
