@@ -462,15 +462,13 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize, const TAYLOR: bool, const 
         a: &Point<B, K>,
         b: &Point<B, K>,
     ) -> (Point<B, K>, Option<Point<B, K>>) {
-        let (mut low, mut high) = (*a, *b);
+        // Only branch `i` and the times of the bracket's ends are read, so only they are copied.
+        let (mut low, mut high) = ((a.t, a.branches[i]), (b.t, b.branches[i]));
         let mut step = b.t - a.t;
-        while low.branches[i].value() > 0.0 && low.t > self.start && step > 0.0 {
+        while low.1.value() > 0.0 && low.0 > self.start && step > 0.0 {
             high = low;
-            let t = (low.t - step).max(self.start);
-            low = Point {
-                t,
-                branches: (self.f)(t),
-            };
+            let t = (low.0 - step).max(self.start);
+            low = (t, (self.f)(t)[i]);
             step *= 2.0;
         }
         refine::<B, K, PREDICT>(self.f, i, low, high)
@@ -622,6 +620,7 @@ fn predicted<B: Branch>((low, high): (B, B), a: f64, b: f64, guess: f64) -> Opti
 }
 
 /// The crossing of zero of branch `i` of `f` in `[a, b]`, given `f_i(a) <= 0 < f_i(b)` (up to noise),
+/// each end given as its time and branch `i` there,
 /// by the branch's step (Newton's, or the cubic Taylor model's where it knows its higher derivatives)
 /// from the secant point (or, with `PREDICT` where the branch knows its higher derivatives at both
 /// ends, from the crossing [`predicted`] from them), kept inside a shrinking bracket, to a few units in
@@ -631,12 +630,12 @@ fn predicted<B: Branch>((low, high): (B, B), a: f64, b: f64, guess: f64) -> Opti
 fn refine<B: Branch, const K: usize, const PREDICT: bool>(
     f: &impl Event<B, K>,
     i: usize,
-    a: Point<B, K>,
-    b: Point<B, K>,
+    (mut a, low): (f64, B),
+    (mut b, high): (f64, B),
 ) -> (Point<B, K>, Option<Point<B, K>>) {
     let resolution = |t: f64| 4.0 * f64::EPSILON * t.abs().max(f64::MIN_POSITIVE);
-    let (fa, fb) = (a.branches[i].value(), b.branches[i].value());
-    let (ends, mut a, mut b) = ((a.branches[i], b.branches[i]), a.t, b.t);
+    let (fa, fb) = (low.value(), high.value());
+    let ends = (low, high);
     let secant = a + (b - a) * (-fa / (fb - fa));
     let mut t = if secant > a && secant < b {
         secant

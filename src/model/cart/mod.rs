@@ -293,6 +293,11 @@ impl Contact for SingleCart {
                     );
                     let t = event.map_or(end, |(t, _)| t);
                     let angles = last_probe(&probe, t).unwrap_or_else(|| slide.angles(setup, t));
+                    // A slide from first contact measures its time from t = 0, so its first angle is
+                    // the normal force's at t, the one the transition asks for (the same bits).
+                    if slide.start.t == 0.0 {
+                        self.normal_angle.set((t, angles.0));
+                    }
                     let event = event.map(|(t, _)| (t, Cause::SlipZero));
                     (event, slide.sample_given(setup, t, angles).0)
                 } else {
