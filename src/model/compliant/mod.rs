@@ -58,6 +58,7 @@ mod chain_grip;
 mod held_chain;
 mod held_frame;
 mod held_ring;
+mod slip_sums;
 mod stretch;
 
 use std::sync::Arc;
@@ -1081,51 +1082,16 @@ impl Contact for CompliantBall {
             CompliantPhase::HeldOnFrame(held) => self.held_event(setup, held, state, ball, cause),
             CompliantPhase::Slide(slide) => {
                 let dir = slide.dir();
-                // A detuned, damped slide on the single cart without string friction searches the
-                // patch's slip written once for the phase: the rigid slip by the cart's sums, e' by
-                // the stretch's, one `sin_cos2` and one `exp` an evaluation. Its point is computed
-                // only where the search ends (so on a chain and on a free frame, below); other slides
-                // evaluate theirs.
-                let sums = match &slide.rigid {
-                    Rigid::Cart(rigid) if setup.cart_friction == 0.0 => rigid
-                        .slip_sums(setup)
-                        .zip(slide.stretch.rates(w))
-                        .map(|(sums, rates)| (rigid, sums, rates)),
-                    _ => None,
-                };
-                // So does one on a chain sliding on the wall without string friction: the rigid
-                // slip from the chain's sums (its rows but the last), e' by the stretch's at the
-                // chain's sin and cos of w τ, one `exp` more an evaluation.
-                let chain_sums = match &slide.rigid {
-                    Rigid::Chain(motion) if setup.cart_friction == 0.0 => {
-                        slide.stretch.rates(w).and_then(|rates| {
-                            let at_start = motion.slip_by_sums(setup, t0)?;
-                            Some((&**motion, at_start, rates))
-                        })
-                    }
-                    _ => None,
-                };
-                // On a free frame, the same by the frame's sums.
-                let frame_sums = match &slide.rigid {
-                    Rigid::Frame(motion, _) if setup.cart_friction == 0.0 => motion
-                        .slide_sums(setup)
-                        .zip(slide.stretch.rates(w))
-                        .map(|(sums, rates)| (&motion.start.s, sums, rates)),
-                    _ => None,
-                };
+                // A detuned, damped slide without string friction searches the patch's slip written
+                // once for the phase: the rigid slip by the sums of the single cart, of a chain on the
+                // wall or of a free frame, e' by the stretch's ([`slip_sums`]). Its point is computed
+                // only where the search ends; other slides evaluate theirs.
+                let sums = slip_sums::slip_sums(slide, setup, t0);
                 // The patch's slip at the start, and the point there where the search evaluates
                 // points.
-                let (start_slip, start) = match (&sums, &chain_sums, &frame_sums) {
-                    (Some((rigid, _, rates)), _, _) => {
-                        (setup.slip(&rigid.start) - rates.at(t0, (0.0, 1.0)).0, None)
-                    }
-                    (None, Some((_, (slip, _, w_tau), rates)), _) => {
-                        (slip - rates.at(t0, *w_tau).0, None)
-                    }
-                    (None, None, Some((start, _, rates))) => {
-                        (setup.slip(start) - rates.at(t0, (0.0, 1.0)).0, None)
-                    }
-                    (None, None, None) => {
+                let (start_slip, start) = match &sums {
+                    Some(sums) => (sums.start_slip(setup, t0), None),
+                    None => {
                         let p = slide.at(setup, t0);
                         (slide.patch_slip(setup, &p).0, Some(p))
                     }
@@ -1138,57 +1104,9 @@ impl Contact for CompliantBall {
                 } else {
                     0.0
                 };
-                let by_sums = sums.map(|(rigid, sums, rates)| {
-                    let constants = sums.constants(offset);
-                    // At t0 the event is the start's slip taken exactly, as the points' below.
-                    let level = ((0.0, 1.0), (0.0, 1.0));
-                    let at_start = (
-                        -dir * (start_slip - offset),
-                        sums.event(level, constants).1 + dir * rates.at(t0, (0.0, 1.0)).1,
-                    );
-                    move |t: f64| {
-                        if t == t0 {
-                            return [at_start];
-                        }
-                        let angles = rigid.angles(setup, t);
-                        let (value, rate, _, _) = sums.event(angles, constants);
-                        let (de, dde) = rates.at(t, angles.0);
-                        [(value + dir * de, rate + dir * dde)]
-                    }
-                });
-                // The chain's: at t0, the start's slip above (the same sums, not evaluated again).
-                let by_chain = chain_sums.map(|(motion, (_, rate, w_tau), rates)| {
-                    let at_start = (
-                        -dir * (start_slip - offset),
-                        -dir * (rate - rates.at(t0, w_tau).1),
-                    );
-                    move |t: f64| {
-                        if t == t0 {
-                            return [at_start];
-                        }
-                        let (slip, rate, w_tau) = motion
-                            .slip_by_sums(setup, t)
-                            .expect("the phase's sums gave the slip at t0");
-                        let (de, dde) = rates.at(t, w_tau);
-                        [(-dir * ((slip - de) - offset), -dir * (rate - dde))]
-                    }
-                });
-                let by_frame_sums = frame_sums.map(|(_, sums, rates)| {
-                    let constants = sums.constants(offset);
-                    let ((_, rate), _) = sums.at(setup, t0, constants);
-                    let at_start = (
-                        -dir * (start_slip - offset),
-                        rate + dir * rates.at(t0, (0.0, 1.0)).1,
-                    );
-                    move |t: f64| {
-                        if t == t0 {
-                            return [at_start];
-                        }
-                        let ((value, rate), angle) = sums.at(setup, t, constants);
-                        let (de, dde) = rates.at(t, angle);
-                        [(value + dir * de, rate + dir * dde)]
-                    }
-                });
+                let by_sums = sums
+                    .as_ref()
+                    .map(|sums| sums.event(setup, t0, dir, start_slip, offset));
                 // The patch's slip against `dir`, with the point it was measured at (the search's
                 // first, at t0, is the one above).
                 let slip = |t: f64| {
@@ -1261,11 +1179,7 @@ impl Contact for CompliantBall {
                 // Without string friction the cart has no event: the slip alone is searched.
                 let search = |from: f64, to: f64, step: f64, curvature: f64| {
                     if let Some(by_sums) = &by_sums {
-                        first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
-                    } else if let Some(by_chain) = &by_chain {
-                        first_rise_from_tangent(by_chain, from, to, step, [curvature], [noise])
-                    } else if let Some(by_sums) = &by_frame_sums {
-                        first_rise_from_tangent(by_sums, from, to, step, [curvature], [noise])
+                        by_sums.first_rise(from, to, step, curvature, noise)
                     } else if setup.cart_friction == 0.0 {
                         let slip_only = |t: f64| [slip(t).1];
                         first_rise_from_tangent(slip_only, from, to, step, [curvature], [noise])
