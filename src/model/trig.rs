@@ -204,10 +204,9 @@ const COS_KERNEL: [f64; 6] = [
 /// sin and cos of every angle in `angles` into `sin` and `cos` (as many as the shortest of the three),
 /// for the closed forms that need one pair per mode at every probe: the reduction of [`sin_cos`], then
 /// fdlibm's degree-13 and -14 kernels in place of its longer series, and the quadrant by bit masks,
-/// with no branch in the loop (which the compiler runs two angles at a time in the lanes of a vector
-/// register). Within about an ulp of the larger of the result and 1/4 as [`sin_cos`] is, and mostly
-/// the same bits, but not always; when any angle is beyond `REDUCED` or not finite, every one goes to
-/// [`sin_cos`].
+/// with no branch, two angles at a time in the lanes of a vector register (`kernel_each`). Within about
+/// an ulp of the larger of the result and 1/4 as [`sin_cos`] is, and mostly the same bits, but not
+/// always; when any angle is beyond `REDUCED` or not finite, every one goes to [`sin_cos`].
 #[inline(always)]
 pub fn sin_cos_each(angles: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     if !angles.iter().all(|a| a.abs() <= REDUCED) {
@@ -216,32 +215,61 @@ pub fn sin_cos_each(angles: &[f64], sin: &mut [f64], cos: &mut [f64]) {
         }
         return;
     }
-    for ((&x, s_out), c_out) in angles.iter().zip(sin.iter_mut()).zip(cos.iter_mut()) {
-        let rounded = x * FRAC_2_PI + ROUNDER;
-        let k = rounded - ROUNDER;
-        let (head, tail) = (x - k * HALF_PI_HEAD, k * HALF_PI_TAIL);
-        let r = head - tail;
-        let low = (head - r) - tail;
-        let z = r * r;
-        let sin_poly = SIN_KERNEL[..5]
-            .iter()
-            .rev()
-            .fold(SIN_KERNEL[5], |acc, &coefficient| acc * z + coefficient);
-        let cos_poly = COS_KERNEL[..5]
-            .iter()
-            .rev()
-            .fold(COS_KERNEL[5], |acc, &coefficient| acc * z + coefficient);
-        let half = 0.5 * z;
-        let one_less = 1.0 - half;
-        let s = r + (r * z * sin_poly + low * one_less);
-        let c = one_less + (((1.0 - one_less) - half) + (z * z * cos_poly - r * low));
-        // The quadrant q: odd swaps sin and cos; sin is negated for q = 2, 3, cos for q = 1, 2.
-        let q = rounded.to_bits() & 3;
-        let swap = 0u64.wrapping_sub(q & 1);
-        let (s, c) = (s.to_bits(), c.to_bits());
-        *s_out = f64::from_bits(((c & swap) | (s & !swap)) ^ ((q & 2) << 62));
-        *c_out = f64::from_bits(((s & swap) | (c & !swap)) ^ (((q + 1) & 2) << 62));
+    // Written out as pairs, so that vectorizing does not depend on the caller it is inlined into; an
+    // odd angle last, alone (a lane's operations are the scalar ones: the same bits).
+    let count = angles.len().min(sin.len()).min(cos.len());
+    let pairs = count / 2 * 2;
+    for at in (0..pairs).step_by(2) {
+        let (s, c) = kernel_each([angles[at], angles[at + 1]]);
+        sin[at..at + 2].copy_from_slice(&s);
+        cos[at..at + 2].copy_from_slice(&c);
     }
+    if pairs < count {
+        let ([s], [c]) = kernel_each([angles[pairs]]);
+        (sin[pairs], cos[pairs]) = (s, c);
+    }
+}
+
+/// [`sin_cos_each`]'s reduction, kernels and quadrant for `L` angles side by side, lane by lane.
+#[inline(always)]
+fn kernel_each<const L: usize>(x: [f64; L]) -> ([f64; L], [f64; L]) {
+    let rounded: [f64; L] = std::array::from_fn(|i| x[i] * FRAC_2_PI + ROUNDER);
+    let k: [f64; L] = std::array::from_fn(|i| rounded[i] - ROUNDER);
+    let head: [f64; L] = std::array::from_fn(|i| x[i] - k[i] * HALF_PI_HEAD);
+    let tail: [f64; L] = std::array::from_fn(|i| k[i] * HALF_PI_TAIL);
+    let r: [f64; L] = std::array::from_fn(|i| head[i] - tail[i]);
+    let low: [f64; L] = std::array::from_fn(|i| (head[i] - r[i]) - tail[i]);
+    let z: [f64; L] = std::array::from_fn(|i| r[i] * r[i]);
+    let kernel = |coefficients: &[f64; 6], i: usize| {
+        coefficients[..5]
+            .iter()
+            .rev()
+            .fold(coefficients[5], |acc, &coefficient| {
+                acc * z[i] + coefficient
+            })
+    };
+    let sin_poly: [f64; L] = std::array::from_fn(|i| kernel(&SIN_KERNEL, i));
+    let cos_poly: [f64; L] = std::array::from_fn(|i| kernel(&COS_KERNEL, i));
+    let half: [f64; L] = std::array::from_fn(|i| 0.5 * z[i]);
+    let one_less: [f64; L] = std::array::from_fn(|i| 1.0 - half[i]);
+    let s: [f64; L] =
+        std::array::from_fn(|i| r[i] + (r[i] * z[i] * sin_poly[i] + low[i] * one_less[i]));
+    let c: [f64; L] = std::array::from_fn(|i| {
+        one_less[i]
+            + (((1.0 - one_less[i]) - half[i]) + (z[i] * z[i] * cos_poly[i] - r[i] * low[i]))
+    });
+    // The quadrant q: odd swaps sin and cos; sin is negated for q = 2, 3, cos for q = 1, 2.
+    let q: [u64; L] = std::array::from_fn(|i| rounded[i].to_bits() & 3);
+    let swap: [u64; L] = std::array::from_fn(|i| 0u64.wrapping_sub(q[i] & 1));
+    let (s, c) = (s.map(f64::to_bits), c.map(f64::to_bits));
+    (
+        std::array::from_fn(|i| {
+            f64::from_bits(((c[i] & swap[i]) | (s[i] & !swap[i])) ^ ((q[i] & 2) << 62))
+        }),
+        std::array::from_fn(|i| {
+            f64::from_bits(((s[i] & swap[i]) | (c[i] & !swap[i])) ^ (((q[i] + 1) & 2) << 62))
+        }),
+    )
 }
 
 #[cfg(test)]
@@ -324,6 +352,25 @@ mod tests {
         assert_eq!(exp(-800.0), 0.0);
         assert!(exp(f64::NAN).is_nan());
         assert_eq!(exp(f64::INFINITY), f64::INFINITY);
+    }
+
+    /// An angle's sin and cos are the same bits whether it is taken in a pair's lane or alone.
+    #[test]
+    fn each_gives_an_angle_the_same_bits_in_a_pair_or_alone() {
+        let mut uniform = uniform(0x2545_f491_4f6c_dd1du64);
+        for span in [1e-8, 0.8, 3.2, 1e3, 1.5e6] {
+            for _ in 0..20_000 {
+                let angles: [f64; 3] = std::array::from_fn(|_| (2.0 * uniform() - 1.0) * span);
+                let (mut sin, mut cos) = ([0.0; 3], [0.0; 3]);
+                sin_cos_each(&angles, &mut sin, &mut cos);
+                for (i, &x) in angles.iter().enumerate() {
+                    let (mut alone_sin, mut alone_cos) = ([0.0], [0.0]);
+                    sin_cos_each(&[x], &mut alone_sin, &mut alone_cos);
+                    assert_eq!(sin[i].to_bits(), alone_sin[0].to_bits(), "{x}");
+                    assert_eq!(cos[i].to_bits(), alone_cos[0].to_bits(), "{x}");
+                }
+            }
+        }
     }
 
     /// Against the library: within 2 units in the last place of the larger of the result and 1/4,
