@@ -340,8 +340,10 @@ pub struct ChainGrip {
     beta: Option<Vec<C64>>,
     /// Without them, z̃ at the start and after every step h of the exponential, as far as asked for.
     checkpoints: Arc<Mutex<Vec<DVector<f64>>>>,
-    /// On the wall without a push, each mode's [`Shares`] of the contact's sums.
+    /// Without a push, each mode's [`Shares`] of the contact's sums.
     shares: Option<Vec<Shares>>,
+    /// With them on a free frame, each mode's shares of r'', X_f - Y and its two rates.
+    frame_shares: Option<Vec<Shares<4>>>,
     /// Each still mode's Q and Q' at the start (`GripModes::still`).
     still: Vec<(f64, f64)>,
 }
@@ -361,9 +363,9 @@ const SUMS: usize = 10;
 /// apart: each sum at τ is then Re Σ_i e^{s_i τ} (c_i X_i), two products a mode and sum. Taken once per
 /// grip.
 #[derive(Clone, Debug)]
-struct Shares {
-    re: [f64; SUMS],
-    im: [f64; SUMS],
+struct Shares<const N: usize = SUMS> {
+    re: [f64; N],
+    im: [f64; N],
 }
 
 impl Shares {
@@ -380,6 +382,24 @@ impl Shares {
             rate * mode.force,
             rate * mode.s * mode.force,
             rate * mode.s * mode.s * mode.force,
+        ];
+        Shares {
+            re: sums.map(|z| z.re),
+            im: sums.map(|z| z.im),
+        }
+    }
+}
+
+impl Shares<4> {
+    /// On a free frame, c_i times the mode's s_i² u_i (r''), and its X_f - Y (`frame`, Σ' Φ_fj Q_j)
+    /// times 1, s_i and s_i².
+    fn frame(mode: &Mode, ci: C64, frame: C64) -> Shares<4> {
+        let rate = ci * mode.s;
+        let sums = [
+            rate * mode.s * mode.u,
+            ci * frame,
+            rate * frame,
+            rate * mode.s * frame,
         ];
         Shares {
             re: sums.map(|z| z.re),
@@ -443,11 +463,21 @@ impl ChainGrip {
         if push != 0.0 && beta.is_none() {
             coefficients = None;
         }
-        let shares = match (&modes.modes, &coefficients) {
-            (Some(list), Some(c)) if push == 0.0 && modes.translation.is_none() => Some(
+        let shares: Option<Vec<Shares>> = match (&modes.modes, &coefficients) {
+            (Some(list), Some(c)) if push == 0.0 => Some(
                 list.iter()
                     .zip(c)
                     .map(|(mode, &ci)| Shares::new(mode, ci))
+                    .collect(),
+            ),
+            _ => None,
+        };
+        let frame_shares = match (&modes.modes, &coefficients) {
+            (Some(list), Some(c)) if shares.is_some() && modes.translation.is_some() => Some(
+                list.iter()
+                    .zip(c)
+                    .zip(&modes.frame_shares)
+                    .map(|((mode, &ci), &frame)| Shares::frame(mode, ci, frame))
                     .collect(),
             ),
             _ => None,
@@ -463,6 +493,7 @@ impl ChainGrip {
             beta,
             checkpoints: Arc::new(Mutex::new(Vec::new())),
             shares,
+            frame_shares,
             still,
         }
     }
@@ -584,11 +615,11 @@ impl ChainGrip {
 
     /// The state at `t` where [`ChainGrip::force_keeping`] kept the modes' e^{s_i τ} there: the
     /// shares' first 8 sums from them, the same bits as [`ChainGrip::at`]'s (`None` where they were
-    /// kept at another time, or where the grip does not sum shares).
+    /// kept at another time, or where the grip does not sum shares or is on a free frame).
     pub(super) fn at_turns(&self, setup: &Setup, t: f64, turns: &Turns) -> Option<Point> {
         let shares = self.shares.as_ref()?;
-        (turns.t == t && t != self.start.t)
-            .then(|| self.shared_point(setup, t, turned_sums::<0, 8>(&turns.values, shares)))
+        (turns.t == t && t != self.start.t && self.frame_shares.is_none())
+            .then(|| self.shared_point(setup, t, turned_sums::<0, 8, SUMS>(&turns.values, shares)))
     }
 
     /// The point at `t` from the shares' first 8 sums there (F'' and F''' are the search's): on the
@@ -628,11 +659,35 @@ impl ChainGrip {
         let (du, force, dforce, e, de, dde, x1, v1, a1, ddu, (xf, dxf, ddxf)) =
             match (&g.modes, &self.coefficients) {
                 (Some(list), Some(_)) if let Some(shares) = &self.shares => {
-                    // The first 8 sums (F'' and F''' are the search's; as `shared_point`'s).
-                    let [u, du, e, de, dde, a1, f, df] =
-                        share_sums::<0, 8>(list, shares, tau, None);
-                    let none = (0.0, 0.0, 0.0);
-                    (du, f, df, e, de, dde, u - e, du - de, a1, 0.0, none)
+                    // The first 8 sums (F'' and F''' are the search's; as `shared_point`'s), and on
+                    // a free frame the frame's 4 from the same e^{s_i τ} (1 at τ = 0).
+                    let ([u, du, e, de, dde, a1, f, df], (ddu, xf, dxf, ddxf)) = match &self
+                        .frame_shares
+                    {
+                        None => (
+                            share_sums::<0, 8>(list, shares, tau, None),
+                            (0.0, 0.0, 0.0, 0.0),
+                        ),
+                        Some(frame_shares) => {
+                            let mut turns = [(1.0, 0.0); MODES];
+                            let sums = share_sums::<0, 8>(list, shares, tau, Some(&mut turns));
+                            let [ddu, xf, dxf, ddxf] = turned_sums::<0, 4, 4>(&turns, frame_shares);
+                            (sums, (ddu, xf, dxf, ddxf))
+                        }
+                    };
+                    (
+                        du,
+                        f,
+                        df,
+                        e,
+                        de,
+                        dde,
+                        u - e,
+                        du - de,
+                        a1,
+                        ddu,
+                        (xf, dxf, ddxf),
+                    )
                 }
                 (Some(list), Some(c)) => {
                     let zero = C64::new(0.0, 0.0);
@@ -871,9 +926,9 @@ fn share_sums<const FROM: usize, const K: usize>(
 /// [`share_sums`] from the modes' e^{s_i τ} it kept (τ not 0): the same products in the same order,
 /// so the same bits.
 #[inline]
-fn turned_sums<const FROM: usize, const K: usize>(
+fn turned_sums<const FROM: usize, const K: usize, const N: usize>(
     turns: &[(f64, f64); MODES],
-    shares: &[Shares],
+    shares: &[Shares<N>],
 ) -> [f64; K] {
     let mut sums = [0.0; K];
     for (&(re, im), share) in turns.iter().zip(shares) {

@@ -367,10 +367,13 @@ fn fourth_violation(grip: &ChainGrip, setup: &Setup, scale: f64) -> (f64, f64) {
                 [force.to_bits(), rate.to_bits()],
                 [point.friction.to_bits(), point.friction_rate.to_bits()]
             );
-            // So is the state summed from the exponentials the search kept there.
+            // So is the state summed from the exponentials the search kept there (on the wall).
             let mut turns = Turns::new();
             grip.margins_keeping(setup, t, Some(&mut turns));
-            let kept = grip.at_turns(setup, t, &turns).expect("kept at t");
+            let Some(kept) = grip.at_turns(setup, t, &turns) else {
+                assert!(grip.frame_shares.is_some(), "kept at t");
+                continue;
+            };
             let bits = |p: &Point| {
                 let s = p.state;
                 [
@@ -444,4 +447,65 @@ fn the_grip_bounds_its_fourth_derivative() {
     }
     assert!(checked >= 50, "{checked} grips by their shares");
     assert!(halved > 1.0, "half the bound holds everywhere ({halved})");
+}
+
+/// A free frame's grip without a push sums its shares, the frame's four among them: its point agrees
+/// with the same grip summed mode by mode through the library's exponential (to rounding), its F''
+/// and F''' are the derivatives of its F', and each search stage's bound on |F''''| holds.
+#[test]
+fn a_framed_grip_sums_its_shares() {
+    let mut rng = Lcg(29);
+    let mut checked = 0;
+    for case in 0..40 {
+        let p = Params {
+            frame_mass: rng.log(0.02, 2.0),
+            ..random(&mut rng)
+        };
+        let (g, setup) = grip_modes(&p);
+        assert!(g.translation.is_some(), "case {case}: a chain on a frame");
+        let masses = g.chain.slide.n;
+        let mut start = ChainState::from_contact(&setup.initial(50.0));
+        start.t = 1e-3 * rng.unit();
+        set_moving(&mut start, masses, &mut rng);
+        let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
+        if grip.frame_shares.is_none() {
+            continue;
+        }
+        checked += 1;
+        let by_modes = ChainGrip {
+            shares: None,
+            frame_shares: None,
+            ..grip.clone()
+        };
+        for k in 0..=20 {
+            let t = start.t + 2e-4 * k as f64;
+            let (a, b) = (grip.at(&setup, t), by_modes.at(&setup, t));
+            let pairs = [
+                (a.state.vx, b.state.vx),
+                (a.state.omega * setup.r, b.state.omega * setup.r),
+                (a.state.x, b.state.x),
+                (a.state.v, b.state.v),
+                (a.e, b.e),
+                (a.de, b.de),
+                (a.frame.0, b.frame.0),
+            ];
+            let scale = pairs.iter().map(|&(x, _)| x.abs()).fold(1e-3, f64::max);
+            for (field, (x, y)) in pairs.into_iter().enumerate() {
+                assert!(
+                    (x - y).abs() <= 1e-12 * scale,
+                    "case {case}, field {field} at {t}: {x:e} against {y:e}"
+                );
+            }
+        }
+        let (derivatives, fourth) = fourth_violation(&grip, &setup, 1.0);
+        assert!(
+            derivatives <= 1e-6,
+            "case {case} {p:?}: F'', F''' {derivatives:e}"
+        );
+        assert!(
+            fourth <= 1.0,
+            "case {case} {p:?}: |F''''| at {fourth} of its bound"
+        );
+    }
+    assert!(checked >= 30, "{checked} framed grips by their shares");
 }
