@@ -26,6 +26,12 @@ pub fn apparent_restitution(ey: f64, m: f64, frame: f64) -> f64 {
     (ey * frame - m) / (frame + m)
 }
 
+/// The peak normal force N0 of an impulse m (1 + e_A) v_y1 = 2 N0 T / pi.
+#[inline]
+fn peak_normal_force(ey_apparent: f64, p: &Params, vy1: f64) -> f64 {
+    (1.0 + ey_apparent) * PI * p.mass * vy1 / (2.0 * p.duration)
+}
+
 /// Constants of the model for one set of parameters.
 #[derive(Clone, Copy, Debug)]
 pub struct Setup {
@@ -68,9 +74,21 @@ pub struct Setup {
 pub struct Incidence {
     /// theta1's bits, and the sin and cos of its complement.
     known: Option<(u64, f64, f64)>,
+    /// True when the caller vouches that the bounces it asks for differ in their incidence alone (angle,
+    /// speed, spin), so that a rigid ball's constants are the last bounce's but for those of
+    /// [`Setup::at_new_incidence`].
+    pub alone: bool,
 }
 
 impl Incidence {
+    /// For bounces that differ in their incidence alone ([`Incidence::alone`]).
+    pub fn alone() -> Self {
+        Incidence {
+            alone: true,
+            ..Incidence::default()
+        }
+    }
+
     /// sin and cos of 90 degrees - `angle_deg`, computed when the angle differs from the last one's.
     #[inline]
     pub fn at(&mut self, angle_deg: f64) -> (f64, f64) {
@@ -120,8 +138,7 @@ impl Setup {
             cart_friction: p.cart_friction,
             duration: p.duration,
             w,
-            // The normal impulse m (1 + e_A) v_y1 = 2 N0 T / pi.
-            n0: (1.0 + ey_apparent) * PI * p.mass * vy1 / (2.0 * p.duration),
+            n0: peak_normal_force(ey_apparent, p, vy1),
             omega_slide: (p.stiffness / p.cart_mass).sqrt(),
             omega_grip: (p.stiffness / (p.cart_mass + m_eff)).sqrt(),
             grip_gain: p.stiffness * m_eff / (p.cart_mass + m_eff),
@@ -131,6 +148,17 @@ impl Setup {
             frame_normal_mass,
             ey_apparent,
         }
+    }
+
+    /// These constants for `p`, whose parameters are those they were made of but for the incidence
+    /// (angle, speed, spin): the same bits as [`Setup::at_incidence`]'s, only v_x1, v_y1 and N0
+    /// computed again.
+    #[inline]
+    pub fn at_new_incidence(&mut self, p: &Params, incidence: &mut Incidence) {
+        let (sin, cos) = incidence.at(p.angle_deg);
+        self.vx1 = p.speed * sin;
+        self.vy1 = p.speed * cos;
+        self.n0 = peak_normal_force(self.ey_apparent, p, self.vy1);
     }
 
     /// The ball's velocity away from the surface as it leaves, e_A v_y1.

@@ -38,9 +38,9 @@ pub fn solve_cancellable(
 pub fn solve_with(params: &Params, options: &SolveOptions) -> Result<Bounce, SolveError> {
     bounce_of(params, options, |setup, phases| {
         // The place moved into the call (FnOnce), so the constants' reference outlives it.
-        let put = move |built| {
+        let put = move |built: Build<'_>| {
             let place = setup;
-            &*place.insert(built)
+            &*place.insert(built.made())
         };
         solve_model(params, options, &mut Incidence::default(), phases, put)
     })
@@ -111,9 +111,9 @@ fn resolve(
         final_state,
         ..
     } = bounce;
-    let put = move |built| -> &Setup {
+    let put = move |built: Build<'_>| -> &Setup {
         let place = setup;
-        *place = built;
+        built.over(place);
         place
     };
     *final_state = bounded(params, options, cost, check, || {
@@ -138,7 +138,8 @@ pub struct Varied<'a> {
     /// part in it ([`relaxes_by`]).
     relaxation_checked: bool,
     options: SolveOptions<'a>,
-    /// The direction of incidence, while the angle stays.
+    /// The direction of incidence, while the angle stays (and in a sweep of the incidence, the
+    /// constants that do not depend on it).
     incidence: Incidence,
     /// The solves' cost, taken once unless the chain's length is what varies.
     cost: Option<Cost>,
@@ -161,7 +162,12 @@ impl<'a> Varied<'a> {
             others_checked,
             relaxation_checked,
             options: *options,
-            incidence: Incidence::default(),
+            // A sweep of the incidence keeps the rigid ball's constants that do not depend on it.
+            incidence: if matches!(id, ParamId::Angle | ParamId::Speed | ParamId::Spin) {
+                Incidence::alone()
+            } else {
+                Incidence::default()
+            },
             cost: (id != ParamId::Chain).then(|| Cost::of(base)),
             slot: None,
         }
@@ -315,6 +321,35 @@ fn advice(params: &Params) -> &'static str {
     }
 }
 
+/// The constants of a bounce, as [`solve_model`] hands them to its caller to place.
+enum Build<'b> {
+    /// The compliant ball's, which its model makes (lent, so that it is copied once, into its place).
+    Made(&'b Setup),
+    /// The rigid ball's, of these parameters at this incidence.
+    Rigid(&'b Params, &'b mut Incidence),
+}
+
+impl Build<'_> {
+    fn made(self) -> Setup {
+        match self {
+            Build::Made(setup) => *setup,
+            Build::Rigid(params, incidence) => Setup::at_incidence(params, incidence),
+        }
+    }
+
+    /// Written over `place`, the last bounce's constants: only those the incidence sets when the
+    /// bounces differ in it alone ([`Incidence::alone`]; a rigid ball's, as the model stays).
+    #[inline]
+    fn over(self, place: &mut Setup) {
+        match self {
+            Build::Rigid(params, incidence) if incidence.alone => {
+                place.at_new_incidence(params, incidence)
+            }
+            built => *place = built.made(),
+        }
+    }
+}
+
 /// The model for `params` ([`Params::model`]), run by the driver into `phases` (`bounded` has
 /// validated them): the constants of the bounce and the state as the ball leaves.
 /// `put` places the bounce's constants where the caller keeps them (so that they are not moved again).
@@ -323,7 +358,7 @@ fn solve_model<'s>(
     options: &SolveOptions,
     incidence: &mut Incidence,
     phases: &mut Vec<Phase>,
-    put: impl FnOnce(Setup) -> &'s Setup,
+    put: impl for<'b> FnOnce(Build<'b>) -> &'s Setup,
 ) -> Result<State, SolveError> {
     let kind = params.model();
     match (kind.ball, kind.support, kind.frame) {
@@ -333,7 +368,7 @@ fn solve_model<'s>(
             FrameKind::Clamped | FrameKind::Free,
         ) => {
             let (model, setup) = CompliantBall::new(params, params.stiffness > 0.0)?;
-            run(&model, put(setup), options, phases).map_err(|e| match e {
+            run(&model, put(Build::Made(&setup)), options, phases).map_err(|e| match e {
                 SolveError::TooManyPhases { limit, .. } => SolveError::TooManyPhases {
                     limit,
                     hint: " (a stiff, lightly damped ball chatters: raise --ball-damping, e.g. to 0.1, \
@@ -343,15 +378,15 @@ fn solve_model<'s>(
             })
         }
         (BallKind::Rigid, SupportKind::Chain, FrameKind::Clamped | FrameKind::Free) => {
-            let setup = put(Setup::at_incidence(params, incidence));
+            let setup = put(Build::Rigid(params, incidence));
             run(&ChainOfMasses::new(params, setup)?, setup, options, phases)
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Clamped) => {
-            let setup = put(Setup::at_incidence(params, incidence));
+            let setup = put(Build::Rigid(params, incidence));
             run(&SingleCart::new(params, setup)?, setup, options, phases)
         }
         (BallKind::Rigid, SupportKind::Cart, FrameKind::Free) => {
-            let setup = put(Setup::at_incidence(params, incidence));
+            let setup = put(Build::Rigid(params, incidence));
             let model = FramedCart::new(params, setup, params.frame_mass)?;
             run(&model, setup, options, phases)
         }
@@ -509,6 +544,33 @@ mod tests {
                 ParamId::Angle,
                 vec![30.0, 95.0, 60.0, 0.0, 45.0],
             ),
+            // A sweep of the incidence keeps the constants that do not depend on it: on a free frame
+            // of its own normal mass, and on a chain.
+            (
+                Params {
+                    frame_mass: 0.3,
+                    frame_normal_mass: 0.2,
+                    ..Params::default()
+                },
+                ParamId::Speed,
+                vec![10.0, 3.0, 1e160, 25.0],
+            ),
+            (
+                Params {
+                    frame_mass: 0.3,
+                    ..Params::default()
+                },
+                ParamId::Angle,
+                vec![30.0, 60.0, 89.0],
+            ),
+            (
+                Params {
+                    chain: 3.0,
+                    ..Params::default()
+                },
+                ParamId::Spin,
+                vec![0.0, 200.0, -150.0],
+            ),
             (
                 ball,
                 ParamId::BallDamping,
@@ -583,6 +645,8 @@ mod tests {
                     (Ok(got), Ok(fresh)) => {
                         assert_eq!(got.params, fresh.params);
                         assert_eq!(got.outcome, fresh.outcome, "{id:?} {value}");
+                        // The constants too, to the bit (Debug prints every f64 exactly).
+                        assert_eq!(format!("{:?}", got.setup), format!("{:?}", fresh.setup));
                         assert_eq!(got.phases.len(), fresh.phases.len());
                     }
                     (got, fresh) => {
