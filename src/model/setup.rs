@@ -77,14 +77,14 @@ pub struct Incidence {
     /// True when the caller vouches that the bounces it asks for differ in their incidence alone (angle,
     /// speed, spin), so that a rigid ball's constants are the last bounce's but for those of
     /// [`Setup::at_new_incidence`].
-    pub alone: bool,
+    pub only_varies: bool,
 }
 
 impl Incidence {
-    /// For bounces that differ in their incidence alone ([`Incidence::alone`]).
-    pub fn alone() -> Self {
+    /// For bounces that differ in their incidence alone ([`Incidence::only_varies`]).
+    pub fn only_varying() -> Self {
         Incidence {
-            alone: true,
+            only_varies: true,
             ..Incidence::default()
         }
     }

@@ -164,7 +164,7 @@ impl<'a> Varied<'a> {
             options: *options,
             // A sweep of the incidence keeps the rigid ball's constants that do not depend on it.
             incidence: if matches!(id, ParamId::Angle | ParamId::Speed | ParamId::Spin) {
-                Incidence::alone()
+                Incidence::only_varying()
             } else {
                 Incidence::default()
             },
@@ -338,11 +338,11 @@ impl Build<'_> {
     }
 
     /// Written over `place`, the last bounce's constants: only those the incidence sets when the
-    /// bounces differ in it alone ([`Incidence::alone`]; a rigid ball's, as the model stays).
+    /// bounces differ in it alone ([`Incidence::only_varies`]; a rigid ball's, as the model stays).
     #[inline]
     fn over(self, place: &mut Setup) {
         match self {
-            Build::Rigid(params, incidence) if incidence.alone => {
+            Build::Rigid(params, incidence) if incidence.only_varies => {
                 place.at_new_incidence(params, incidence)
             }
             built => *place = built.made(),
