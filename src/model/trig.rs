@@ -71,22 +71,6 @@ pub fn sin_cos(x: f64) -> (f64, f64) {
     }
 }
 
-/// `[expr at 0, expr at 1]`: one step of [`sin_cos2`] in both lanes.
-macro_rules! lanes {
-    (|$i:ident| $e:expr) => {
-        [
-            {
-                let $i = 0;
-                $e
-            },
-            {
-                let $i = 1;
-                $e
-            },
-        ]
-    };
-}
-
 /// [`sin_cos`] of two angles at once, bit for bit the same: the two run side by side in the lanes of
 /// one vector register where the target has them (every operation is the scalar one, lane by lane, and
 /// the quadrant is chosen by bit masks rather than a branch). A phase's closed form needs the normal
@@ -97,42 +81,19 @@ pub fn sin_cos2(x: f64, y: f64) -> ((f64, f64), (f64, f64)) {
     if !(plain(x) && plain(y)) {
         return (sin_cos(x), sin_cos(y));
     }
-    let v = [x, y];
-    let rounded = lanes!(|i| v[i] * FRAC_2_PI + ROUNDER);
-    let k = lanes!(|i| rounded[i] - ROUNDER);
-    let head = lanes!(|i| v[i] - k[i] * HALF_PI_HEAD);
-    let tail = lanes!(|i| k[i] * HALF_PI_TAIL);
-    let r = lanes!(|i| head[i] - tail[i]);
-    let low = lanes!(|i| (head[i] - r[i]) - tail[i]);
-    let z = lanes!(|i| r[i] * r[i]);
-    let sin_poly = lanes!(|i| horner(&SIN, z[i]));
-    let cos_poly = lanes!(|i| horner(&COS, z[i]));
-    let half = lanes!(|i| 0.5 * z[i]);
-    let one_less = lanes!(|i| 1.0 - half[i]);
-    let s = lanes!(|i| r[i] + (r[i] * z[i] * sin_poly[i] + low[i] * one_less[i]));
-    let c = lanes!(|i| {
-        one_less[i]
-            + (((1.0 - one_less[i]) - half[i]) + (z[i] * z[i] * cos_poly[i] - r[i] * low[i]))
-    });
-    // The quadrant q: odd swaps sin and cos; sin is negated for q = 2, 3, cos for q = 1, 2.
-    let quadrant = |i: usize| {
-        let q = rounded[i].to_bits() & 3;
-        let swap = 0u64.wrapping_sub(q & 1);
-        let (s, c) = (s[i].to_bits(), c[i].to_bits());
-        let sin = ((c & swap) | (s & !swap)) ^ ((q & 2) << 62);
-        let cos = ((s & swap) | (c & !swap)) ^ (((q + 1) & 2) << 62);
-        (f64::from_bits(sin), f64::from_bits(cos))
-    };
-    (quadrant(0), quadrant(1))
+    let (s, c) = reduced([x, y], &SIN, &COS);
+    ((s[0], c[0]), (s[1], c[1]))
 }
 
 /// The polynomial with `coefficients` (constant first) at `z`.
 #[inline(always)]
-fn horner(coefficients: &[f64; 8], z: f64) -> f64 {
-    coefficients[..7]
+fn horner<const N: usize>(coefficients: &[f64; N], z: f64) -> f64 {
+    coefficients[..N - 1]
         .iter()
         .rev()
-        .fold(coefficients[7], |acc, &coefficient| acc * z + coefficient)
+        .fold(coefficients[N - 1], |acc, &coefficient| {
+            acc * z + coefficient
+        })
 }
 
 /// sin x alone (the same reduction and series).
@@ -204,7 +165,7 @@ const COS_KERNEL: [f64; 6] = [
 /// sin and cos of every angle in `angles` into `sin` and `cos` (as many as the shortest of the three),
 /// for the closed forms that need one pair per mode at every probe: the reduction of [`sin_cos`], then
 /// fdlibm's degree-13 and -14 kernels in place of its longer series, and the quadrant by bit masks,
-/// with no branch, two angles at a time in the lanes of a vector register (`kernel_each`). Within about
+/// with no branch, two angles at a time in the lanes of a vector register (`reduced`). Within about
 /// an ulp of the larger of the result and 1/4 as [`sin_cos`] is, and mostly the same bits, but not
 /// always; when any angle is beyond `REDUCED` or not finite, every one goes to [`sin_cos`].
 #[inline(always)]
@@ -220,19 +181,27 @@ pub fn sin_cos_each(angles: &[f64], sin: &mut [f64], cos: &mut [f64]) {
     let count = angles.len().min(sin.len()).min(cos.len());
     let pairs = count / 2 * 2;
     for at in (0..pairs).step_by(2) {
-        let (s, c) = kernel_each([angles[at], angles[at + 1]]);
+        let (s, c) = reduced([angles[at], angles[at + 1]], &SIN_KERNEL, &COS_KERNEL);
         sin[at..at + 2].copy_from_slice(&s);
         cos[at..at + 2].copy_from_slice(&c);
     }
     if pairs < count {
-        let ([s], [c]) = kernel_each([angles[pairs]]);
+        let ([s], [c]) = reduced([angles[pairs]], &SIN_KERNEL, &COS_KERNEL);
         (sin[pairs], cos[pairs]) = (s, c);
     }
 }
 
-/// [`sin_cos_each`]'s reduction, kernels and quadrant for `L` angles side by side, lane by lane.
+/// sin and cos of `L` angles side by side, lane by lane (each lane's operations are [`sin_cos`]'s
+/// scalar ones: the same bits in any lane): [`sin_cos`]'s reduction, the series with `sin` and `cos`
+/// (the coefficients of sin r / r - 1 and of (cos r - 1 + r²/2) / r⁴ in r², constant first), and the
+/// quadrant by bit masks rather than a branch (odd swaps sin and cos; sin is negated for q = 2, 3, cos
+/// for q = 1, 2). The angles must be within `REDUCED`.
 #[inline(always)]
-fn kernel_each<const L: usize>(x: [f64; L]) -> ([f64; L], [f64; L]) {
+fn reduced<const L: usize, const N: usize>(
+    x: [f64; L],
+    sin: &[f64; N],
+    cos: &[f64; N],
+) -> ([f64; L], [f64; L]) {
     let rounded: [f64; L] = std::array::from_fn(|i| x[i] * FRAC_2_PI + ROUNDER);
     let k: [f64; L] = std::array::from_fn(|i| rounded[i] - ROUNDER);
     let head: [f64; L] = std::array::from_fn(|i| x[i] - k[i] * HALF_PI_HEAD);
@@ -240,16 +209,8 @@ fn kernel_each<const L: usize>(x: [f64; L]) -> ([f64; L], [f64; L]) {
     let r: [f64; L] = std::array::from_fn(|i| head[i] - tail[i]);
     let low: [f64; L] = std::array::from_fn(|i| (head[i] - r[i]) - tail[i]);
     let z: [f64; L] = std::array::from_fn(|i| r[i] * r[i]);
-    let kernel = |coefficients: &[f64; 6], i: usize| {
-        coefficients[..5]
-            .iter()
-            .rev()
-            .fold(coefficients[5], |acc, &coefficient| {
-                acc * z[i] + coefficient
-            })
-    };
-    let sin_poly: [f64; L] = std::array::from_fn(|i| kernel(&SIN_KERNEL, i));
-    let cos_poly: [f64; L] = std::array::from_fn(|i| kernel(&COS_KERNEL, i));
+    let sin_poly: [f64; L] = std::array::from_fn(|i| horner(sin, z[i]));
+    let cos_poly: [f64; L] = std::array::from_fn(|i| horner(cos, z[i]));
     let half: [f64; L] = std::array::from_fn(|i| 0.5 * z[i]);
     let one_less: [f64; L] = std::array::from_fn(|i| 1.0 - half[i]);
     let s: [f64; L] =
@@ -258,7 +219,6 @@ fn kernel_each<const L: usize>(x: [f64; L]) -> ([f64; L], [f64; L]) {
         one_less[i]
             + (((1.0 - one_less[i]) - half[i]) + (z[i] * z[i] * cos_poly[i] - r[i] * low[i]))
     });
-    // The quadrant q: odd swaps sin and cos; sin is negated for q = 2, 3, cos for q = 1, 2.
     let q: [u64; L] = std::array::from_fn(|i| rounded[i].to_bits() & 3);
     let swap: [u64; L] = std::array::from_fn(|i| 0u64.wrapping_sub(q[i] & 1));
     let (s, c) = (s.map(f64::to_bits), c.map(f64::to_bits));
