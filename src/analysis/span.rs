@@ -84,6 +84,9 @@ impl Span {
         };
         Steps {
             span: *self,
+            low: self.from.min(self.to),
+            high: self.from.max(self.to),
+            integer: self.spec.integer,
             n,
             intervals,
             scale,
@@ -274,6 +277,11 @@ const OVERFLOW_SCALE: f64 = 1.0 / 4_294_967_296.0;
 #[derive(Clone, Copy, Debug)]
 pub struct Steps {
     span: Span,
+    /// The smaller end and the larger.
+    low: f64,
+    high: f64,
+    /// True for a whole-number parameter.
+    integer: bool,
     n: usize,
     /// n - 1.
     intervals: f64,
@@ -302,9 +310,8 @@ impl Steps {
         } else {
             self.linear(i)
         };
-        let value =
-            short_decimal(value, error).clamp(span.from.min(span.to), span.from.max(span.to));
-        if span.spec.integer {
+        let value = short_decimal(value, error).clamp(self.low, self.high);
+        if self.integer {
             nearly_whole(value).unwrap_or(value)
         } else {
             value
@@ -327,9 +334,8 @@ impl Steps {
     /// The `i`-th geometrically spaced value, with a bound on its rounding error (exp carries the
     /// logarithm's absolute error as a relative one).
     fn geometric(&self, i: usize) -> (f64, f64) {
-        let span = &self.span;
         let value = between_logs(self.ln.0, self.ln.1, whole(i) / self.intervals)
-            .clamp(span.from.min(span.to), span.from.max(span.to));
+            .clamp(self.low, self.high);
         (value, 2.0 * f64::EPSILON * (1.0 + self.logs) * value.abs())
     }
 }
