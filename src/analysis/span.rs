@@ -84,6 +84,9 @@ impl Span {
         };
         Steps {
             span: *self,
+            low: self.from.min(self.to),
+            high: self.from.max(self.to),
+            integer: self.spec.integer,
             n,
             intervals,
             scale,
@@ -274,6 +277,11 @@ const OVERFLOW_SCALE: f64 = 1.0 / 4_294_967_296.0;
 #[derive(Clone, Copy, Debug)]
 pub struct Steps {
     span: Span,
+    /// The smaller end and the larger.
+    low: f64,
+    high: f64,
+    /// True for a whole-number parameter.
+    integer: bool,
     n: usize,
     /// n - 1.
     intervals: f64,
@@ -302,9 +310,8 @@ impl Steps {
         } else {
             self.linear(i)
         };
-        let value =
-            short_decimal(value, error).clamp(span.from.min(span.to), span.from.max(span.to));
-        if span.spec.integer {
+        let value = short_decimal(value, error).clamp(self.low, self.high);
+        if self.integer {
             nearly_whole(value).unwrap_or(value)
         } else {
             value
@@ -315,7 +322,7 @@ impl Steps {
     /// (from (n-1-i) + to i) / (n-1), so whole ends give correctly rounded values; the ends are scaled
     /// by a power of two (exactly) where the sum could overflow. With a bound on its rounding error.
     fn linear(&self, i: usize) -> (f64, f64) {
-        let (weight_from, weight_to) = ((self.n - 1 - i) as f64, i as f64);
+        let (weight_from, weight_to) = (whole(self.n - 1 - i), whole(i));
         let ((from, to), intervals, scale) = (self.scaled, self.intervals, self.scale);
         let value = (from * weight_from + to * weight_to) / intervals / scale;
         // Each end's own rounding and that of the two products, the sum and the quotient, on the
@@ -327,11 +334,17 @@ impl Steps {
     /// The `i`-th geometrically spaced value, with a bound on its rounding error (exp carries the
     /// logarithm's absolute error as a relative one).
     fn geometric(&self, i: usize) -> (f64, f64) {
-        let span = &self.span;
-        let value = between_logs(self.ln.0, self.ln.1, i as f64 / self.intervals)
-            .clamp(span.from.min(span.to), span.from.max(span.to));
+        let value = between_logs(self.ln.0, self.ln.1, whole(i) / self.intervals)
+            .clamp(self.low, self.high);
         (value, 2.0 * f64::EPSILON * (1.0 + self.logs) * value.abs())
     }
+}
+
+/// `i as f64`, through `i64` where it fits (one conversion instruction; the unsigned one takes a
+/// dozen): the same value, the nearest f64 to `i`.
+#[inline]
+fn whole(i: usize) -> f64 {
+    i64::try_from(i).map_or(i as f64, |i| i as f64)
 }
 
 /// The value whose logarithm lies the fraction `u` of the way from `from_ln` to `to_ln`.
@@ -394,8 +407,8 @@ fn twelve_digits(value: f64, error: f64) -> Option<f64> {
                 return None;
             }
             // scaled.round() without a call: scaled is positive and below 2^40, so its fraction is
-            // exact.
-            let whole = scaled as u64 as f64;
+            // exact (and its whole part that of `as i64`, one instruction where `as u64` takes a dozen).
+            let whole = scaled as i64 as f64;
             let n = if scaled - whole >= 0.5 {
                 whole + 1.0
             } else {
@@ -499,6 +512,31 @@ mod tests {
             arithmetic += usize::from(twelve_digits(value, error).is_some());
         }
         assert!(kept > 10_000 && arithmetic > 150_000, "{kept} {arithmetic}");
+    }
+
+    /// `whole` is `as f64` on every count, those beyond `i64` too.
+    #[test]
+    fn whole_counts_convert_as_f64() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let edges = [
+            0,
+            1,
+            (1 << 53) - 1,
+            1 << 53,
+            (1 << 53) + 1,
+            i64::MAX as usize,
+            i64::MAX as usize + 1,
+            usize::MAX,
+        ];
+        let random = (0..100_000).map(|k| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> (k % 64)) as usize
+        });
+        for i in edges.into_iter().chain(random) {
+            assert_eq!(whole(i).to_bits(), (i as f64).to_bits(), "{i}");
+        }
     }
 
     /// The integer floor of binary log10 2 is the float's over every binary exponent of an f64.

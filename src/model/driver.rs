@@ -12,7 +12,8 @@ use super::registry::Motion;
 use super::setup::{Setup, State};
 
 /// The phases of one bounce, written over `phases` (the caller's memory, reused from bounce to bounce),
-/// and the state of ball and surface as the ball leaves.
+/// and the state of ball and surface as the ball leaves. On an error `phases` holds the phases solved
+/// before it.
 pub fn run<C: Contact>(
     model: &C,
     setup: &Setup,
@@ -22,10 +23,28 @@ pub fn run<C: Contact>(
 where
     C::Motion: Into<Motion>,
 {
+    let mut written = 0;
+    let solved = run_over(model, setup, options, phases, &mut written);
+    phases.truncate(written);
+    solved
+}
+
+/// [`run`], each phase written over the last bounce's phase at its place while there is one (its
+/// fields one by one: no phase is built aside and moved in, and none is dropped in bulk first), and
+/// pushed after them; `written` counts the phases of this bounce.
+fn run_over<C: Contact>(
+    model: &C,
+    setup: &Setup,
+    options: &SolveOptions,
+    phases: &mut Vec<Phase>,
+    written: &mut usize,
+) -> Result<State, SolveError>
+where
+    C::Motion: Into<Motion>,
+{
     let end = setup.duration;
     let (mut state, mut mode) = model.start(setup);
     let mut cause = Cause::Start;
-    phases.clear();
     for _ in 0..options.max_phases {
         if (options.cancelled)() {
             return Err(SolveError::Cancelled);
@@ -39,20 +58,29 @@ where
         state = model.state_at(setup, &motion, t1, last);
         if t1 > t0 {
             let (ball, cart) = mode;
-            phases.push(Phase {
-                kind: match ball {
-                    Ball::Slide(_) => PhaseKind::Slide,
-                    Ball::Grip => PhaseKind::Grip,
-                },
-                slip_sign: match ball {
-                    Ball::Slide(dir) => dir as i8,
-                    Ball::Grip => 0,
-                },
-                cart,
-                start: t0,
-                end: t1,
-                motion: motion.into(),
-            });
+            let (kind, slip_sign) = match ball {
+                Ball::Slide(dir) => (PhaseKind::Slide, dir as i8),
+                Ball::Grip => (PhaseKind::Grip, 0),
+            };
+            match phases.get_mut(*written) {
+                Some(phase) => {
+                    phase.kind = kind;
+                    phase.slip_sign = slip_sign;
+                    phase.cart = cart;
+                    phase.start = t0;
+                    phase.end = t1;
+                    phase.motion = motion.into();
+                }
+                None => phases.push(Phase {
+                    kind,
+                    slip_sign,
+                    cart,
+                    start: t0,
+                    end: t1,
+                    motion: motion.into(),
+                }),
+            }
+            *written += 1;
         }
         let Some((_, next_cause)) = event else {
             return Ok(C::contact(&state));
