@@ -21,6 +21,7 @@ mod support {
 
 mod analysis;
 mod chain;
+mod chain_reference;
 mod chain_compliant;
 mod chain_compliant_string;
 mod chain_string;
