@@ -1108,7 +1108,7 @@ impl Motion {
                 let v_free = dq0 - a * w * self.cos_wt0;
                 a.abs() * w + ((omega * x_free).powi(2) + v_free * v_free).sqrt()
             };
-            let push = (self.push_shape(j) * self.push).abs();
+            let push = self.pushing(j).abs();
             if push > 0.0 {
                 energy += push * (setup.duration - self.start.t);
                 amplitudes += if omega > 0.0 {
@@ -1128,7 +1128,7 @@ impl Motion {
     fn grip_swing(&self, setup: &Setup, j: usize) -> f64 {
         let modes = self.modes();
         let (omega, q0, dq0) = (modes.omega[j], self.q0[j], self.dq0[j]);
-        let push = self.push_shape(j) * self.push;
+        let push = self.pushing(j);
         if push == 0.0 {
             (dq0.powi(2) + (omega * q0).powi(2)).sqrt()
         } else if omega == 0.0 {
@@ -1298,6 +1298,17 @@ impl Motion {
         match self.start.frame {
             0 => modes.shape[0][j],
             frame => modes.shape[0][j] - modes.shape[frame][j],
+        }
+    }
+
+    /// The string friction's push on mode j, [`Motion::push_shape`] times push: 0 without it, where
+    /// the shape is not looked up.
+    #[inline(always)]
+    fn pushing(&self, j: usize) -> f64 {
+        if self.push == 0.0 {
+            0.0
+        } else {
+            self.push_shape(j) * self.push
         }
     }
 
