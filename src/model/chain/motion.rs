@@ -588,8 +588,13 @@ impl Motion {
     /// building the phase.
     pub fn grip_friction(chain: &Chain, setup: &Setup, start: &ChainState) -> f64 {
         let modes = chain.modes(0.0);
-        let q0 = modes.project(&start.x);
-        let stiff = (0..modes.n).fold(0.0, |sum, j| sum + modes.first_stiff[j] * q0[j]);
+        // The rigid translation of a free frame (Φ_1j Ω_j² = 0) adds a zero, which changes no bit of
+        // the sum from +0: its coordinate is not taken.
+        let stiff = (0..modes.n)
+            .filter(|&j| modes.rigid != Some(j))
+            .fold(0.0, |sum, j| {
+                sum + modes.first_stiff[j] * modes.project_one(j, &start.x)
+            });
         setup.m_eff * stiff
     }
 
@@ -1204,7 +1209,12 @@ impl Motion {
         let mut terms = setup.peak_friction();
         for j in 0..modes.n {
             let omega = modes.omega[j];
-            let reach = setup.m_eff * modes.shape[0][j].abs() * omega * self.grip_swing(setup, j);
+            // The rigid translation of a free frame (Ω = 0) reaches nothing: its swing is not taken.
+            let reach = if omega == 0.0 {
+                0.0
+            } else {
+                setup.m_eff * modes.shape[0][j].abs() * omega * self.grip_swing(setup, j)
+            };
             curvature += reach * omega * omega;
             if WITH_FOURTH {
                 fourth += reach * omega.powi(4);
