@@ -23,6 +23,7 @@ mod analysis;
 mod chain;
 mod chain_compliant;
 mod chain_compliant_string;
+mod chain_reference;
 mod chain_string;
 mod compliant;
 mod compliant_string;

@@ -265,10 +265,20 @@ impl Modes {
     /// The modal coordinates q = Φᵀ D x of displacements (or velocities) `x`.
     pub fn project(&self, x: &[f64; MAX]) -> [f64; MAX] {
         let mut q = [0.0; MAX];
-        for (qj, row) in q.iter_mut().zip(&self.inverse).take(self.n) {
-            *qj = row[..self.n].iter().zip(x).map(|(a, x)| a * x).sum();
+        for (j, qj) in q.iter_mut().enumerate().take(self.n) {
+            *qj = self.project_one(j, x);
         }
         q
+    }
+
+    /// Mode j's coordinate q_j of `x`, as [`Modes::project`] takes it (the same sum, bit for bit).
+    #[inline(always)]
+    pub fn project_one(&self, j: usize, x: &[f64; MAX]) -> f64 {
+        self.inverse[j][..self.n]
+            .iter()
+            .zip(x)
+            .map(|(a, x)| a * x)
+            .sum()
     }
 
     /// [`Modes::project`] of displacements `x` and velocities `v` together, written into the first

@@ -588,8 +588,13 @@ impl Motion {
     /// building the phase.
     pub fn grip_friction(chain: &Chain, setup: &Setup, start: &ChainState) -> f64 {
         let modes = chain.modes(0.0);
-        let q0 = modes.project(&start.x);
-        let stiff = (0..modes.n).fold(0.0, |sum, j| sum + modes.first_stiff[j] * q0[j]);
+        // The rigid translation of a free frame (Φ_1j Ω_j² = 0) adds a zero, which changes no bit of
+        // the sum from +0: its coordinate is not taken.
+        let stiff = (0..modes.n)
+            .filter(|&j| modes.rigid != Some(j))
+            .fold(0.0, |sum, j| {
+                sum + modes.first_stiff[j] * modes.project_one(j, &start.x)
+            });
         setup.m_eff * stiff
     }
 
@@ -1108,7 +1113,7 @@ impl Motion {
                 let v_free = dq0 - a * w * self.cos_wt0;
                 a.abs() * w + ((omega * x_free).powi(2) + v_free * v_free).sqrt()
             };
-            let push = (self.push_shape(j) * self.push).abs();
+            let push = self.pushing(j).abs();
             if push > 0.0 {
                 energy += push * (setup.duration - self.start.t);
                 amplitudes += if omega > 0.0 {
@@ -1128,7 +1133,7 @@ impl Motion {
     fn grip_swing(&self, setup: &Setup, j: usize) -> f64 {
         let modes = self.modes();
         let (omega, q0, dq0) = (modes.omega[j], self.q0[j], self.dq0[j]);
-        let push = self.push_shape(j) * self.push;
+        let push = self.pushing(j);
         if push == 0.0 {
             (dq0.powi(2) + (omega * q0).powi(2)).sqrt()
         } else if omega == 0.0 {
@@ -1204,7 +1209,12 @@ impl Motion {
         let mut terms = setup.peak_friction();
         for j in 0..modes.n {
             let omega = modes.omega[j];
-            let reach = setup.m_eff * modes.shape[0][j].abs() * omega * self.grip_swing(setup, j);
+            // The rigid translation of a free frame (Ω = 0) reaches nothing: its swing is not taken.
+            let reach = if omega == 0.0 {
+                0.0
+            } else {
+                setup.m_eff * modes.shape[0][j].abs() * omega * self.grip_swing(setup, j)
+            };
             curvature += reach * omega * omega;
             if WITH_FOURTH {
                 fourth += reach * omega.powi(4);
@@ -1298,6 +1308,17 @@ impl Motion {
         match self.start.frame {
             0 => modes.shape[0][j],
             frame => modes.shape[0][j] - modes.shape[frame][j],
+        }
+    }
+
+    /// The string friction's push on mode j, [`Motion::push_shape`] times push: 0 without it, where
+    /// the shape is not looked up.
+    #[inline(always)]
+    fn pushing(&self, j: usize) -> f64 {
+        if self.push == 0.0 {
+            0.0
+        } else {
+            self.push_shape(j) * self.push
         }
     }
 
