@@ -227,11 +227,14 @@ impl Contact for SingleCart {
         } else {
             0.0
         };
-        let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
-        let forces = setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
+        // The scales of the speeds and forces, for the event functions' rounding (each taken only
+        // where a branch needs it).
+        let speeds =
+            || self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
+        let forces = || setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
         let (event, last) = match (motion, cart) {
             (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
-                let slip_noise = ROUNDING * speeds;
+                let slip_noise = ROUNDING * speeds();
                 let step = setup.event_step(setup.omega_slide);
                 if setup.cart_friction > 0.0 {
                     let (slip_curvature, cart_curvature) = slide.curvature(setup);
@@ -345,7 +348,11 @@ impl Contact for SingleCart {
                 // The still cart: slip'''' = -F'''/m_eff, push'''' = F''''.
                 let [slip_fourth, _] = slide_fourth(setup, 0.0);
                 let push_fourth = setup.peak_friction() * setup.w.powi(4) * (1.0 + 1e-9);
-                let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
+                let noise = [
+                    ROUNDING * speeds(),
+                    ROUNDING * forces(),
+                    ROUNDING * forces(),
+                ];
                 let step = setup.event_step(0.0);
                 let curvature = [slip_curvature, push_curvature, push_curvature];
                 searched(
@@ -360,7 +367,7 @@ impl Contact for SingleCart {
                 .map(|(t, branch)| (t, Cause::of_held(branch)))
             }),
             (CartMotion::Grip(grip), Cart::Moving(cart_dir)) => {
-                let margin_noise = ROUNDING * forces;
+                let margin_noise = ROUNDING * forces();
                 let step = setup.event_step(setup.omega_grip);
                 let broke = |branch: usize| Cause::GripBreak(if branch == 0 { 1.0 } else { -1.0 });
                 if setup.cart_friction > 0.0 {
