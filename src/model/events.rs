@@ -608,8 +608,18 @@ fn predicted<B: Branch>((low, high): (B, B), a: f64, b: f64, guess: f64) -> Opti
     ];
     // The interpolant and its Taylor coefficients to third order at the guess, by Horner's scheme.
     let u = (guess - a) / h;
-    let (mut p, mut p1, mut p2, mut p3) = (c[7], 0.0, 0.0, 0.0);
-    for &coefficient in c[..7].iter().rev() {
+    // The derivatives' first steps start from zeros, and are taken out: 0 u + x is x + 0.0 for the
+    // u in (0, 1) here (the same bits).
+    let mut p1 = c[7] + 0.0;
+    let mut p = c[7] * u + c[6];
+    let mut p2 = p1;
+    p1 = p1 * u + p;
+    p = p * u + c[5];
+    let mut p3 = p2;
+    p2 = p2 * u + p1;
+    p1 = p1 * u + p;
+    p = p * u + c[4];
+    for &coefficient in c[..4].iter().rev() {
         p3 = p3 * u + p2;
         p2 = p2 * u + p1;
         p1 = p1 * u + p;

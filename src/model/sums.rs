@@ -78,6 +78,9 @@ pub struct ForceSums {
     x0: f64,
     /// V0/Ω.
     swing: f64,
+    /// A bound on the margins' second derivative over the whole phase, g Ω² sqrt(X0² + (V0/Ω)²) +
+    /// mu N0 w² (with room for rounding): |F_s''| = g Ω² |X| and (mu N)'' = -w² mu N.
+    pub curvature: f64,
     /// A bound on the margins' fourth derivative, g Ω⁴ sqrt(X0² + (V0/Ω)²) + mu N0 w⁴ (with room for
     /// rounding).
     pub fourth: f64,
@@ -90,11 +93,13 @@ impl ForceSums {
     pub fn new(setup: &Setup, gain: f64, omega: f64, (x0, v0): (f64, f64)) -> Self {
         let swing = v0 / omega;
         let w2 = setup.w * setup.w;
-        let fourth = gain * omega.powi(4) * (x0 * x0 + swing * swing).sqrt()
-            + setup.peak_friction() * w2 * w2;
+        let amplitude = (x0 * x0 + swing * swing).sqrt();
+        let fourth = gain * omega.powi(4) * amplitude + setup.peak_friction() * w2 * w2;
+        let curvature = gain * omega * omega * amplitude + setup.peak_friction() * w2;
         ForceSums {
             x0,
             swing,
+            curvature: curvature * (1.0 + 1e-9),
             fourth: fourth * (1.0 + 1e-9),
             gains: rates(gain, omega),
         }

@@ -227,15 +227,18 @@ impl Contact for SingleCart {
         } else {
             0.0
         };
-        let speeds = self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
-        let forces = setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
+        // The scales of the speeds and forces, for the event functions' rounding (each taken only
+        // where a branch needs it).
+        let speeds =
+            || self.incoming + state.vx.abs() + setup.r * state.omega.abs() + state.v.abs();
+        let forces = || setup.peak_friction() + setup.k * state.x.abs() + setup.cart_friction;
         let (event, last) = match (motion, cart) {
             (CartMotion::Slide(slide), Cart::Moving(cart_dir)) => {
-                let (slip_curvature, cart_curvature) = slide.curvature(setup);
-                let [slip_fourth, cart_fourth] = slide_fourth(setup, cart_curvature);
-                let slip_noise = ROUNDING * speeds;
+                let slip_noise = ROUNDING * speeds();
                 let step = setup.event_step(setup.omega_slide);
                 if setup.cart_friction > 0.0 {
+                    let (slip_curvature, cart_curvature) = slide.curvature(setup);
+                    let [slip_fourth, cart_fourth] = slide_fourth(setup, cart_curvature);
                     recorded(state, end, |last| {
                         let cart_dir = f64::from(cart_dir);
                         let f = |t: f64| {
@@ -281,7 +284,7 @@ impl Contact for SingleCart {
                         probe.set((t, angles));
                         [sums.event(angles, constants)]
                     };
-                    let bounds = [[slip_curvature], [sums.fourth]];
+                    let bounds = [[sums.curvature], [sums.fourth]];
                     let event = searched(
                         Regime::predicted("slide by its sums"),
                         f,
@@ -303,6 +306,8 @@ impl Contact for SingleCart {
                 } else {
                     // Without string friction the cart's stopping changes nothing: the slip alone is
                     // watched.
+                    let (slip_curvature, cart_curvature) = slide.curvature(setup);
+                    let [slip_fourth, _] = slide_fourth(setup, cart_curvature);
                     recorded(state, end, |last| {
                         let f = |t: f64| {
                             let (s, friction) = slide.sample(setup, t);
@@ -343,7 +348,11 @@ impl Contact for SingleCart {
                 // The still cart: slip'''' = -F'''/m_eff, push'''' = F''''.
                 let [slip_fourth, _] = slide_fourth(setup, 0.0);
                 let push_fourth = setup.peak_friction() * setup.w.powi(4) * (1.0 + 1e-9);
-                let noise = [ROUNDING * speeds, ROUNDING * forces, ROUNDING * forces];
+                let noise = [
+                    ROUNDING * speeds(),
+                    ROUNDING * forces(),
+                    ROUNDING * forces(),
+                ];
                 let step = setup.event_step(0.0);
                 let curvature = [slip_curvature, push_curvature, push_curvature];
                 searched(
@@ -358,17 +367,12 @@ impl Contact for SingleCart {
                 .map(|(t, branch)| (t, Cause::of_held(branch)))
             }),
             (CartMotion::Grip(grip), Cart::Moving(cart_dir)) => {
-                let (margin_curvature, cart_curvature) = grip.curvature(setup);
-                // |V''| <= Ω³ A bounds |X''''| by Ω⁴ A and |V''''| by Ω⁵ A; mu N'''' is at most mu N0 w⁴.
-                let omega = setup.omega_grip;
-                let margin_fourth = (setup.grip_gain * omega * cart_curvature
-                    + setup.peak_friction() * setup.w.powi(4))
-                    * (1.0 + 1e-9);
-                let cart_fourth = omega * omega * cart_curvature * (1.0 + 1e-9);
-                let margin_noise = ROUNDING * forces;
+                let margin_noise = ROUNDING * forces();
                 let step = setup.event_step(setup.omega_grip);
                 let broke = |branch: usize| Cause::GripBreak(if branch == 0 { 1.0 } else { -1.0 });
                 if setup.cart_friction > 0.0 {
+                    let (margin_curvature, cart_curvature) = grip.curvature(setup);
+                    let [margin_fourth, cart_fourth] = grip_fourth(setup, cart_curvature);
                     recorded(state, end, |last| {
                         let cart_dir = f64::from(cart_dir);
                         let f = |t: f64| {
@@ -421,7 +425,7 @@ impl Contact for SingleCart {
                         probe.set((t, angles));
                         sums.margins(setup, angles)
                     };
-                    let bounds = [[margin_curvature; 2], [sums.fourth; 2]];
+                    let bounds = [[sums.curvature; 2], [sums.fourth; 2]];
                     let event = searched(
                         Regime::predicted("grip by its sums"),
                         f,
@@ -439,6 +443,8 @@ impl Contact for SingleCart {
                     (event, grip.state_given(setup, t, angles))
                 } else {
                     // Without string friction only the margins are watched.
+                    let (margin_curvature, cart_curvature) = grip.curvature(setup);
+                    let [margin_fourth, _] = grip_fourth(setup, cart_curvature);
                     recorded(state, end, |last| {
                         let f = |t: f64| {
                             let (s, margins) = grip.evaluate(setup, t);
@@ -581,6 +587,17 @@ fn slide_fourth(setup: &Setup, cart_curvature: f64) -> [f64; 2] {
     let cart = (jerk + setup.k * cart_curvature) / setup.cart_mass;
     let room = 1.0 + 1e-9;
     [(jerk / setup.m_eff + cart) * room, cart * room]
+}
+
+/// Bounds on the fourth derivatives of a moving grip's margins and of its cart's velocity, given the
+/// bound `cart_curvature` = Ω³ A on |V''| over the phase: |X''''| <= Ω⁴ A and |V''''| <= Ω⁵ A, and
+/// mu N'''' is at most mu N0 w⁴.
+fn grip_fourth(setup: &Setup, cart_curvature: f64) -> [f64; 2] {
+    let omega = setup.omega_grip;
+    let margin = (setup.grip_gain * omega * cart_curvature
+        + setup.peak_friction() * setup.w.powi(4))
+        * (1.0 + 1e-9);
+    [margin, omega * omega * cart_curvature * (1.0 + 1e-9)]
 }
 
 /// The cart as the transition rules see it.

@@ -204,8 +204,9 @@ impl Slide {
         let ball = dir * (force_amplitude / setup.m_eff - amplitude * w * w);
         let free_cos = dir * (s0.v - amplitude * w * self.cos_wt0);
         let free_sin = dir * (s0.x - amplitude * self.sin_wt0) * omega;
-        let fourth = ball.abs() * w * w * w
-            + omega.powi(4) * (free_cos * free_cos + free_sin * free_sin).sqrt();
+        let swing = (free_cos * free_cos + free_sin * free_sin).sqrt();
+        let fourth = ball.abs() * w * w * w + omega.powi(4) * swing;
+        let curvature = ball.abs() * w + omega * omega * swing;
         Some(SlipSums {
             slip0: setup.slip(s0),
             v0: s0.v,
@@ -216,6 +217,7 @@ impl Slide {
                 [ball, free_cos, free_sin],
             ),
             dir,
+            curvature: curvature * (1.0 + 1e-9),
             fourth: fourth * (1.0 + 1e-9),
         })
     }
@@ -355,6 +357,11 @@ pub struct SlipSums {
     impulse0: f64,
     terms: SlipTerms,
     dir: f64,
+    /// A bound on the event's second derivative over the whole phase, |P| w + Ω² sqrt(B² + Q²) (with
+    /// room for rounding): the sums' own amplitudes, no looser than the amplitudes' bound of
+    /// [`Slide::curvature`], which takes the ball's and the cart's terms apart (|P| <= F0/m_eff +
+    /// |A| w²), and without its two square roots.
+    pub curvature: f64,
     /// A bound on the event's fourth derivative, |P| w³ + Ω⁴ sqrt(B² + Q²) (with room for rounding).
     pub fourth: f64,
 }
