@@ -15,11 +15,11 @@ use std::io::Write as _;
 use std::path::PathBuf;
 
 use serde_json::{Value, json};
-use snapback::cli::ParamArgs;
+
+use super::golden::{params_of, phase_times};
 use snapback::model::chain::{ChainMotion, ChainOfMasses, ChainState};
 use snapback::model::contact::{Ball, Cause, Contact, Found, Mode};
 use snapback::model::driver::run;
-use snapback::model::params::spec_named;
 use snapback::model::trig::sin_cos;
 use snapback::model::{Bounce, Params, Setup, SolveOptions, State, solve};
 
@@ -148,41 +148,18 @@ fn polish(event: impl Fn(f64) -> f64, found: f64, t0: f64) -> f64 {
     }
 }
 
-/// The parameters `simulate` would solve for these flags.
-fn params_of(args: &[String]) -> Params {
-    let mut given = ParamArgs::default();
-    for pair in args.chunks(2) {
-        let spec = spec_named(pair[0].trim_start_matches("--")).expect("a parameter flag");
-        given.given.push((spec.id, pair[1].clone()));
-    }
-    given.apply(Params::default()).expect("valid flags")
-}
-
 /// What the golden corpus records of a solved bounce (`golden.rs`), but its refusals and phase names.
 fn record(args: &[String], params: &Params, bounce: &Bounce) -> Value {
     let o = &bounce.outcome;
     let e = bounce.energy();
     let f = bounce.final_state;
-    let phases: Vec<Value> = bounce
-        .phases
-        .iter()
-        .map(|p| {
-            json!([
-                p.kind.name(),
-                p.slip_sign,
-                format!("{:?}", p.cart),
-                p.start,
-                p.end
-            ])
-        })
-        .collect();
     let mut line = json!({
         "args": args,
         "omega2": o.omega2,
         "vx2": o.vx2,
         "ex": o.ex,
         "final": [f.x, f.v, f.vx, f.omega],
-        "phase_times": phases,
+        "phase_times": phase_times(bounce),
         "energy": {
             "final_ball": e.final_ball,
             "final_cart": e.final_cart,
@@ -268,7 +245,7 @@ fn the_chain_s_transitions_are_the_polished_reference_s() {
         if golden.get("refused").is_some() {
             continue;
         }
-        let params = params_of(&args);
+        let params = params_of(&args).expect("valid flags");
         if params.chain < 2.0
             || params.stiffness == 0.0
             || params.ball_stiffness > 0.0

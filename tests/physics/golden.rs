@@ -20,7 +20,7 @@ use rng::Rng;
 use serde_json::{Value, json};
 use snapback::cli::ParamArgs;
 use snapback::model::params::spec_named;
-use snapback::model::{Params, solve};
+use snapback::model::{Bounce, Params, solve};
 
 fn corpus_path() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/golden/bounces.jsonl")
@@ -470,8 +470,25 @@ fn cases() -> Vec<Case> {
     out
 }
 
+/// Each phase as the corpus records it: its kind, slip sign, the cart's state, start and end.
+pub(super) fn phase_times(bounce: &Bounce) -> Vec<Value> {
+    bounce
+        .phases
+        .iter()
+        .map(|p| {
+            json!([
+                p.kind.name(),
+                p.slip_sign,
+                format!("{:?}", p.cart),
+                p.start,
+                p.end
+            ])
+        })
+        .collect()
+}
+
 /// The parameters `simulate` would solve for these flags.
-fn params_of(args: &[String]) -> Result<Params, String> {
+pub(super) fn params_of(args: &[String]) -> Result<Params, String> {
     let mut given = ParamArgs::default();
     for pair in args.chunks(2) {
         let spec = spec_named(pair[0].trim_start_matches("--")).expect("a parameter flag");
@@ -491,19 +508,6 @@ fn record(args: &[String]) -> Value {
         Ok(bounce) => {
             let o = bounce.outcome;
             let e = bounce.energy();
-            let phases: Vec<Value> = bounce
-                .phases
-                .iter()
-                .map(|p| {
-                    json!([
-                        p.kind.name(),
-                        p.slip_sign,
-                        format!("{:?}", p.cart),
-                        p.start,
-                        p.end
-                    ])
-                })
-                .collect();
             let f = bounce.final_state;
             let framed = params.frame_mass > 0.0 || params.frame_normal_mass > 0.0;
             let mut line = json!({
@@ -515,7 +519,7 @@ fn record(args: &[String]) -> Value {
                 "phases": bounce.phase_summary(),
                 "slides_throughout": bounce.slides_throughout(),
                 "final": [f.x, f.v, f.vx, f.omega],
-                "phase_times": phases,
+                "phase_times": phase_times(&bounce),
                 "energy": {
                     "initial": e.initial,
                     "final_ball": e.final_ball,

@@ -23,37 +23,15 @@ use super::motion::{MARGINS, MARGINS_FOURTH, Motion, Probe, SLIP, SLIP_FOURTH};
 const ROOM: f64 = 1.0 + 1e-9;
 
 /// One branch with f, f', f'' and f''': the Taylor bound reads f'' and f''', and the crossing is
-/// refined by Newton's step -f/f', exactly as the plain (f, f') branch's.
+/// refined by Newton's step -f/f', exactly as the plain (f, f') branch's; with `CUBIC` (on a free
+/// frame, where the crossing is refined from the root predicted from f to f''' at both ends of its
+/// interval, [`first_rise_predicted`]) by the cubic Taylor model's step (Halley's, then Newton's on the
+/// model), as the single cart's: two evaluations a crossing where Newton's step from the secant point
+/// takes three to six.
 #[derive(Clone, Copy, Debug)]
-pub struct Taylor([f64; 4]);
+pub struct Taylor<const CUBIC: bool = false>([f64; 4]);
 
-impl Branch for Taylor {
-    #[inline]
-    fn value(&self) -> f64 {
-        self.0[0]
-    }
-    #[inline]
-    fn rate(&self) -> f64 {
-        self.0[1]
-    }
-    #[inline]
-    fn step(&self) -> f64 {
-        -(self.0[0] / self.0[1])
-    }
-    #[inline]
-    fn higher(&self) -> Option<(f64, f64)> {
-        Some((self.0[2], self.0[3]))
-    }
-}
-
-/// A [`Taylor`] branch on a free frame, whose crossing is refined from the root predicted from f to
-/// f''' at both ends of its interval ([`first_rise_predicted`]) by the cubic Taylor model's step
-/// (Halley's, then Newton's on the model), as the single cart's: two evaluations a crossing where
-/// Newton's step from the secant point takes three to six.
-#[derive(Clone, Copy, Debug)]
-struct Cubic([f64; 4]);
-
-impl Branch for Cubic {
+impl<const CUBIC: bool> Branch for Taylor<CUBIC> {
     #[inline]
     fn value(&self) -> f64 {
         self.0[0]
@@ -65,7 +43,11 @@ impl Branch for Cubic {
     #[inline]
     fn step(&self) -> f64 {
         let [f, rate, second, third] = self.0;
-        (f, rate, second, third).step()
+        if CUBIC {
+            (f, rate, second, third).step()
+        } else {
+            -(f / rate)
+        }
     }
     #[inline]
     fn higher(&self) -> Option<(f64, f64)> {
@@ -177,7 +159,7 @@ fn searched<const K: usize>(
     #[cfg(not(test))]
     let _ = regime;
     let found = if motion.start.frame > 0 {
-        let cubic = |t: f64| f(t).map(|b| Cubic(b.0));
+        let cubic = |t: f64| f(t).map(|b| Taylor::<true>(b.0));
         first_rise_predicted(cubic, t0, end, step, bounds, noise)
     } else {
         first_rise_within(f, t0, end, step, bounds, noise)
