@@ -23,12 +23,16 @@ impl Lcg {
         lo * (hi / lo).powf(self.unit())
     }
 }
-/// The first `n` masses of `start` moving: each displaced within 0.5 mm and at a speed within 0.5 m/s.
-fn set_moving(start: &mut ChainState, n: usize, rng: &mut Lcg) {
+/// The chain as the ball arrives with `spin`, at time `t`, its first `n` masses moving: each displaced
+/// within 0.5 mm and at a speed within 0.5 m/s.
+fn moving_start(setup: &Setup, spin: f64, t: f64, n: usize, rng: &mut Lcg) -> ChainState {
+    let mut start = ChainState::from_contact(&setup.initial(spin));
+    start.t = t;
     for i in 0..n {
         start.x[i] = 1e-3 * (rng.unit() - 0.5);
         start.v[i] = rng.unit() - 0.5;
     }
+    start
 }
 
 fn random(rng: &mut Lcg) -> Params {
@@ -63,8 +67,7 @@ fn the_modes_reproduce_the_matrix_exponential() {
     for case in 0..300 {
         let p = random(&mut rng);
         let (g, setup) = grip_modes(&p);
-        let mut start = ChainState::from_contact(&setup.initial(100.0));
-        set_moving(&mut start, g.n, &mut rng);
+        let start = moving_start(&setup, 100.0, 0.0, g.n, &mut rng);
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         if grip.coefficients.is_none() {
             continue;
@@ -143,9 +146,7 @@ fn the_exponential_fallback_agrees_with_the_modes() {
             ..random(&mut rng)
         };
         let (g, setup) = grip_modes(&p);
-        let mut start = ChainState::from_contact(&setup.initial(50.0));
-        start.t = 1e-3;
-        set_moving(&mut start, g.n, &mut rng);
+        let start = moving_start(&setup, 50.0, 1e-3, g.n, &mut rng);
         let modal = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         let fallback = ChainGrip {
             coefficients: None,
@@ -190,9 +191,7 @@ fn a_pushed_grip_solves_the_forced_system() {
             ..random(&mut rng)
         };
         let (g, setup) = grip_modes(&p);
-        let mut start = ChainState::from_contact(&setup.initial(50.0));
-        start.t = 1e-3;
-        set_moving(&mut start, g.n, &mut rng);
+        let start = moving_start(&setup, 50.0, 1e-3, g.n, &mut rng);
         let push = if rng.unit() < 0.5 { -20.0 } else { 20.0 } * rng.unit();
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, push);
         let fallback = ChainGrip {
@@ -286,10 +285,8 @@ fn a_ring_grip_solves_its_mirror_modes_apart() {
         }
         served += 1;
         let masses = links;
-        let mut start = ChainState::from_contact(&setup.initial(50.0));
-        start.t = 1e-3;
+        let mut start = moving_start(&setup, 50.0, 1e-3, masses, &mut rng);
         start.frame = masses - 1;
-        set_moving(&mut start, masses, &mut rng);
         let push = 20.0 * (rng.unit() - 0.5);
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, push);
         assert!(
@@ -426,9 +423,7 @@ fn the_grip_bounds_its_fourth_derivative() {
             ..random(&mut rng)
         };
         let (g, setup) = grip_modes(&p);
-        let mut start = ChainState::from_contact(&setup.initial(50.0));
-        start.t = 1e-3 * rng.unit();
-        set_moving(&mut start, g.n, &mut rng);
+        let start = moving_start(&setup, 50.0, 1e-3 * rng.unit(), g.n, &mut rng);
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         if grip.shares.is_none() {
             continue;
@@ -464,9 +459,7 @@ fn a_framed_grip_sums_its_shares() {
         let (g, setup) = grip_modes(&p);
         assert!(g.translation.is_some(), "case {case}: a chain on a frame");
         let masses = g.chain.slide.n;
-        let mut start = ChainState::from_contact(&setup.initial(50.0));
-        start.t = 1e-3 * rng.unit();
-        set_moving(&mut start, masses, &mut rng);
+        let start = moving_start(&setup, 50.0, 1e-3 * rng.unit(), masses, &mut rng);
         let grip = ChainGrip::new(Arc::new(g), start, 1e-4 * rng.unit(), &setup, 0.0);
         if grip.frame_shares.is_none() {
             continue;
