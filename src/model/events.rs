@@ -668,6 +668,11 @@ fn refine<B: Branch, const K: usize, const PREDICT: bool>(
         if b - a <= resolution(b) {
             break;
         }
+        // Within half the convergence test's step of the zero by Newton's measure: converged, without
+        // the step's divisions.
+        if branch.value().abs() <= 0.5 * CONVERGED * t.abs() * branch.rate().abs() {
+            break;
+        }
         let next = t + branch.step();
         // Both steps converge at least quadratically: once one is this small, t is within it of the
         // crossing, far below the resolution asked of transition times (1e-12 s). (A step that is not
