@@ -25,9 +25,8 @@ const ROOM: f64 = 1.0 + 1e-9;
 /// One branch with f, f', f'' and f''': the Taylor bound reads f'' and f''', and the crossing is
 /// refined by Newton's step -f/f', exactly as the plain (f, f') branch's; with `CUBIC` (on a free
 /// frame, where the crossing is refined from the root predicted from f to f''' at both ends of its
-/// interval, [`first_rise_predicted`]) by the cubic Taylor model's step (Halley's, then Newton's on the
-/// model), as the single cart's: two evaluations a crossing where Newton's step from the secant point
-/// takes three to six.
+/// interval, [`first_rise_predicted`]) by the cubic Taylor model's step, as the single cart's: two
+/// evaluations a crossing where Newton's step from the secant point takes three to six.
 #[derive(Clone, Copy, Debug)]
 pub struct Taylor<const CUBIC: bool = false>([f64; 4]);
 
