@@ -458,6 +458,7 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize, const TAYLOR: bool, const 
     /// noise it may already be a little above zero at `a`; the crossing then lies before `a`, and is
     /// bracketed by stepping back. With it, the refinement's last point where branch `i` was at most
     /// zero, if any.
+    #[inline(always)]
     fn crossing(
         &self,
         i: usize,
@@ -639,6 +640,7 @@ fn predicted<B: Branch>((low, high): (B, B), a: f64, b: f64, guess: f64) -> Opti
 /// the last place of `t`;
 /// with every branch at that time (the last evaluation, which the solver keeps), and the last point
 /// before it where branch `i` was at most zero, if any.
+#[inline(always)]
 fn refine<B: Branch, const K: usize, const PREDICT: bool>(
     f: &impl Event<B, K>,
     i: usize,
