@@ -138,9 +138,20 @@ fn stalled() -> bool {
 }
 
 /// The event: `K` branches, each a value and its time derivatives at `t`. The phase ends when any
-/// branch rises (a grip, for example, breaks when F_s reaches +mu N or -mu N).
-pub trait Event<B: Branch, const K: usize>: Fn(f64) -> [B; K] {}
-impl<B: Branch, const K: usize, F: Fn(f64) -> [B; K]> Event<B, K> for F {}
+/// branch rises (a grip, for example, breaks when F_s reaches +mu N or -mu N). A closure is one; a
+/// hot event can be a type of its own whose `at` is inlined at each of the search's calls (the single
+/// cart's slide by its sums).
+pub trait Event<B: Branch, const K: usize> {
+    /// The branches at `t`.
+    fn at(&self, t: f64) -> [B; K];
+}
+
+impl<B: Branch, const K: usize, F: Fn(f64) -> [B; K]> Event<B, K> for F {
+    #[inline(always)]
+    fn at(&self, t: f64) -> [B; K] {
+        self(t)
+    }
+}
 
 /// One branch of an event at one time: its value f, its rate f', and the step toward its zero that
 /// the crossing's refinement takes from there.
@@ -316,8 +327,9 @@ fn search<B: Branch, const K: usize, const TAYLOR: bool, const PREDICT: bool>(
     }
     let mut a = Point::at(&f, t0);
     let at_zero: [bool; K] = std::array::from_fn(|i| a.branches[i].value() >= -noise[i]);
-    let mut search = Search::<_, K, TAYLOR, PREDICT> {
+    let mut search = Search::<_, B, K, TAYLOR, PREDICT> {
         f: &f,
+        branch: std::marker::PhantomData,
         start: t0,
         half_curvature: curvature.map(|c| 0.5 * c),
         fourth_term: fourth.map(|c| c / 24.0),
@@ -380,12 +392,16 @@ struct Point<B, const K: usize> {
 impl<B: Branch, const K: usize> Point<B, K> {
     fn at(f: &impl Event<B, K>, t: f64) -> Self {
         spend(t);
-        Point { t, branches: f(t) }
+        Point {
+            t,
+            branches: f.at(t),
+        }
     }
 }
 
-struct Search<'a, F, const K: usize, const TAYLOR: bool, const PREDICT: bool> {
+struct Search<'a, F, B, const K: usize, const TAYLOR: bool, const PREDICT: bool> {
     f: &'a F,
+    branch: std::marker::PhantomData<B>,
     /// Where the phase starts: no crossing lies before it.
     start: f64,
     half_curvature: [f64; K],
@@ -396,8 +412,8 @@ struct Search<'a, F, const K: usize, const TAYLOR: bool, const PREDICT: bool> {
     ends_only: [bool; K],
 }
 
-impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize, const TAYLOR: bool, const PREDICT: bool>
-    Search<'_, F, K, TAYLOR, PREDICT>
+impl<B: Branch, F: Event<B, K>, const K: usize, const TAYLOR: bool, const PREDICT: bool>
+    Search<'_, F, B, K, TAYLOR, PREDICT>
 {
     /// The first branch above its noise at `p`.
     fn risen(&self, p: &Point<B, K>) -> Option<usize> {
@@ -471,7 +487,7 @@ impl<B: Branch, F: Fn(f64) -> [B; K], const K: usize, const TAYLOR: bool, const 
         while low.1.value() > 0.0 && low.0 > self.start && step > 0.0 {
             high = low;
             let t = (low.0 - step).max(self.start);
-            low = (t, (self.f)(t)[i]);
+            low = (t, self.f.at(t)[i]);
             step *= 2.0;
         }
         refine::<B, K, PREDICT>(self.f, i, low, high)
@@ -659,7 +675,10 @@ fn refine<B: Branch, const K: usize, const PREDICT: bool>(
     if let Some(predicted) = PREDICT.then(|| predicted(ends, a, b, t)).flatten() {
         t = predicted;
     }
-    let mut last = Point { t, branches: f(t) };
+    let mut last = Point {
+        t,
+        branches: f.at(t),
+    };
     let mut below = None;
     for _ in 0..100 {
         let branch = last.branches[i];
@@ -692,7 +711,10 @@ fn refine<B: Branch, const K: usize, const PREDICT: bool>(
         if !risen {
             below = Some(last);
         }
-        last = Point { t, branches: f(t) };
+        last = Point {
+            t,
+            branches: f.at(t),
+        };
     }
     (last, below)
 }

@@ -10,12 +10,13 @@ mod slide;
 
 pub use grip::Grip;
 pub use slide::Slide;
+use slide::{Angles, SlipSums};
 
 use std::cell::Cell;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::{first_rise_predicted, first_rise_within};
+use super::events::{Event, first_rise_predicted, first_rise_within};
 
 #[cfg(test)]
 mod bounds;
@@ -282,10 +283,12 @@ impl Contact for SingleCart {
                     // watched, here by its sums; the state is computed only where the search ends.
                     let constants = sums.constants(slip_offset);
                     let probe = Cell::new((f64::NAN, ((0.0, 1.0), (0.0, 1.0))));
-                    let f = |t: f64| {
-                        let angles = slide.angles(setup, t);
-                        probe.set((t, angles));
-                        [sums.event(angles, constants)]
+                    let f = SlideBySums {
+                        slide,
+                        setup,
+                        sums: &sums,
+                        constants,
+                        probe: &probe,
                     };
                     let bounds = [[sums.curvature], [sums.fourth]];
                     let event = searched(
@@ -524,6 +527,25 @@ fn recorded(
     (event, last.at(event.map_or(end, |(t, _)| t)))
 }
 
+/// The slip of a slide by its sums at `t`, each probe's angles kept in `probe` for the state where the
+/// search ends; evaluated in place at each of the search's calls (no call, no answer through memory).
+struct SlideBySums<'a> {
+    slide: &'a Slide,
+    setup: &'a Setup,
+    sums: &'a SlipSums,
+    constants: (f64, f64),
+    probe: &'a Cell<(f64, Angles)>,
+}
+
+impl Event<(f64, f64, f64, f64), 1> for SlideBySums<'_> {
+    #[inline(always)]
+    fn at(&self, t: f64) -> [(f64, f64, f64, f64); 1] {
+        let angles = self.slide.angles(self.setup, t);
+        self.probe.set((t, angles));
+        [self.sums.event(angles, self.constants)]
+    }
+}
+
 /// A search of the single cart: its name, for the test of its bounds, and whether it refines from
 /// predicted crossings.
 #[derive(Clone, Copy)]
@@ -556,7 +578,7 @@ impl Regime {
 #[inline(always)]
 fn searched<const K: usize>(
     regime: Regime,
-    f: impl Fn(f64) -> [(f64, f64, f64, f64); K],
+    f: impl Event<(f64, f64, f64, f64), K>,
     t0: f64,
     end: f64,
     step: f64,
@@ -566,7 +588,10 @@ fn searched<const K: usize>(
     #[cfg(test)]
     let sampled = super::bound_samples::sample(
         || regime.name.to_string(),
-        &|t| f(t).map(|(value, rate, second, third)| [value, rate, second, third]),
+        &|t| {
+            f.at(t)
+                .map(|(value, rate, second, third)| [value, rate, second, third])
+        },
         (t0, end, step),
         bounds,
     );

@@ -185,9 +185,15 @@ where
     ) -> Option<(f64, usize)> {
         let (curvature, noise) = ([curvature], [noise]);
         match self {
-            SlipEvent::Cart(f) => first_rise_from_tangent(f, from, to, step, curvature, noise),
-            SlipEvent::Chain(f) => first_rise_from_tangent(f, from, to, step, curvature, noise),
-            SlipEvent::Frame(f) => first_rise_from_tangent(f, from, to, step, curvature, noise),
+            SlipEvent::Cart(f) => {
+                first_rise_from_tangent(|t| f.at(t), from, to, step, curvature, noise)
+            }
+            SlipEvent::Chain(f) => {
+                first_rise_from_tangent(|t| f.at(t), from, to, step, curvature, noise)
+            }
+            SlipEvent::Frame(f) => {
+                first_rise_from_tangent(|t| f.at(t), from, to, step, curvature, noise)
+            }
         }
     }
 }
