@@ -23,6 +23,15 @@ const FINEST: f64 = 1e-14;
 /// 1/6, for the third derivative's Taylor coefficient by a product rather than a division.
 const SIXTH: f64 = 1.0 / 6.0;
 
+/// Where Newton's step n is this small against the curvature's scale, |f'' n / (2 f')|, a
+/// refinement's step is the cubic model's root by its series ([`cubic_step`]): its next term, about
+/// 5e-15 of the step, is then far below the resolution of the crossing.
+const NEAR: f64 = 1e-5;
+
+/// [`NEAR`] for the step on the interpolant that predicts a crossing ([`predicted`]), whose own error
+/// is a few parts in 1e6 of its interval: the series' next term is then at most 4e-5 of the step.
+const NEAR_PREDICTED: f64 = 2e-2;
+
 /// A Newton step this small relative to the time (a few units in the last place) means the iteration
 /// has converged.
 const CONVERGED: f64 = 4.0 * f64::EPSILON;
@@ -187,10 +196,10 @@ impl Branch for (f64, f64) {
 }
 
 /// (f, f', f'', f'''), for a phase whose closed form gives the higher derivatives at little cost: the
-/// step to the zero of the cubic Taylor model f + f' d + f'' d²/2 + f''' d³/6, by its series in
-/// Newton's step n = -f/f': d = n - c2 n² + (2 c2² - c3) n³ with c2 = f''/(2 f') and c3 = f'''/(6 f'),
-/// which converges with order four (from the secant point one evaluation fewer than Newton's to a
-/// few units in the last place) with one division where solving the model takes two in a row.
+/// step to the zero of the cubic Taylor model f + f' d + f'' d²/2 + f''' d³/6 (`cubic_step`: near
+/// the root by its series in Newton's step, one division; farther by Halley's step and Newton's on the
+/// model), which converges with order four: from the secant point one evaluation fewer than Newton's
+/// to a few units in the last place.
 impl Branch for (f64, f64, f64, f64) {
     #[inline]
     fn value(&self) -> f64 {
@@ -206,14 +215,28 @@ impl Branch for (f64, f64, f64, f64) {
     }
     #[inline]
     fn step(&self) -> f64 {
-        let (f, rate, second, third) = *self;
-        let inverse = 1.0 / rate;
-        let newton = -f * inverse;
-        let c2 = 0.5 * second * inverse;
+        cubic_step(*self, NEAR)
+    }
+}
+
+/// The root of the cubic Taylor model of (f, f', f'', f''') nearest zero: by its series in Newton's
+/// step n = -f/f', n - c2 n² + (2 c2² - c3) n³ with c2 = f''/(2 f') and c3 = f'''/(6 f') (one
+/// division), where |c2 n| is at most `near` (the series' next term is about 5 |c2 n|³ |n|); else by
+/// Halley's step and Newton's on the model (two divisions in a row).
+#[inline(always)]
+fn cubic_step((f, rate, second, third): (f64, f64, f64, f64), near: f64) -> f64 {
+    let inverse = 1.0 / rate;
+    let newton = -f * inverse;
+    let c2 = 0.5 * second * inverse;
+    if (c2 * newton).abs() <= near {
         // f'''/6 by a product, ready before the division (a second division would wait on it).
         let c3 = third * SIXTH * inverse;
-        newton * (1.0 + newton * (newton * (2.0 * c2 * c2 - c3) - c2))
+        return newton * (1.0 + newton * (newton * (2.0 * c2 * c2 - c3) - c2));
     }
+    let d = -2.0 * f * rate / (2.0 * rate * rate - f * second);
+    let model = f + d * (rate + d * (0.5 * second + d * third * SIXTH));
+    let model_rate = rate + d * (second + 0.5 * d * third);
+    d - model / model_rate
 }
 
 /// The first time in `(t0, t1]` at which a branch of `f` rises above `noise`, and which branch, or
@@ -648,7 +671,7 @@ fn predicted<B: Branch>((low, high): (B, B), a: f64, b: f64, guess: f64) -> Opti
         p1 = p1 * u + p;
         p = p * u + coefficient;
     }
-    let t = a + h * (u + (p, p1, 2.0 * p2, 6.0 * p3).step());
+    let t = a + h * (u + cubic_step((p, p1, 2.0 * p2, 6.0 * p3), NEAR_PREDICTED));
     (t > a && t < b).then_some(t)
 }
 

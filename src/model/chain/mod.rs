@@ -438,6 +438,7 @@ impl Contact for ChainOfMasses {
         }
     }
 
+    #[inline(always)]
     fn first_event(
         &self,
         setup: &Setup,

@@ -520,6 +520,7 @@ impl Contact for FramedCart {
         FrameMotion::new(setup, self, *state, dir, cart)
     }
 
+    #[inline(always)]
     fn first_event(
         &self,
         setup: &Setup,
