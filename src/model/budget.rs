@@ -33,13 +33,18 @@ pub const COMMAND_WORK: u64 = 300_000_000;
 #[derive(Debug)]
 pub struct Work {
     left: AtomicU64,
+    /// False for [`Work::unlimited`], whose solves spend nothing (no atomic update per solve).
+    limited: bool,
     solved: AtomicU64,
 }
 
 impl Work {
     /// No limit beyond each solve's own budget: only the count.
     pub const fn unlimited() -> Work {
-        Work::limited(u64::MAX)
+        Work {
+            limited: false,
+            ..Work::limited(u64::MAX)
+        }
     }
 
     /// At most `units` (evaluations times their weight) for all the solves that share it: for a
@@ -49,6 +54,7 @@ impl Work {
     pub const fn limited(units: u64) -> Work {
         Work {
             left: AtomicU64::new(units),
+            limited: true,
             solved: AtomicU64::new(0),
         }
     }
@@ -63,6 +69,9 @@ impl Work {
     }
 
     pub(super) fn spend(&self, units: u64) {
+        if !self.limited {
+            return;
+        }
         let _ = self
             .left
             .fetch_update(Ordering::Relaxed, Ordering::Relaxed, |left| {
