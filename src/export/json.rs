@@ -66,7 +66,7 @@ fn document(b: &Bounce) -> BounceJson<'_> {
         omega2_rpm: o.omega2 * 30.0 / std::f64::consts::PI,
         vx2: o.vx2,
         vy2: o.vy2,
-        speed2: o.speed2,
+        speed2: o.speed2(),
         theta2_deg: o.theta2_deg,
         ex: o.ex,
         ey: o.ey,

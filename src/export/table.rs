@@ -26,7 +26,7 @@ pub fn summary(b: &Bounce) -> String {
     );
     let _ = writeln!(out, "  {:<24}{:.3} m/s", "v_x2", o.vx2);
     let _ = writeln!(out, "  {:<24}{:.3} m/s", "v_y2", o.vy2);
-    let _ = writeln!(out, "  {:<24}{:.3} m/s", "rebound speed v2", o.speed2);
+    let _ = writeln!(out, "  {:<24}{:.3} m/s", "rebound speed v2", o.speed2());
     let _ = writeln!(out, "  {:<24}{:.2} deg", "rebound angle θ2", o.theta2_deg);
     let ex =
         o.ex.map_or("undefined (no incoming slip)".to_string(), |ex| {

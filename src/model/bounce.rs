@@ -18,8 +18,6 @@ pub struct Outcome {
     pub vx2: f64,
     /// Rebound velocity away from the surface, e_y v_y1, m/s.
     pub vy2: f64,
-    /// Rebound speed, m/s.
-    pub speed2: f64,
     /// Rebound angle from the surface, degrees (above 90 when the ball comes back).
     pub theta2_deg: f64,
     /// Tangential coefficient of restitution e_x = -(v_x2 - r omega2)/(v_x1 - r omega1); `None` when the
@@ -82,6 +80,13 @@ pub(super) fn finish(params: &Params, setup: Setup, phases: Vec<Phase>, last: St
     }
 }
 
+impl Outcome {
+    /// Rebound speed, m/s (computed when asked: a sweep's CSV does not print it).
+    pub fn speed2(&self) -> f64 {
+        self.vx2.hypot(self.vy2)
+    }
+}
+
 /// The ball as it leaves in state `last`.
 fn outcome(params: &Params, setup: &Setup, last: &State) -> Outcome {
     let vy2 = setup.vy2();
@@ -94,7 +99,6 @@ fn outcome(params: &Params, setup: &Setup, last: &State) -> Outcome {
         omega2: last.omega,
         vx2: last.vx,
         vy2,
-        speed2: last.vx.hypot(vy2),
         theta2_deg: vy2.atan2(last.vx).to_degrees(),
         ex,
         ey: params.ey,

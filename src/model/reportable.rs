@@ -57,10 +57,21 @@ pub fn reportable(bounce: &Bounce) -> Result<(), Unsolvable> {
 #[inline]
 pub(super) fn finite(bounce: &Bounce) -> Result<(), SolveError> {
     let o = &bounce.outcome;
-    // Every value tested without a branch each; the name looked for only when one fails.
-    if quantities(o)
+    // Every value tested without a branch each; the name looked for only when one fails. The speed,
+    // whose hypot is taken only then, is finite where both its components are and neither nears
+    // f64::MAX (where one does, `not_finite` decides).
+    let speed_finite = o.vx2.abs().max(o.vy2.abs()) < f64::MAX / 2.0;
+    let others = [
+        o.omega2,
+        o.vx2,
+        o.vy2,
+        o.theta2_deg,
+        o.ex.unwrap_or(0.0),
+        o.roll_ratio.unwrap_or(0.0),
+    ];
+    if others
         .iter()
-        .fold(true, |all, (_, v)| all & v.is_finite())
+        .fold(speed_finite, |all, v| all & v.is_finite())
     {
         Ok(())
     } else {
@@ -79,13 +90,12 @@ fn not_finite(o: &Outcome) -> Result<(), SolveError> {
 }
 
 /// The outcome's quantities by the names a refusal gives them.
-#[inline(always)]
 fn quantities(o: &Outcome) -> [(&'static str, f64); 7] {
     [
         ("the rebound spin", o.omega2),
         ("the rebound velocity along the surface", o.vx2),
         ("the rebound velocity away from the surface", o.vy2),
-        ("the rebound speed", o.speed2),
+        ("the rebound speed", o.speed2()),
         ("the rebound angle", o.theta2_deg),
         ("e_x", o.ex.unwrap_or(0.0)),
         ("the roll ratio", o.roll_ratio.unwrap_or(0.0)),

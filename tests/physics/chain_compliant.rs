@@ -345,7 +345,7 @@ fn the_reference_converges_on_the_solver_cases() {
 fn check_physical(p: &Params, b: &Bounce) -> Result<(), String> {
     let o = &b.outcome;
     let s = &b.final_state;
-    let values = [o.omega2, o.vx2, o.vy2, o.speed2, o.theta2_deg, s.x, s.v];
+    let values = [o.omega2, o.vx2, o.vy2, o.speed2(), o.theta2_deg, s.x, s.v];
     if !values.iter().all(|v| v.is_finite()) {
         return Err(format!("not finite: {o:?} {s:?}"));
     }

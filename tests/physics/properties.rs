@@ -58,7 +58,7 @@ proptest! {
     fn every_valid_bounce_is_physical(p in params()) {
         let b = solve(&p).expect("valid parameters solve");
         let o = &b.outcome;
-        for value in [o.omega2, o.vx2, o.vy2, o.speed2, o.theta2_deg, b.final_state.x, b.final_state.v] {
+        for value in [o.omega2, o.vx2, o.vy2, o.speed2(), o.theta2_deg, b.final_state.x, b.final_state.v] {
             prop_assert!(value.is_finite());
         }
         prop_assert!(o.ex.is_none_or(f64::is_finite));

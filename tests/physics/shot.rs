@@ -134,7 +134,7 @@ fn a_racquet_at_rest_facing_the_ball_is_simulate_on_its_frame_at_normal_incidenc
         let normal = Vector2::new(descent.to_radians().cos(), descent.to_radians().sin());
         let l = contact.leaving;
         assert!((l.velocity.dot(&normal) - simulated.vy2).abs() < 1e-6);
-        assert!((l.speed() - simulated.speed2).abs() < 1e-6);
+        assert!((l.speed() - simulated.speed2()).abs() < 1e-6);
         assert!((l.omega_z.abs() - simulated.omega2.abs()).abs() < 1e-6);
     }
 }

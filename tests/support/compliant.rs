@@ -116,7 +116,7 @@ pub fn check_basics(p: &Params, b: &Bounce) -> Result<(), TestCaseError> {
         o.omega2,
         o.vx2,
         o.vy2,
-        o.speed2,
+        o.speed2(),
         o.theta2_deg,
         b.final_state.x,
         b.final_state.v,

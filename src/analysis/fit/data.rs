@@ -74,7 +74,7 @@ impl Quantity {
             Quantity::Vy2 => Some(o.vy2),
             Quantity::Theta2Deg => Some(o.theta2_deg),
             Quantity::Ex => o.ex,
-            Quantity::Speed2 => Some(o.speed2),
+            Quantity::Speed2 => Some(o.speed2()),
         }
     }
 }

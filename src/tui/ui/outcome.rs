@@ -227,7 +227,7 @@ fn lines(app: &App, solved: &Solved, wide: bool) -> Vec<Line<'static>> {
         let share = |j: f64| format!("{:.1} %", 100.0 * j / e.initial);
         lines.push(Line::from(vec![
             label("", "rebound speed v2"),
-            Span::raw(format!("{:.3} m/s", o.speed2)),
+            Span::raw(format!("{:.3} m/s", o.speed2())),
         ]));
         if let Some(ratio) = o.roll_ratio {
             lines.push(Line::from(vec![
