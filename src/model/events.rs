@@ -428,6 +428,7 @@ impl<B: Branch, const K: usize> Point<B, K> {
 
 struct Search<'a, F, B, const K: usize, const TAYLOR: bool, const PREDICT: bool> {
     f: &'a F,
+    /// The branches' type, which the event names only as its trait's parameter.
     branch: std::marker::PhantomData<B>,
     /// Where the phase starts: no crossing lies before it.
     start: f64,
@@ -611,11 +612,11 @@ fn crossing_peak((fa, ra): (f64, f64), (fb, rb): (f64, f64), k: f64, width: f64)
 
 /// Where a branch that carries f'' and f''' at both ends of `[a, b]` ([`Branch::higher`]) crosses zero,
 /// predicted without evaluating it: the two-point Hermite interpolant of degree 7 that matches f and its
-/// first three derivatives at both ends, stepped once from `guess` by its own cubic Taylor model (the
-/// branch's step). Its error grows as (width x fastest frequency)^8 / 8!, so over a coarse step (a
-/// fraction of the fastest period) it is within a few parts in 1e6 of the width, close enough that one
-/// step on the branch itself takes it to the crossing to rounding; `None` without the derivatives, or
-/// when the prediction is not inside `(a, b)`.
+/// first three derivatives at both ends, stepped once from `guess` by its own cubic Taylor model
+/// ([`cubic_step`] within [`NEAR_PREDICTED`]). Its error grows as (width x fastest frequency)^8 / 8!,
+/// so over a coarse step (a fraction of the fastest period) it is within a few parts in 1e6 of the
+/// width, close enough that one step on the branch itself takes it to the crossing to rounding; `None`
+/// without the derivatives, or when the prediction is not inside `(a, b)`.
 ///
 /// In u = (t - a)/(b - a), with F_k and G_k the Taylor coefficients f^(k) (b - a)^k / k! at the two
 /// ends, the interpolant is F_0 + F_1 u + F_2 u² + F_3 u³ + c_4 u⁴ + ... + c_7 u⁷, where c_4..c_7 solve
