@@ -61,17 +61,9 @@ pub(super) fn finite(bounce: &Bounce) -> Result<(), SolveError> {
     // whose hypot is taken only then, is finite where both its components are and neither nears
     // f64::MAX (where one does, `not_finite` decides).
     let speed_finite = o.vx2.abs().max(o.vy2.abs()) < f64::MAX / 2.0;
-    let others = [
-        o.omega2,
-        o.vx2,
-        o.vy2,
-        o.theta2_deg,
-        o.ex.unwrap_or(0.0),
-        o.roll_ratio.unwrap_or(0.0),
-    ];
-    if others
+    if quantities(o, 0.0)
         .iter()
-        .fold(speed_finite, |all, v| all & v.is_finite())
+        .fold(speed_finite, |all, (_, v)| all & v.is_finite())
     {
         Ok(())
     } else {
@@ -83,19 +75,24 @@ pub(super) fn finite(bounce: &Bounce) -> Result<(), SolveError> {
 #[cold]
 #[inline(never)]
 fn not_finite(o: &Outcome) -> Result<(), SolveError> {
-    match quantities(o).iter().find(|(_, v)| !v.is_finite()) {
+    match quantities(o, o.speed2())
+        .iter()
+        .find(|(_, v)| !v.is_finite())
+    {
         Some(&(quantity, _)) => Err(SolveError::NotFinite { quantity }),
         None => Ok(()),
     }
 }
 
-/// The outcome's quantities by the names a refusal gives them.
-fn quantities(o: &Outcome) -> [(&'static str, f64); 7] {
+/// The outcome's quantities by the names a refusal gives them, with its rebound `speed` (taken apart,
+/// so that the check of every bounce need not compute it).
+#[inline(always)]
+fn quantities(o: &Outcome, speed: f64) -> [(&'static str, f64); 7] {
     [
         ("the rebound spin", o.omega2),
         ("the rebound velocity along the surface", o.vx2),
         ("the rebound velocity away from the surface", o.vy2),
-        ("the rebound speed", o.speed2()),
+        ("the rebound speed", speed),
         ("the rebound angle", o.theta2_deg),
         ("e_x", o.ex.unwrap_or(0.0)),
         ("the roll ratio", o.roll_ratio.unwrap_or(0.0)),
