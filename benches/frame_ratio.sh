@@ -1,12 +1,12 @@
 #!/usr/bin/env bash
 # Issue 23's speed goal: instructions per `snapback sweep` row on a free 188 g frame against the same bounce
 # clamped, counted by callgrind (benches/per_row.sh).
-# Usage: bash benches/frame_ratio.sh [path/to/snapback] [N]
+# Usage: bash benches/frame_ratio.sh [path/to/snapback] [N] (by default the plain x86-64 build, benches/per_row.sh)
 set -euo pipefail
-bin=${1:-target/release/snapback}
 n=${2:-300}
 # shellcheck source=benches/per_row.sh
 source "$(dirname "$0")/per_row.sh"
+bin=${1:-$(portable)}
 row() {
   per_row "$bin" "$n" --vary speed --from 10 --to 10.000001 "$@"
 }

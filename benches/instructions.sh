@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # Instructions per `snapback sweep` row (CSV included), counted by callgrind (benches/per_row.sh).
-# Usage: bash benches/instructions.sh [path/to/snapback] [N]
+# Usage: bash benches/instructions.sh [path/to/snapback] [N] (by default the plain x86-64 build, benches/per_row.sh)
 set -euo pipefail
-bin=${1:-target/release/snapback}
 n=${2:-500}
 # shellcheck source=benches/per_row.sh
 source "$(dirname "$0")/per_row.sh"
+bin=${1:-$(portable)}
 row() {
-  local name=$1
+  local name=$1 count
   shift
-  printf '%-34s %8d instructions per row\n' "$name" "$(per_row "$bin" "$n" "$@")"
+  count=$(per_row "$bin" "$n" "$@")
+  printf '%-34s %8d instructions per row\n' "$name" "$count"
 }
 # A sweep over the speed by a millionth keeps every bounce the same as at its start.
 sweep=(--vary speed --from 10 --to 10.000001)
