@@ -156,12 +156,37 @@ fn stalled() -> bool {
 pub trait Event<B: Branch, const K: usize> {
     /// The branches at `t`.
     fn at(&self, t: f64) -> [B; K];
+
+    /// The branches at `t`, a refinement's step from the last evaluation (usually a few millionths of
+    /// an oscillation away), where an event may reuse that evaluation's work.
+    #[inline(always)]
+    fn near(&self, t: f64) -> [B; K] {
+        self.at(t)
+    }
 }
 
 impl<B: Branch, const K: usize, F: Fn(f64) -> [B; K]> Event<B, K> for F {
     #[inline(always)]
     fn at(&self, t: f64) -> [B; K] {
         self(t)
+    }
+}
+
+/// An event given as two closures: its branches at any time, and at a refinement's step from the last
+/// evaluation ([`Event::near`]).
+pub struct WithNear<A, N>(pub A, pub N);
+
+impl<B: Branch, const K: usize, A: Fn(f64) -> [B; K], N: Fn(f64) -> [B; K]> Event<B, K>
+    for WithNear<A, N>
+{
+    #[inline(always)]
+    fn at(&self, t: f64) -> [B; K] {
+        (self.0)(t)
+    }
+
+    #[inline(always)]
+    fn near(&self, t: f64) -> [B; K] {
+        (self.1)(t)
     }
 }
 
@@ -741,7 +766,7 @@ fn refine<B: Branch, const K: usize, const PREDICT: bool>(
         }
         last = Point {
             t,
-            branches: f.at(t),
+            branches: f.near(t),
         };
     }
     (last, below)

@@ -85,11 +85,16 @@ proptest! {
             }
         }
         check_cart_motion(&p, &b)?;
-        // Both sides of each transition: the state is continuous (only F may jump).
+        // Both sides of each transition: the state is continuous (only F may jump), to rounding of the
+        // closed forms' terms. A transition's state is the search's last probe's, whose angles may be
+        // turned from the probe before it (an ulp from fresh ones), and early in a slide the cart's
+        // x = A (sin w tau - (w/Omega) sin Omega tau) cancels: x is held to 1e-12 of the cart's largest
+        // excursion in the bounce, not of itself.
+        let x_scale = series.iter().map(|s| s.x.abs()).fold(1e-9, f64::max);
         for pair in series.windows(2) {
             if pair[0].t == pair[1].t {
                 let (a, c) = (&pair[0], &pair[1]);
-                prop_assert!((a.x - c.x).abs() <= 1e-12 * (a.x.abs() + 1e-9));
+                prop_assert!((a.x - c.x).abs() <= 1e-12 * (a.x.abs() + x_scale));
                 prop_assert!((a.v - c.v).abs() <= 1e-12 * (a.v.abs() + speed_scale));
                 prop_assert!((a.vx - c.vx).abs() <= 1e-12 * speed_scale);
                 prop_assert!((a.omega - c.omega).abs() <= 1e-12 * speed_scale / p.radius);

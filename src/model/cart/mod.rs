@@ -16,7 +16,7 @@ use std::cell::Cell;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::{Event, first_rise_predicted, first_rise_within};
+use super::events::{Event, WithNear, first_rise_predicted, first_rise_within};
 
 #[cfg(test)]
 mod bounds;
@@ -282,7 +282,7 @@ impl Contact for SingleCart {
                     // Without string friction the cart's stopping changes nothing: the slip alone is
                     // watched, here by its sums; the state is computed only where the search ends.
                     let constants = sums.constants(slip_offset);
-                    let probe = Cell::new((f64::NAN, ((0.0, 1.0), (0.0, 1.0))));
+                    let probe = Cell::new(Probe::NONE);
                     let f = SlideBySums {
                         slide,
                         setup,
@@ -425,12 +425,24 @@ impl Contact for SingleCart {
                             grip.angles(setup, t)
                         }
                     };
-                    let probe = Cell::new((f64::NAN, ((0.0, 1.0), (0.0, 1.0))));
-                    let f = |t: f64| {
-                        let angles = angles(t);
-                        probe.set((t, angles));
-                        sums.margins(setup, angles)
-                    };
+                    let probe = Cell::new(Probe::NONE);
+                    let f = WithNear(
+                        |t: f64| {
+                            let angles = angles(t);
+                            probe.set(Probe::fresh(t, angles));
+                            sums.margins(setup, angles)
+                        },
+                        |t: f64| {
+                            let turnable = probe.get().turnable();
+                            let near =
+                                match turnable.and_then(|from| grip.turned_from(setup, t, from)) {
+                                    Some(angles) => Probe::turned(t, angles),
+                                    None => Probe::fresh(t, angles(t)),
+                                };
+                            probe.set(near);
+                            sums.margins(setup, near.angles)
+                        },
+                    );
                     let bounds = [[sums.curvature; 2], [sums.fourth; 2]];
                     let event = searched(
                         Regime::predicted("grip by its sums"),
@@ -505,12 +517,54 @@ impl Contact for SingleCart {
     }
 }
 
+/// The angles of a search by sums at its last evaluation, kept for the state where it ends, and
+/// whether they were computed afresh: a refinement's step turns only fresh angles ([`Event::near`]), so
+/// that the turns' rounding never adds up over a long refinement.
+#[derive(Clone, Copy)]
+struct Probe {
+    t: f64,
+    angles: Angles,
+    fresh: bool,
+}
+
+impl Probe {
+    /// No evaluation yet.
+    const NONE: Probe = Probe {
+        t: f64::NAN,
+        angles: ((0.0, 1.0), (0.0, 1.0)),
+        fresh: false,
+    };
+
+    #[inline(always)]
+    fn fresh(t: f64, angles: Angles) -> Self {
+        Probe {
+            t,
+            angles,
+            fresh: true,
+        }
+    }
+
+    #[inline(always)]
+    fn turned(t: f64, angles: Angles) -> Self {
+        Probe {
+            t,
+            angles,
+            fresh: false,
+        }
+    }
+
+    /// The time and angles to turn from, where they were computed afresh.
+    #[inline(always)]
+    fn turnable(self) -> Option<(f64, Angles)> {
+        self.fresh.then_some((self.t, self.angles))
+    }
+}
+
 /// The angles of a search's last evaluation, when it was at `t` (a search by sums usually ends on the
-/// crossing it refined, or on the end of contact); else `None`, and they are computed again (the same
-/// bits: they depend on t alone).
-fn last_probe<A: Copy>(probe: &Cell<(f64, A)>, t: f64) -> Option<A> {
-    let (at, angles) = probe.get();
-    (at == t).then_some(angles)
+/// crossing it refined, or on the end of contact); else `None`, and they are computed afresh.
+fn last_probe(probe: &Cell<Probe>, t: f64) -> Option<Angles> {
+    let probe = probe.get();
+    (probe.t == t).then_some(probe.angles)
 }
 
 /// The event `search` finds, given where to record the states it evaluates (the last few are kept),
@@ -534,14 +588,26 @@ struct SlideBySums<'a> {
     setup: &'a Setup,
     sums: &'a SlipSums,
     constants: (f64, f64),
-    probe: &'a Cell<(f64, Angles)>,
+    probe: &'a Cell<Probe>,
 }
 
 impl Event<(f64, f64, f64, f64), 1> for SlideBySums<'_> {
     #[inline(always)]
     fn at(&self, t: f64) -> [(f64, f64, f64, f64); 1] {
         let angles = self.slide.angles(self.setup, t);
-        self.probe.set((t, angles));
+        self.probe.set(Probe::fresh(t, angles));
+        [self.sums.event(angles, self.constants)]
+    }
+
+    #[inline(always)]
+    fn near(&self, t: f64) -> [(f64, f64, f64, f64); 1] {
+        let probe = self.probe.get().turnable();
+        let probe = match probe.and_then(|from| self.slide.turned_from(self.setup, t, from)) {
+            Some(angles) => Probe::turned(t, angles),
+            None => Probe::fresh(t, self.slide.angles(self.setup, t)),
+        };
+        self.probe.set(probe);
+        let angles = probe.angles;
         [self.sums.event(angles, self.constants)]
     }
 }
