@@ -23,6 +23,7 @@ pub mod options;
 pub mod oscillator;
 pub mod params;
 pub mod phase;
+pub mod probe;
 pub mod quadrature;
 pub mod recent;
 pub mod registry;

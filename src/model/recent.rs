@@ -30,6 +30,12 @@ impl<S: Copy> Recent<S> {
         self.next.set(next.wrapping_add(1));
     }
 
+    /// The latest state recorded.
+    #[inline]
+    pub fn latest(&self) -> S {
+        self.slots[self.next.get().wrapping_sub(1) % SLOTS].get().1
+    }
+
     /// The latest state recorded at `t`, or else the latest recorded.
     pub fn at(&self, t: f64) -> S {
         let next = self.next.get();

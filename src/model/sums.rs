@@ -43,6 +43,16 @@ impl SlipTerms {
         }
     }
 
+    /// Bounds on the event's second and fourth derivatives over any time, |p2| + |(b2, q2)| and
+    /// |p3| w + |(b3, q3)| Ω (each oscillation's amplitude times its frequency squared, and to the
+    /// fourth), with room for rounding: for a search that proves intervals empty by them.
+    pub fn bounds(&self, w: f64, omega: f64) -> [f64; 2] {
+        let (p, b, q) = (&self.ball, &self.free_cos, &self.free_sin);
+        let curvature = p[2].abs() + b[2].hypot(q[2]);
+        let fourth = p[3].abs() * w + b[3].hypot(q[3]) * omega;
+        [curvature, fourth].map(|bound| bound * (1.0 + 1e-9))
+    }
+
     /// The event and its first three derivatives, given sin and cos of w τ and of Ωτ, the event's
     /// value at the phase's start (`start`, taken there exactly) and its constant term.
     #[inline(always)]

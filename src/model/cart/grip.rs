@@ -4,7 +4,7 @@ use super::super::contact::Cart;
 use super::super::oscillator::{free_given, step};
 use super::super::setup::{Setup, State};
 use super::super::sums::ForceSums;
-use super::super::trig::{sin_cos, sin_cos2, turned2};
+use super::super::trig::{sin_cos, sin_cos2};
 
 /// sin and cos of Ωτ, τ the time since the phase began, and of w t.
 pub type Angles = ((f64, f64), (f64, f64));
@@ -73,22 +73,6 @@ impl Grip {
         } else {
             sin_cos2(setup.omega_grip * tau, setup.w * t)
         }
-    }
-
-    /// [`Grip::angles`] at `t`, turned from those at `at` where `t` lies within a small turn of it on
-    /// both oscillations ([`turned2`]); else `None` (as at the phase's start), and they are computed
-    /// afresh.
-    #[inline(always)]
-    pub fn turned_from(
-        &self,
-        setup: &Setup,
-        t: f64,
-        (at, angles): (f64, Angles),
-    ) -> Option<Angles> {
-        if t == self.start.t {
-            return None;
-        }
-        turned2(angles, (setup.omega_grip, setup.w), t - at)
     }
 
     /// The state at `t` from the `Angles` there; at the phase's start the closed form gives the start

@@ -10,7 +10,7 @@ mod slide;
 
 pub use grip::Grip;
 pub use slide::Slide;
-use slide::{Angles, SlipSums};
+use slide::SlipSums;
 
 use std::cell::Cell;
 
@@ -21,6 +21,7 @@ use super::events::{Event, WithNear, first_rise_predicted, first_rise_within};
 #[cfg(test)]
 mod bounds;
 use super::params::Params;
+use super::probe::Probe;
 use super::quadrature::integrate;
 use super::recent::Recent;
 use super::setup::{Setup, State};
@@ -301,7 +302,7 @@ impl Contact for SingleCart {
                         [slip_noise],
                     );
                     let t = event.map_or(end, |(t, _)| t);
-                    let angles = last_probe(&probe, t).unwrap_or_else(|| slide.angles(setup, t));
+                    let angles = probe.get().at(t).unwrap_or_else(|| slide.angles(setup, t));
                     // A slide from first contact measures its time from t = 0, so its first angle is
                     // the normal force's at t, the one the transition asks for (the same bits).
                     if slide.start.t == 0.0 {
@@ -433,12 +434,8 @@ impl Contact for SingleCart {
                             sums.margins(setup, angles)
                         },
                         |t: f64| {
-                            let turnable = probe.get().turnable();
-                            let near =
-                                match turnable.and_then(|from| grip.turned_from(setup, t, from)) {
-                                    Some(angles) => Probe::turned(t, angles),
-                                    None => Probe::fresh(t, angles(t)),
-                                };
+                            let rates = (setup.omega_grip, setup.w);
+                            let near = probe.get().near(t, t0, rates, || angles(t));
                             probe.set(near);
                             sums.margins(setup, near.angles)
                         },
@@ -454,7 +451,7 @@ impl Contact for SingleCart {
                         [margin_noise; 2],
                     );
                     let t = event.map_or(end, |(t, _)| t);
-                    let angles = last_probe(&probe, t).unwrap_or_else(|| angles(t));
+                    let angles = probe.get().at(t).unwrap_or_else(|| angles(t));
                     // The slide that follows starts from this normal force's angle.
                     self.normal_angle.set((t, angles.1));
                     let event = event.map(|(t, branch)| (t, broke(branch)));
@@ -517,56 +514,6 @@ impl Contact for SingleCart {
     }
 }
 
-/// The angles of a search by sums at its last evaluation, kept for the state where it ends, and
-/// whether they were computed afresh: a refinement's step turns only fresh angles ([`Event::near`]), so
-/// that the turns' rounding never adds up over a long refinement.
-#[derive(Clone, Copy)]
-struct Probe {
-    t: f64,
-    angles: Angles,
-    fresh: bool,
-}
-
-impl Probe {
-    /// No evaluation yet.
-    const NONE: Probe = Probe {
-        t: f64::NAN,
-        angles: ((0.0, 1.0), (0.0, 1.0)),
-        fresh: false,
-    };
-
-    #[inline(always)]
-    fn fresh(t: f64, angles: Angles) -> Self {
-        Probe {
-            t,
-            angles,
-            fresh: true,
-        }
-    }
-
-    #[inline(always)]
-    fn turned(t: f64, angles: Angles) -> Self {
-        Probe {
-            t,
-            angles,
-            fresh: false,
-        }
-    }
-
-    /// The time and angles to turn from, where they were computed afresh.
-    #[inline(always)]
-    fn turnable(self) -> Option<(f64, Angles)> {
-        self.fresh.then_some((self.t, self.angles))
-    }
-}
-
-/// The angles of a search's last evaluation, when it was at `t` (a search by sums usually ends on the
-/// crossing it refined, or on the end of contact); else `None`, and they are computed afresh.
-fn last_probe(probe: &Cell<Probe>, t: f64) -> Option<Angles> {
-    let probe = probe.get();
-    (probe.t == t).then_some(probe.angles)
-}
-
 /// The event `search` finds, given where to record the states it evaluates (the last few are kept),
 /// and the state at the event or, without one, at the end of contact `end`: usually among the
 /// search's last evaluations (the crossing Newton found, before the evaluations that proved nothing
@@ -601,14 +548,11 @@ impl Event<(f64, f64, f64, f64), 1> for SlideBySums<'_> {
 
     #[inline(always)]
     fn near(&self, t: f64) -> [(f64, f64, f64, f64); 1] {
-        let probe = self.probe.get().turnable();
-        let probe = match probe.and_then(|from| self.slide.turned_from(self.setup, t, from)) {
-            Some(angles) => Probe::turned(t, angles),
-            None => Probe::fresh(t, self.slide.angles(self.setup, t)),
-        };
+        let (slide, setup) = (self.slide, self.setup);
+        let rates = (setup.w, setup.omega_slide);
+        let probe = (self.probe.get()).near(t, slide.start.t, rates, || slide.angles(setup, t));
         self.probe.set(probe);
-        let angles = probe.angles;
-        [self.sums.event(angles, self.constants)]
+        [self.sums.event(probe.angles, self.constants)]
     }
 }
 

@@ -4,7 +4,7 @@ use super::super::contact::Cart;
 use super::super::oscillator::{detuned, forced, free, free_given, step};
 use super::super::setup::{Setup, State};
 use super::super::sums::SlipTerms;
-use super::super::trig::{sin_cos, sin_cos2, turned2};
+use super::super::trig::{sin_cos, sin_cos2};
 
 /// A sliding phase from `start`, with the slip's sign `dir` (+1: the contact point moves forward
 /// relative to the cart and the friction on the ball, F = dir mu N, acts backward).
@@ -116,22 +116,6 @@ impl Slide {
         } else {
             sin_cos2(setup.w * tau, setup.omega_slide * tau)
         }
-    }
-
-    /// [`Slide::angles`] at `t`, turned from those at `at` where `t` lies within a small turn of it on
-    /// both oscillations ([`turned2`]); else `None` (as at the phase's start), and they are computed
-    /// afresh.
-    #[inline(always)]
-    pub fn turned_from(
-        &self,
-        setup: &Setup,
-        t: f64,
-        (at, angles): (f64, Angles),
-    ) -> Option<Angles> {
-        if t == self.start.t {
-            return None;
-        }
-        turned2(angles, (setup.w, setup.omega_slide), t - at)
     }
 
     /// [`Slide::sample`] with the phase's `Angles` at `t` at hand.

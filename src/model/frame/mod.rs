@@ -31,14 +31,17 @@
 //! stretch y, relative to the frame; its velocity is the cart's own (the slip is measured against it).
 //! A compliant ball's patch slides on the moving cart by this model's slide (`sliding.rs`).
 
+#[cfg(test)]
+mod bounds;
 mod sliding;
 mod sums;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::first_rise;
+use super::events::{Event, WithNear, first_rise, first_rise_predicted};
 use super::oscillator::{detuned, forced, free_given};
 use super::params::Params;
+use super::probe::Probe;
 use super::quadrature::integrate;
 use super::recent::Recent;
 use super::setup::{Setup, State};
@@ -558,6 +561,8 @@ impl Contact for FramedCart {
         // Without string friction the cart's stopping changes nothing: a constant stands in for it,
         // and the searches leave it out.
         let string = setup.cart_friction > 0.0;
+        // The rates of the angles ([`FrameMotion::angles`]), for a refinement's probe turned from the last.
+        let rates = (motion.omega, setup.w);
         let stop = |p: &Point, cart_dir: f64| {
             if string {
                 let dy = p.state.s.v - p.state.vf;
@@ -595,14 +600,26 @@ impl Contact for FramedCart {
                 } else if let Some(sums) = SlipSums::new(motion, setup) {
                     let constants = sums.constants(slip_offset);
                     // The slip alone, by its sums; the state is computed only where the search ends.
-                    let probes = Recent::new(t0, (t0, motion.angles(setup, t0)));
-                    let slip = |t: f64| {
-                        let angles = motion.angles(setup, t);
-                        probes.record(t, (t, angles));
-                        [sums.event(angles, constants)]
-                    };
-                    let found = first_rise(slip, t0, end, step, [curvature], [noise]);
-                    let (t, angles) = probes.at(found.map_or(end, |(t, _)| t));
+                    let probes = Recent::new(t0, Probe::fresh(t0, motion.angles(setup, t0)));
+                    let slip = WithNear(
+                        |t: f64| {
+                            let angles = motion.angles(setup, t);
+                            probes.record(t, Probe::fresh(t, angles));
+                            [sums.event(angles, constants)]
+                        },
+                        |t: f64| {
+                            let probe = probes
+                                .latest()
+                                .near(t, t0, rates, || motion.angles(setup, t));
+                            probes.record(t, probe);
+                            [sums.event(probe.angles, constants)]
+                        },
+                    );
+                    let [curvature, fourth] = sums.bounds(setup, motion.omega);
+                    let bounds = [[curvature], [fourth]];
+                    let regime = "frame slide by its sums";
+                    let found = searched_by_sums(regime, slip, (t0, end, step), bounds, [noise]);
+                    let Probe { t, angles, .. } = probes.at(found.map_or(end, |(t, _)| t));
                     last.record(t, motion.moving_given(setup, t, angles).0.state);
                     found
                 } else {
@@ -644,14 +661,26 @@ impl Contact for FramedCart {
                 } else if let Some(sums) = force_sums(motion, setup) {
                     // The margins alone, by their sums; the state is computed only where the search
                     // ends.
-                    let probes = Recent::new(t0, (t0, motion.angles(setup, t0)));
-                    let margins = |t: f64| {
-                        let angles = motion.angles(setup, t);
-                        probes.record(t, (t, angles));
-                        sums.margins(setup, angles)
-                    };
-                    let found = first_rise(margins, t0, end, step, [curvature; 2], [noise[0]; 2]);
-                    let (t, angles) = probes.at(found.map_or(end, |(t, _)| t));
+                    let probes = Recent::new(t0, Probe::fresh(t0, motion.angles(setup, t0)));
+                    let margins = WithNear(
+                        |t: f64| {
+                            let angles = motion.angles(setup, t);
+                            probes.record(t, Probe::fresh(t, angles));
+                            sums.margins(setup, angles)
+                        },
+                        |t: f64| {
+                            let probe = probes
+                                .latest()
+                                .near(t, t0, rates, || motion.angles(setup, t));
+                            probes.record(t, probe);
+                            sums.margins(setup, probe.angles)
+                        },
+                    );
+                    let bounds = [[sums.curvature; 2], [sums.fourth; 2]];
+                    let regime = "frame grip by its sums";
+                    let found =
+                        searched_by_sums(regime, margins, (t0, end, step), bounds, [noise[0]; 2]);
+                    let Probe { t, angles, .. } = probes.at(found.map_or(end, |(t, _)| t));
                     last.record(t, motion.moving_given(setup, t, angles).0.state);
                     found
                 } else {
@@ -744,4 +773,34 @@ fn touched(setup: &Setup, state: &FrameState) -> Touched {
         spring: setup.k * state.s.x,
         v: state.s.v - state.vf,
     }
+}
+
+/// A search by sums (`regime` names it, for the bounds test): their f'' and f''' are as exact as f and
+/// f', so crossings are refined from predicted ones and intervals proved empty by the Taylor polynomials
+/// with `bounds` on f'' and f'''' ([`first_rise_predicted`]). Under test, where the bounds test asks
+/// it, the bounds are first checked against the branches they bound.
+#[inline(always)]
+fn searched_by_sums<const K: usize>(
+    regime: &'static str,
+    f: impl Event<(f64, f64, f64, f64), K>,
+    (t0, end, step): (f64, f64, f64),
+    bounds: [[f64; K]; 2],
+    noise: [f64; K],
+) -> Option<(f64, usize)> {
+    #[cfg(test)]
+    let sampled = super::bound_samples::sample(
+        || regime.to_string(),
+        &|t| {
+            f.at(t)
+                .map(|(value, rate, second, third)| [value, rate, second, third])
+        },
+        (t0, end, step),
+        bounds,
+    );
+    #[cfg(not(test))]
+    let _ = regime;
+    let found = first_rise_predicted(f, t0, end, step, bounds, noise);
+    #[cfg(test)]
+    super::bound_samples::check(sampled, found.map_or(end, |(t, _)| t));
+    found
 }

@@ -68,6 +68,11 @@ impl SlipSums {
         })
     }
 
+    /// Bounds on the event's second and fourth derivatives over the phase ([`SlipTerms::bounds`]).
+    pub fn bounds(&self, setup: &Setup, omega: f64) -> [f64; 2] {
+        self.terms.bounds(setup.w, omega)
+    }
+
     /// The event's value at the phase's start, exactly dir (offset - slip0), so that rounding cannot
     /// fake a crossing there when the offset is the start's slip, and its constant term,
     /// dir (offset - u0' + P0/B) + dir F0 R cos(w t0)/w, for the event measured from `offset`.
