@@ -18,6 +18,7 @@ use std::collections::BTreeMap;
 
 use proptest::prelude::*;
 
+use super::events::Event;
 use super::params::Params;
 use super::setup::Setup;
 use super::solve::solve;
@@ -165,6 +166,41 @@ pub fn run(params: impl Strategy<Value = Params>, cases: u32) -> BTreeMap<String
     let checked = checked();
     eprintln!("phases checked by regime: {checked:?}");
     checked
+}
+
+/// [`run`], asserting that every one of `regimes` was entered and checked.
+pub fn run_entering(params: impl Strategy<Value = Params>, cases: u32, regimes: &[&str]) {
+    let checked = run(params, cases);
+    for regime in regimes {
+        assert!(
+            checked.get(*regime).is_some_and(|&n| n > 0),
+            "{regime} never checked: {checked:?}"
+        );
+    }
+}
+
+/// `search` run on the event `f`, its branches first sampled against `bounds` over [t0, end] when the
+/// check is on ([`sample`]), and checked up to the event it found ([`check`]): the searches by bounds
+/// call their search through this under test.
+pub fn search_checked<const K: usize, F: Event<(f64, f64, f64, f64), K>>(
+    regime: impl FnOnce() -> String,
+    f: F,
+    (t0, end, step): (f64, f64, f64),
+    bounds: [[f64; K]; 2],
+    search: impl FnOnce(F) -> Option<(f64, usize)>,
+) -> Option<(f64, usize)> {
+    let sampled = sample(
+        regime,
+        &|t| {
+            f.at(t)
+                .map(|(value, rate, second, third)| [value, rate, second, third])
+        },
+        (t0, end, step),
+        bounds,
+    );
+    let found = search(f);
+    check(sampled, found.map_or(end, |(t, _)| t));
+    found
 }
 
 /// A random rigid ball, throw and contact, as the property tests draw them (tests/physics/properties.rs),

@@ -595,25 +595,26 @@ fn searched<const K: usize>(
     bounds: [[f64; K]; 2],
     noise: [f64; K],
 ) -> Option<(f64, usize)> {
-    #[cfg(test)]
-    let sampled = super::bound_samples::sample(
-        || regime.name.to_string(),
-        &|t| {
-            f.at(t)
-                .map(|(value, rate, second, third)| [value, rate, second, third])
-        },
-        (t0, end, step),
-        bounds,
-    );
-    #[cfg(not(test))]
-    let _ = regime.name;
-    let found = if regime.predicted {
-        first_rise_predicted(f, t0, end, step, bounds, noise)
-    } else {
-        first_rise_within(f, t0, end, step, bounds, noise)
+    let search = move |f| {
+        if regime.predicted {
+            first_rise_predicted(f, t0, end, step, bounds, noise)
+        } else {
+            first_rise_within(f, t0, end, step, bounds, noise)
+        }
     };
     #[cfg(test)]
-    super::bound_samples::check(sampled, found.map_or(end, |(t, _)| t));
+    let found = super::bound_samples::search_checked(
+        || regime.name.to_string(),
+        f,
+        (t0, end, step),
+        bounds,
+        search,
+    );
+    #[cfg(not(test))]
+    let found = {
+        let _ = regime.name;
+        search(f)
+    };
     found
 }
 

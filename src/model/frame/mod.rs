@@ -787,20 +787,19 @@ fn searched_by_sums<const K: usize>(
     bounds: [[f64; K]; 2],
     noise: [f64; K],
 ) -> Option<(f64, usize)> {
+    let search = move |f| first_rise_predicted(f, t0, end, step, bounds, noise);
     #[cfg(test)]
-    let sampled = super::bound_samples::sample(
+    let found = super::bound_samples::search_checked(
         || regime.to_string(),
-        &|t| {
-            f.at(t)
-                .map(|(value, rate, second, third)| [value, rate, second, third])
-        },
+        f,
         (t0, end, step),
         bounds,
+        search,
     );
     #[cfg(not(test))]
-    let _ = regime;
-    let found = first_rise_predicted(f, t0, end, step, bounds, noise);
-    #[cfg(test)]
-    super::bound_samples::check(sampled, found.map_or(end, |(t, _)| t));
+    let found = {
+        let _ = regime;
+        search(f)
+    };
     found
 }
