@@ -38,7 +38,7 @@ mod sums;
 
 use super::contact::{Ball, Cart, Cause, Contact, Found, Mode, PhaseMotion, ROLLING, ROUNDING};
 use super::error::{MAX_RADIANS, SolveError};
-use super::events::{Event, WithNear, first_rise, first_rise_predicted};
+use super::events::{WithNear, first_rise, first_rise_predicted};
 use super::oscillator::{detuned, forced, free_given};
 use super::params::Params;
 use super::probe::Probe;
@@ -561,8 +561,6 @@ impl Contact for FramedCart {
         // Without string friction the cart's stopping changes nothing: a constant stands in for it,
         // and the searches leave it out.
         let string = setup.cart_friction > 0.0;
-        // The rates of the angles ([`FrameMotion::angles`]), for a refinement's probe turned from the last.
-        let rates = (motion.omega, setup.w);
         let stop = |p: &Point, cart_dir: f64| {
             if string {
                 let dy = p.state.s.v - p.state.vf;
@@ -600,28 +598,15 @@ impl Contact for FramedCart {
                 } else if let Some(sums) = SlipSums::new(motion, setup) {
                     let constants = sums.constants(slip_offset);
                     // The slip alone, by its sums; the state is computed only where the search ends.
-                    let probes = Recent::new(t0, Probe::fresh(t0, motion.angles(setup, t0)));
-                    let slip = WithNear(
-                        |t: f64| {
-                            let angles = motion.angles(setup, t);
-                            probes.record(t, Probe::fresh(t, angles));
-                            [sums.event(angles, constants)]
-                        },
-                        |t: f64| {
-                            let probe = probes
-                                .latest()
-                                .near(t, t0, rates, || motion.angles(setup, t));
-                            probes.record(t, probe);
-                            [sums.event(probe.angles, constants)]
-                        },
-                    );
                     let [curvature, fourth] = sums.bounds(setup, motion.omega);
-                    let bounds = [[curvature], [fourth]];
-                    let regime = "frame slide by its sums";
-                    let found = searched_by_sums(regime, slip, (t0, end, step), bounds, [noise]);
-                    let Probe { t, angles, .. } = probes.at(found.map_or(end, |(t, _)| t));
-                    last.record(t, motion.moving_given(setup, t, angles).0.state);
-                    found
+                    searched_by_sums(
+                        "frame slide by its sums",
+                        (motion, setup, &last),
+                        (t0, end, step),
+                        [[curvature], [fourth]],
+                        [noise],
+                        |angles| [sums.event(angles, constants)],
+                    )
                 } else {
                     // The stand-in costs a search branch: leave it out.
                     first_rise(|t| [f(t)[0]], t0, end, step, [curvature], [noise])
@@ -661,28 +646,14 @@ impl Contact for FramedCart {
                 } else if let Some(sums) = force_sums(motion, setup) {
                     // The margins alone, by their sums; the state is computed only where the search
                     // ends.
-                    let probes = Recent::new(t0, Probe::fresh(t0, motion.angles(setup, t0)));
-                    let margins = WithNear(
-                        |t: f64| {
-                            let angles = motion.angles(setup, t);
-                            probes.record(t, Probe::fresh(t, angles));
-                            sums.margins(setup, angles)
-                        },
-                        |t: f64| {
-                            let probe = probes
-                                .latest()
-                                .near(t, t0, rates, || motion.angles(setup, t));
-                            probes.record(t, probe);
-                            sums.margins(setup, probe.angles)
-                        },
-                    );
-                    let bounds = [[sums.curvature; 2], [sums.fourth; 2]];
-                    let regime = "frame grip by its sums";
-                    let found =
-                        searched_by_sums(regime, margins, (t0, end, step), bounds, [noise[0]; 2]);
-                    let Probe { t, angles, .. } = probes.at(found.map_or(end, |(t, _)| t));
-                    last.record(t, motion.moving_given(setup, t, angles).0.state);
-                    found
+                    searched_by_sums(
+                        "frame grip by its sums",
+                        (motion, setup, &last),
+                        (t0, end, step),
+                        [[sums.curvature; 2], [sums.fourth; 2]],
+                        [noise[0]; 2],
+                        |angles| sums.margins(setup, angles),
+                    )
                 } else {
                     let margins = |t| {
                         let [forward, backward, _] = f(t);
@@ -775,18 +746,37 @@ fn touched(setup: &Setup, state: &FrameState) -> Touched {
     }
 }
 
-/// A search by sums (`regime` names it, for the bounds test): their f'' and f''' are as exact as f and
-/// f', so crossings are refined from predicted ones and intervals proved empty by the Taylor polynomials
-/// with `bounds` on f'' and f'''' ([`first_rise_predicted`]). Under test, where the bounds test asks
-/// it, the bounds are first checked against the branches they bound.
+/// A search by sums of `motion`'s event `event`, a function of the phase's angles (`regime` names it,
+/// for the bounds test): their f'' and f''' are as exact as f and f', so crossings are refined from
+/// predicted ones and intervals proved empty by the Taylor polynomials with `bounds` on f'' and f''''
+/// ([`first_rise_predicted`]). Each probe's angles are kept (a refinement's turned from the last fresh
+/// ones, [`Probe::near`]), and the state where the search ends is computed from them and recorded in
+/// `last`. Under test, where the bounds test asks it, the bounds are first checked against the branches
+/// they bound.
 #[inline(always)]
 fn searched_by_sums<const K: usize>(
     regime: &'static str,
-    f: impl Event<(f64, f64, f64, f64), K>,
+    (motion, setup, last): (&FrameMotion, &Setup, &Recent<FrameState>),
     (t0, end, step): (f64, f64, f64),
     bounds: [[f64; K]; 2],
     noise: [f64; K],
+    event: impl Fn(Angles) -> [(f64, f64, f64, f64); K],
 ) -> Option<(f64, usize)> {
+    // The rates of the angles ([`FrameMotion::angles`]), for a refinement's probe turned from the last.
+    let rates = (motion.omega, setup.w);
+    let probes = Recent::new(t0, Probe::fresh(t0, motion.angles(setup, t0)));
+    let f = WithNear(
+        |t: f64| {
+            let angles = motion.angles(setup, t);
+            probes.record(t, Probe::fresh(t, angles));
+            event(angles)
+        },
+        |t: f64| {
+            let probe = (probes.latest()).near(t, t0, rates, || motion.angles(setup, t));
+            probes.record(t, probe);
+            event(probe.angles)
+        },
+    );
     let search = move |f| first_rise_predicted(f, t0, end, step, bounds, noise);
     #[cfg(test)]
     let found = super::bound_samples::search_checked(
@@ -801,5 +791,7 @@ fn searched_by_sums<const K: usize>(
         let _ = regime;
         search(f)
     };
+    let Probe { t, angles, .. } = probes.at(found.map_or(end, |(t, _)| t));
+    last.record(t, motion.moving_given(setup, t, angles).0.state);
     found
 }
